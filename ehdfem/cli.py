@@ -1,0 +1,189 @@
+"""Command line: ``ehdfem collide`` (one collision).
+
+Inputs are either dimensionless (``--St --eps --delta ...``, DSH scales) or physical
+(``--sphere --wall --liquid --radius --speed --layer-thickness ...``, SI units); ``--example``
+runs a steel sphere hitting a glass plate through a 0.3 mm silicone-oil layer at 30 degrees.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from . import checks, viz
+from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
+from .normal import IntegratorOptions, NormalSolverError
+from .scales import CollisionParameters, PhysicalCollision, liquid, material
+
+EXAMPLE = dict(
+    sphere="steel",
+    wall="glass",
+    liquid="silicone_oil_100cst",
+    radius=6.35e-3,
+    speed=1.0,
+    angle=30.0,
+    layer_thickness=3e-4,
+)
+PHYSICAL = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="ehdfem", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    c = sub.add_parser("collide", help="simulate one collision and print its results")
+    dim = c.add_argument_group("dimensionless inputs (DSH scales)")
+    dim.add_argument("--St", type=float, help="Stokes number m V0 / (6 pi mu a^2), > 0")
+    dim.add_argument(
+        "--eps", type=float, help="elasticity parameter 4 theta mu V0 a^1.5 / x0^2.5, > 0"
+    )
+    dim.add_argument(
+        "--delta", type=float, default=0.01, help="layer thickness / radius x0/a, (0, 1)"
+    )
+    dim.add_argument(
+        "--p-cav",
+        type=float,
+        default=None,
+        help="cavitation pressure (p_cav - p_ambient) x0^2/(mu V0 a), <= 0; default: none",
+    )
+    dim.add_argument("--spin", type=float, default=0.0, help="initial spin a Omega0 / V0")
+    phys = c.add_argument_group("physical inputs (SI)")
+    phys.add_argument("--sphere", help="sphere material preset (e.g. steel, glass)")
+    phys.add_argument("--wall", help="wall material preset")
+    phys.add_argument("--liquid", help="liquid preset (e.g. water, silicone_oil_100cst)")
+    phys.add_argument("--radius", type=float, help="sphere radius a [m]")
+    phys.add_argument("--speed", type=float, help="impact speed |v| [m/s]")
+    phys.add_argument("--layer-thickness", type=float, help="liquid layer thickness x0 [m]")
+    phys.add_argument(
+        "--example",
+        action="store_true",
+        help="steel sphere (a = 6.35 mm) on glass through 0.3 mm of 100 cSt silicone oil, "
+        "1 m/s at 30 deg",
+    )
+    common = c.add_argument_group("both")
+    common.add_argument(
+        "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
+    )
+    common.add_argument("--layer", choices=("thin", "immersed"), default="thin")
+    common.add_argument(
+        "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
+    )
+    num = c.add_argument_group("numerics and output")
+    num.add_argument("--model", choices=MODELS, default="halfspace")
+    num.add_argument(
+        "--tangential",
+        choices=TANGENTIAL_MODELS,
+        default="couette",
+        help="film model of the tangential motion (oblique impacts)",
+    )
+    num.add_argument("--nodes", type=int, default=DEFAULT_NODES, help="film nodes")
+    num.add_argument(
+        "--rtol", type=float, default=IntegratorOptions.rtol, help="time-step tolerance"
+    )
+    num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
+    num.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+    return parser
+
+
+def _inputs(args) -> CollisionParameters | PhysicalCollision:
+    """Build the collision inputs from the arguments, refusing mixed or incomplete sets."""
+    given = [name for name in PHYSICAL if getattr(args, name) is not None]
+    if args.example:
+        values = {**EXAMPLE, **{name: getattr(args, name) for name in given}}
+        if args.angle is not None:
+            values["angle"] = args.angle
+        given = PHYSICAL
+    elif given:
+        values = {name: getattr(args, name) for name in given}
+        values["angle"] = 0.0 if args.angle is None else args.angle
+    if given:
+        missing = [name for name in PHYSICAL if name not in values]
+        if missing:
+            raise checks.InputError(
+                f"physical inputs need --{', --'.join(m.replace('_', '-') for m in missing)}"
+            )
+        if args.St is not None or args.eps is not None:
+            raise checks.InputError(
+                "give either dimensionless (--St, --eps) or physical inputs, not both"
+            )
+        return PhysicalCollision(
+            radius=values["radius"],
+            sphere=material(values["sphere"]),
+            wall=material(values["wall"]),
+            liquid=liquid(values["liquid"]),
+            speed=values["speed"],
+            angle=values["angle"],
+            layer_thickness=values["layer_thickness"],
+            layer=args.layer,
+            e_dry=args.e_dry,
+        )
+    for name in ("St", "eps"):
+        if getattr(args, name) is None:
+            raise checks.InputError(f"--{name} is required (or give physical inputs, or --example)")
+    checks.positive("eps", args.eps)
+    return CollisionParameters(
+        St=args.St,
+        eps=args.eps,
+        delta=args.delta,
+        p_cav=-np.inf if args.p_cav is None else args.p_cav,
+        e_dry=args.e_dry,
+        layer=args.layer,
+        angle=0.0 if args.angle is None else args.angle,
+        spin=args.spin,
+    )
+
+
+def _print_table(summary: dict) -> None:
+    rows = [(k, v) for k, v in summary.items() if k != "si"] + list(summary.get("si", {}).items())
+    width = max(len(k) for k, _ in rows)
+    for key, value in rows:
+        text = f"{value:.6g}" if isinstance(value, float) else str(value)
+        print(f"  {key:<{width}}  {text}")
+
+
+def collide_command(args) -> int:
+    inputs = _inputs(args)
+    options = IntegratorOptions(rtol=args.rtol)
+    result = collide(
+        inputs, model=args.model, nodes=args.nodes, options=options, tangential=args.tangential
+    )
+    summary = result.summary()
+    print("ehdfem collide: results (dimensionless, DSH scales; SI under si)")
+    _print_table(summary)
+    if args.json:
+        text = json.dumps(summary, indent=2)
+        if args.json == "-":
+            print(text)
+        else:
+            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+            Path(args.json).write_text(text + "\n")
+    if args.plots:
+        out = Path(args.plots)
+        paths = [
+            viz.plot_histories(result.normal, out / "histories.png"),
+            viz.plot_profiles(result.normal, out / "profiles.png"),
+        ]
+        if result.tangential is not None:
+            paths.append(viz.plot_tangential(result, out / "tangential.png"))
+        for path in paths:
+            print(f"  wrote {path}")
+    return 0
+
+
+def main(argv=None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        return collide_command(args)
+    except checks.InputError as err:
+        print(f"ehdfem: error: {err}", file=sys.stderr)
+        return 2
+    except NormalSolverError as err:
+        print(f"ehdfem: solver failure: {err}", file=sys.stderr)
+        return 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,148 @@
+"""One collision, end to end: the public entry point used by the CLI and by studies.
+
+``collide(params)`` picks the film grid for the parameters, builds the elasticity model
+(half-space kernel here; finite-element solids plug into the same place) and integrates the
+normal motion. Inputs and outputs are dimensionless (see :mod:`ehdfem.scales`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import checks
+from .compliance.halfspace import HalfSpaceCompliance
+from .film import radial_grid
+from .normal import FilmClosedError, IntegratorOptions, NormalResult, solve_normal
+from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .tangential import MODELS as TANGENTIAL_MODELS
+from .tangential import TangentialResult, solve_tangential
+
+MODELS = ("halfspace",)
+DEFAULT_NODES = 240
+IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
+
+
+def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
+    """Film nodes for a collision (by sqrt(a x0)).
+
+    The fine zone covers the contact radius at the largest approach the sphere can reach, the
+    dry Hertz compression (an upper bound, since the film dissipates), and never less than
+    eps^(1/5), the radius where elastic flattening starts (gap ~ eps^(2/5)). A thin layer ends
+    where the wetted edge can reach, sqrt(2 (1 + compression)), plus 5 %.
+    """
+    compression = hertz_max_compression(params.eps, params.St)
+    fine = max(np.sqrt(compression), params.eps**0.2)
+    if params.layer == "thin":
+        outer = 1.05 * np.sqrt(2.0 * (1.0 + compression))
+    else:
+        outer = max(IMMERSED_OUTER_RADIUS, 10.0 * fine)
+    return radial_grid(nodes, min(fine, 0.5 * outer), outer)
+
+
+@dataclass
+class CollisionResult:
+    """A collision's outcome: the normal motion (:class:`ehdfem.normal.NormalResult`), the
+    tangential motion (:class:`ehdfem.tangential.TangentialResult`, None for a head-on impact),
+    the elasticity model used and, for physical inputs, the inputs (to convert back to SI)."""
+
+    params: CollisionParameters
+    model: str
+    normal: NormalResult
+    tangential: TangentialResult | None = None
+    physical: PhysicalCollision | None = None
+
+    def summary(self) -> dict:
+        """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"."""
+        n = self.normal
+        p = self.params
+        out = {
+            "model": self.model,
+            "layer": p.layer,
+            "St": p.St,
+            "eps": p.eps,
+            "delta": p.delta,
+            "p_cav": None if p.p_cav == -np.inf else p.p_cav,
+            "e_dry": p.e_dry,
+            "angle": p.angle,
+            "rebound": n.rebound,
+            "status": n.status,
+            "e_n": n.e_n,
+            "exit_velocity": n.exit_velocity,
+            "max_rebound_velocity": n.max_rebound_velocity,
+            "min_film_thickness": n.min_film_thickness,
+            "max_force": n.max_force,
+            "contact_time": n.contact_time,
+            "max_compression": n.max_compression,
+            "energy_error": n.energy_error,
+            "film_nodes": len(n.radii),
+            "time_steps": n.steps,
+            "e_t": None,
+            "spin_change": None,
+        }
+        if self.tangential is not None:
+            t = self.tangential
+            out.update(
+                e_t=t.e_t, spin_change=t.spin_change, tangential_model=t.model, tangential_at=t.at
+            )
+        if self.physical is not None:
+            s = self.physical.scales()
+            out["si"] = {
+                "min_film_thickness_m": n.min_film_thickness * s.gap,
+                "max_force_N": n.max_force * s.force,
+                "contact_time_s": n.contact_time * s.time,
+                "max_compression_m": n.max_compression * s.gap,
+                "rebound_normal_speed_m_s": n.e_n * s.velocity,
+            }
+            if self.tangential is not None and self.tangential.e_t is not None:
+                u0 = self.physical.tangential_speed
+                out["si"]["exit_tangential_speed_m_s"] = self.tangential.e_t * u0
+                out["si"]["spin_change_rad_s"] = self.tangential.spin_change * u0 / s.sphere_radius
+        return out
+
+
+def collide(
+    params: CollisionParameters | PhysicalCollision,
+    model: str = "halfspace",
+    nodes: int = DEFAULT_NODES,
+    options: IntegratorOptions | None = None,
+    refinements: int = 2,
+    tangential: str = "couette",
+) -> CollisionResult:
+    """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
+
+    ``nodes``: film nodes. If the film closes on that grid (hard impacts of stiff solids, where
+    the rim of the flattened contact gets thinner than the grid resolves), the collision is
+    run again on a grid with twice the nodes, at most ``refinements`` times; the nodes used are
+    reported in the result (``film_nodes``). ``tangential``: the film model of the
+    tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential`); it is solved
+    when the impact is oblique (angle > 0).
+    """
+    physical = params if isinstance(params, PhysicalCollision) else None
+    if physical is not None:
+        params = physical.dimensionless()
+    if not isinstance(params, CollisionParameters):
+        raise checks.InputError(
+            f"params must be CollisionParameters or PhysicalCollision, got {params!r}"
+        )
+    checks.choice("model", model, MODELS)
+    checks.choice("tangential", tangential, TANGENTIAL_MODELS)
+    nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
+    checks.integer("refinements", refinements, lower=0, upper=4)
+    for attempt in range(refinements + 1):
+        compliance = HalfSpaceCompliance(film_radii(params, nodes * 2**attempt), params.eps)
+        try:
+            normal = solve_normal(params, compliance, options)
+        except FilmClosedError:
+            if attempt == refinements:
+                raise
+            continue
+        oblique = params.tangential_speed > 0
+        return CollisionResult(
+            params,
+            model,
+            normal,
+            solve_tangential(normal, tangential) if oblique else None,
+            physical,
+        )

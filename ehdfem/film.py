@@ -1,0 +1,314 @@
+"""Axisymmetric Reynolds lubrication film: discretisation, wetted edge and cavitation.
+
+All quantities are scaled (DSH 1986): radius R by sqrt(a x0), film thickness H by x0, pressure P
+by mu V0 a / x0^2, time T by x0 / V0. The film obeys
+
+    dH/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),        0 < R < R_edge,
+    dP/dR = 0 at R = 0,    P >= P_cav (cavitation by truncation),
+
+with P = 0 at the wetted edge R_edge where H = 1 (thin layer), or, fully immersed, the far-field
+condition P ~ H^-2 (exact for the rigid-sphere solution P = -3 V / H^2) at the last node.
+
+Discretisation: continuous piecewise-linear (P1) finite elements in R with the weight R, the
+lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss quadrature of
+int R H^3 / 12 dR with H linear on the element (exact for that H). The thin-layer edge is cut
+into its element (the element is shortened to end at R_edge, where P = 0 and H = 1), so the
+edge moves continuously rather than node by node. The film does not know about time stepping:
+it assembles, for a given film thickness H and pressure P, the weak-form pieces
+
+    sum_j m_i dH_i/dT + (K(H) P)_i = 0     (free nodes)
+
+plus the derivative D = d(K(H) P)/dH, the nodes that are dry or cavitated, and the force.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from . import checks
+
+LAYERS = ("thin", "immersed")
+
+# 3-point Gauss-Legendre on [0, 1]: integrates R H^3 exactly for linear R and H.
+_GAUSS_XI = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
+_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
+
+
+def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
+    """Film nodes R_i = R_f sinh(A i/(n-1)), A = asinh(R_max / R_f), scaled by sqrt(a x0).
+
+    The spacing is nearly uniform, A R_f / (n-1), inside the fine radius R_f (where the solids
+    flatten and the film is thinnest) and grows in proportion to R beyond it, so a far field
+    out to R_max costs only a logarithmic number of nodes.
+    """
+    n = checks.integer("n (film nodes)", n, lower=8)
+    fine_radius = checks.positive("fine_radius", fine_radius)
+    outer_radius = checks.number("outer_radius", outer_radius, lower=fine_radius, lower_open=True)
+    stretch = np.arcsinh(outer_radius / fine_radius)
+    radii = fine_radius * np.sinh(stretch * np.linspace(0.0, 1.0, n))
+    radii[-1] = outer_radius
+    return radii
+
+
+def _ascending_mass(left, right):
+    """int over [left, right] of the hat that rises from 0 to 1, times R."""
+    return (right - left) * (left + 2.0 * right) / 6.0
+
+
+def _descending_mass(left, right):
+    """int over [left, right] of the hat that falls from 1 to 0, times R."""
+    return (right - left) * (2.0 * left + right) / 6.0
+
+
+@dataclass
+class _Elements:
+    left: np.ndarray  # left node of each wetted element
+    right: np.ndarray  # right node, -1 for an element cut at the wetted edge
+    length: np.ndarray
+    gauss_r: np.ndarray  # (elements, 3) Gauss radii
+    h_left: np.ndarray
+    h_right: np.ndarray  # 1 at the wetted edge
+
+
+@dataclass
+class FilmState:
+    """The assembled film for one pressure and film-thickness iterate (scaled units).
+
+    ``mass``: lumped m_i; ``conductance`` (lower, diagonal, upper) of K(H); ``dflux_dH`` the
+    tridiagonal D = d(K(H) P)/dH; ``force_weights`` f with St dV/dT = f . P; ``dry`` nodes hold
+    P = 0 (outside the wetted edge); ``edge_radius`` is R_edge (inf when fully immersed).
+    """
+
+    mass: np.ndarray
+    conductance: tuple[np.ndarray, np.ndarray, np.ndarray]
+    dflux_dH: tuple[np.ndarray, np.ndarray, np.ndarray]
+    force_weights: np.ndarray
+    dry: np.ndarray
+    edge_radius: float
+
+    def flux(self, pressure: np.ndarray) -> np.ndarray:
+        """(K(H) P)_i, the net outward lubrication flux from node i (times 2 pi, scaled)."""
+        return tridiagonal_product(self.conductance, pressure)
+
+
+def tridiagonal_product(bands, vector):
+    """(lower, diagonal, upper) band matrix times a vector; lower[0] and upper[-1] unused."""
+    lower, diagonal, upper = bands
+    out = diagonal * vector
+    out[1:] += lower[1:] * vector[:-1]
+    out[:-1] += upper[:-1] * vector[1:]
+    return out
+
+
+class Film:
+    """Reynolds film on the radial nodes ``radii`` (scaled by sqrt(a x0)).
+
+    ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
+    P ~ H^-2 at the last node). ``p_cav``: the cavitation pressure (scaled by mu V0 a / x0^2,
+    <= 0; -inf for no limit).
+    """
+
+    def __init__(self, radii: np.ndarray, layer: str = "thin", p_cav: float = -np.inf):
+        self.radii = np.asarray(radii, dtype=float)
+        self.layer = checks.choice("layer", layer, LAYERS)
+        if p_cav != -np.inf:
+            p_cav = checks.number("p_cav", p_cav, upper=0.0)
+        self.p_cav = p_cav
+        left, right = self.radii[:-1], self.radii[1:]
+        self._length = right - left
+        self._full_mass = np.zeros_like(self.radii)
+        self._full_mass[:-1] += _descending_mass(left, right)
+        self._full_mass[1:] += _ascending_mass(left, right)
+
+    @property
+    def full_mass(self) -> np.ndarray:
+        """m_i = int phi_i R dR over the whole grid (used for energies and forces)."""
+        return self._full_mass
+
+    def wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
+        """(number of wet nodes, R_edge) for the thin layer: R_edge is where H crosses 1.
+
+        The crossing is interpolated linearly between the last node with H < 1 and the next;
+        a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0 there) so the
+        cut element never degenerates.
+        """
+        n = len(self.radii)
+        if self.layer == "immersed":
+            return n, np.inf
+        above = np.flatnonzero(film_thickness >= 1.0)
+        if len(above) == 0:
+            raise FilmError("the wetted edge left the film grid: enlarge outer_radius")
+        first_dry = above[0]
+        if first_dry == 0:
+            return 0, 0.0
+        k = first_dry - 1
+        fraction = (1.0 - film_thickness[k]) / (film_thickness[first_dry] - film_thickness[k])
+        edge = self.radii[k] + fraction * self._length[k]
+        if fraction < 1e-3:
+            return k, edge
+        return first_dry, edge
+
+    def _elements(self, film_thickness: np.ndarray):
+        """(number of wet nodes, R_edge, the wetted elements). A thin layer's last element is
+        cut at the edge: its ``right`` index is -1 and H = 1 there."""
+        h = film_thickness
+        n_wet, edge = self.wetted_edge(h)
+        n_elem = max(n_wet - 1, 0)
+        left = np.arange(n_elem + int(self.layer == "thin" and n_wet > 0))
+        right = left + 1
+        length = self._length[np.minimum(left, len(self._length) - 1)].copy()
+        h_right = h[np.minimum(right, len(h) - 1)].copy()
+        if len(left) > n_elem:  # the cut element
+            right[-1] = -1
+            length[-1] = edge - self.radii[left[-1]]
+            h_right[-1] = 1.0
+        gauss_r = self.radii[left, None] + length[:, None] * _GAUSS_XI
+        return n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
+
+    def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
+        """Assemble the film for thickness H and pressure P (both at the nodes, scaled)."""
+        h = film_thickness
+        n = len(self.radii)
+        n_wet, edge, el = self._elements(h)
+        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+        d_lower, d_diagonal, d_upper = np.zeros(n), np.zeros(n), np.zeros(n)
+        mass = np.zeros(n)
+        k, dk_left, dk_right = _conductance(el.gauss_r, el.length, el.h_left, el.h_right)
+        regular = el.right >= 0
+        jump = pressure[el.left] - np.where(regular, pressure[el.right], 0.0)
+        diagonal[el.left] += k
+        d_diagonal[el.left] += dk_left * jump
+        r_left = self.radii[el.left]
+        mass[el.left] += _descending_mass(r_left, r_left + el.length)
+        left, right = el.left[regular], el.right[regular]
+        k, dk_left, dk_right, jump = k[regular], dk_left[regular], dk_right[regular], jump[regular]
+        diagonal[right] += k
+        upper[left] -= k
+        lower[right] -= k
+        d_upper[left] += dk_right * jump
+        d_lower[right] -= dk_left * jump
+        d_diagonal[right] -= dk_right * jump
+        mass[right] += _ascending_mass(self.radii[left], self.radii[right])
+        force_weights = mass / 3.0
+        if self.layer == "immersed":
+            self._add_far_field(h, pressure, diagonal, d_diagonal, force_weights)
+        dry = np.arange(n) >= n_wet
+        return FilmState(
+            mass, (lower, diagonal, upper), (d_lower, d_diagonal, d_upper), force_weights, dry, edge
+        )
+
+    def _add_far_field(self, h, pressure, diagonal, d_diagonal, force_weights):
+        """Robin condition R H^3/12 dP/dR = -R^2 H^2 P / 6 at the last node (P ~ H^-2, dH/dR = R)
+        and the force of the pressure beyond it, (1/3) int_Rmax^inf P R dR = P_N H_N / 3."""
+        r, hn = self.radii[-1], h[-1]
+        diagonal[-1] += r**2 * hn**2 / 6.0
+        d_diagonal[-1] += r**2 * hn / 3.0 * pressure[-1]
+        force_weights[-1] += hn / 3.0
+
+    def cavitated(self, pressure, residual, scale, dry):
+        """Nodes held at P_cav: the semismooth-Newton active set of min(P - P_cav, r / s) = 0.
+
+        ``residual`` r is the Reynolds residual (m dH/dT + K P) and ``scale`` s > 0 its
+        diagonal sensitivity; in the cavitated zone the film would need P < P_cav and r >= 0.
+        """
+        if self.p_cav == -np.inf:
+            return np.zeros_like(dry)
+        return (pressure - self.p_cav < residual / scale) & ~dry
+
+    def sliding_integrals(self, film_thickness: np.ndarray, outer_radius: float = np.inf):
+        """(J, G, M): the film's resistance to a sliding and spinning sphere (scaled).
+
+        J = int R dR / H is the Couette shear (tangential force -2 pi mu a u_s J). The sliding
+        pressure is p = 6 mu U0 sqrt(a) x0^(-3/2) w Pi(R) cos(phi), with w = (U + a Omega)/U0 and
+        Pi the azimuthal mode-1 solution of the Reynolds equation on the deformed film,
+
+            (1/R) (R H^3 Pi')' - H^3 Pi / R^2 = -dH/dR,   Pi(0) = 0, Pi = 0 at the edge,
+
+        (P1 elements, weak form int R H^3 Pi' v' + int H^3 Pi v / R = int H' v R). It adds
+        G = (3/2) int Pi H' R dR to the force and M = int Pi R^2 dR to the torque. Thin layer: up
+        to the wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta),
+        caps the logarithmic far field); beyond the last node the film is taken as the
+        undeformed X + R^2/2, where J, G and M grow as ln H, (3/5) ln H and (2/5) ln H.
+        """
+        h = film_thickness
+        n = len(h)
+        _, _, el = self._elements(h)
+        inside = self.radii[el.left] < outer_radius
+        el = _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
+        thickness = _gauss_thickness(el.length, el.h_left, el.h_right)
+        slope = ((el.h_right - el.h_left) / el.length)[:, None] - (1 - 2 * _GAUSS_XI) * el.length[
+            :, None
+        ] / 2
+        weight = el.length[:, None] * _GAUSS_W
+        phi_left, phi_right = 1.0 - _GAUSS_XI, _GAUSS_XI
+        cube = thickness**3
+        stiff = (weight * el.gauss_r * cube).sum(axis=1) / el.length**2
+        hoop = [
+            (weight * cube * a * b / el.gauss_r).sum(axis=1)
+            for a, b in ((phi_left, phi_left), (phi_left, phi_right), (phi_right, phi_right))
+        ]
+        source = weight * slope * el.gauss_r
+        regular = el.right >= 0
+        diagonal, lower, upper, rhs = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+        diagonal[el.left] += stiff + hoop[0]
+        rhs[el.left] += (source * phi_left).sum(axis=1)
+        left, right = el.left[regular], el.right[regular]
+        diagonal[right] += (stiff + hoop[2])[regular]
+        upper[left] += (hoop[1] - stiff)[regular]
+        lower[right] += (hoop[1] - stiff)[regular]
+        rhs[right] += (source * phi_right).sum(axis=1)[regular]
+        fixed = np.ones(n, bool)  # Pi = 0 on the axis, at dry nodes and at the immersed end
+        fixed[el.left[1:]] = False
+        if self.layer == "immersed" and len(el.left):
+            fixed[el.right[-1]] = True
+        diagonal[fixed], lower[fixed], upper[fixed], rhs[fixed] = 1.0, 0.0, 0.0, 0.0
+        pi = _solve_tridiagonal(lower, diagonal, upper, rhs)
+        pi_gauss = (
+            pi[el.left, None] * phi_left + np.where(regular, pi[el.right], 0.0)[:, None] * phi_right
+        )
+        shear = float((weight * el.gauss_r / thickness).sum())
+        force = 1.5 * float((weight * pi_gauss * slope * el.gauss_r).sum())
+        torque = float((weight * pi_gauss * el.gauss_r**2).sum())
+        r_last = self.radii[-1]
+        if self.layer == "immersed" and outer_radius > r_last:
+            gap = h[-1] - 0.5 * r_last**2
+            tail = np.log((gap + 0.5 * outer_radius**2) / h[-1])
+            shear, force, torque = shear + tail, force + 0.6 * tail, torque + 0.4 * tail
+        return shear, force, torque
+
+    def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
+        """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of
+        m V0^2 per (x0/V0) divided by St (the same units as St d(V^2/2)/dT)."""
+        return float(pressure @ state.flux(pressure)) / 3.0
+
+
+def _gauss_thickness(length, h_left, h_right):
+    """H at the Gauss points of elements: the sphere parabola is kept exactly between the nodes,
+    H = X + R^2/2 + W with only W linear, i.e. the linear interpolant minus xi (1 - xi) L^2 / 2."""
+    parabola = -0.5 * (_GAUSS_XI * (1.0 - _GAUSS_XI)) * length[:, None] ** 2
+    return h_left[:, None] * (1.0 - _GAUSS_XI) + h_right[:, None] * _GAUSS_XI + parabola
+
+
+def _solve_tridiagonal(lower, diagonal, upper, rhs):
+    """Solve the band system with lower[i] = A[i, i-1] and upper[i] = A[i, i+1]."""
+    bands = np.zeros((3, len(rhs)))
+    bands[0, 1:] = upper[:-1]
+    bands[1] = diagonal
+    bands[2, :-1] = lower[1:]
+    return scipy.linalg.solve_banded((1, 1), bands, rhs)
+
+
+def _conductance(gauss_r, length, h_left, h_right):
+    """Element conductance k = (1/(12 L^2)) int R H^3 dR and its derivatives by H_left, H_right."""
+    h = _gauss_thickness(length, h_left, h_right)
+    scale = 1.0 / (12.0 * length)
+    k = scale * ((_GAUSS_W * gauss_r * h**3).sum(axis=1))
+    dh = _GAUSS_W * gauss_r * 3.0 * h**2
+    return k, scale * (dh * (1.0 - _GAUSS_XI)).sum(axis=1), scale * (dh * _GAUSS_XI).sum(axis=1)
+
+
+class FilmError(RuntimeError):
+    """The film cannot be assembled (e.g. the wetted edge ran off the grid)."""

@@ -1,0 +1,292 @@
+"""Physical inputs, the dimensionless groups and the scales (Davis, Serayssol & Hinch 1986).
+
+Throughout ehdfem: gap and film thickness are scaled by x0 (the layer thickness, the initial
+gap), radius by sqrt(a x0), time by x0/V0, velocity by V0 (the normal impact speed), pressure by
+mu V0 a / x0^2, force by 6 pi mu V0 a^2 / x0 (so that St dV/dT = F) and energy by m V0^2.
+The groups are
+
+    St = m V0 / (6 pi mu a^2),   eps = 4 theta mu V0 a^(3/2) / x0^(5/2),   delta = x0 / a,
+    P_cav = (p_cav - p_ambient) x0^2 / (mu V0 a),
+    theta = (1 - nu1^2)/(pi E1) + (1 - nu2^2)/(pi E2).
+
+For two spheres, a and m are the reduced radius and mass. Material and liquid presets give
+room-temperature values with their sources; "approx." marks typical values of a class of
+materials rather than a measured sample.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from . import checks
+
+ATMOSPHERE = 101325.0  # Pa
+
+
+@dataclass(frozen=True)
+class Material:
+    """An elastic solid: Young's modulus [Pa], Poisson's ratio, density [kg/m^3], source."""
+
+    name: str
+    young_modulus: float
+    poisson_ratio: float
+    density: float
+    source: str
+
+
+@dataclass(frozen=True)
+class Liquid:
+    """A Newtonian liquid at about 20 C: viscosity [Pa s], density [kg/m^3], vapour pressure
+    [Pa, absolute], Barus pressure-viscosity coefficient [1/Pa] (0 where negligible), source."""
+
+    name: str
+    viscosity: float
+    density: float
+    vapour_pressure: float
+    pressure_viscosity: float
+    source: str
+
+
+_NIJSSEN = "Nijssen, Ottens & Padding 2022 (sphere sets of Joseph & Hunt 2004)"
+_HANDBOOK = "engineering handbook value, approx."
+MATERIALS = {
+    m.name: m
+    for m in [
+        Material("steel", 190e9, 0.27, 7780.0, f"chrome steel ball bearing, {_NIJSSEN}"),
+        Material("glass", 60e9, 0.23, 2540.0, f"glass sphere, {_NIJSSEN}"),
+        Material("acetal", 2.8e9, 0.35, 1400.0, f"Delrin sphere, {_NIJSSEN}"),
+        Material("nylon", 2.7e9, 0.39, 1140.0, f"nylon 6/6, {_HANDBOOK}"),
+        Material("ptfe", 0.5e9, 0.46, 2200.0, f"PTFE, {_HANDBOOK}"),
+        Material("polyurethane", 30e6, 0.49, 1200.0, f"soft polyurethane elastomer, {_HANDBOOK}"),
+        Material("aluminium", 70e9, 0.33, 2700.0, f"aluminium alloy, {_HANDBOOK}"),
+        Material("brass", 100e9, 0.34, 8500.0, f"brass, {_HANDBOOK}"),
+        Material("tungsten_carbide", 600e9, 0.22, 15000.0, f"cemented WC, {_HANDBOOK}"),
+        Material("quartz", 72e9, 0.17, 2200.0, f"fused quartz, {_HANDBOOK}"),
+        Material("zerodur", 90.3e9, 0.24, 2530.0, "Schott Zerodur data sheet"),
+    ]
+}
+_GLYCEROL = "glycerol-water at 20 C, standard tables (Segur & Oberstar 1951; Cheng 2008), approx."
+_SILICONE = "polydimethylsiloxane oil, kinematic viscosity grade x 965-970 kg/m^3, approx."
+LIQUIDS = {
+    liq.name: liq
+    for liq in [
+        Liquid("water", 1.0e-3, 998.0, 2.34e3, 0.0, f"water at 20 C, {_HANDBOOK}"),
+        Liquid("glycerol_50", 6.0e-3, 1126.0, 2.0e3, 0.0, f"50 wt% {_GLYCEROL}"),
+        Liquid("glycerol_80", 60.1e-3, 1208.0, 1.0e3, 0.0, f"80 wt% {_GLYCEROL}"),
+        Liquid("glycerol_90", 219e-3, 1235.0, 0.5e3, 0.0, f"90 wt% {_GLYCEROL}"),
+        Liquid("glycerol", 1.41, 1261.0, 0.0, 5.9e-9, f"pure {_GLYCEROL}"),
+        Liquid("silicone_oil_10cst", 9.35e-3, 935.0, 0.0, 1.5e-8, f"10 cSt {_SILICONE}"),
+        Liquid("silicone_oil_100cst", 96.5e-3, 965.0, 0.0, 1.5e-8, f"100 cSt {_SILICONE}"),
+        Liquid("silicone_oil_1000cst", 0.970, 970.0, 0.0, 1.5e-8, f"1000 cSt {_SILICONE}"),
+        Liquid("silicone_oil_10000cst", 9.70, 970.0, 0.0, 1.5e-8, f"10000 cSt {_SILICONE}"),
+        Liquid("mineral_oil", 0.03, 870.0, 0.0, 2.0e-8, f"light mineral oil, {_HANDBOOK}"),
+    ]
+}
+
+
+def material(name: str) -> Material:
+    """The material preset ``name`` (see MATERIALS)."""
+    return _preset("material", name, MATERIALS)
+
+
+def liquid(name: str) -> Liquid:
+    """The liquid preset ``name`` (see LIQUIDS)."""
+    return _preset("liquid", name, LIQUIDS)
+
+
+def _preset(kind, name, table):
+    if name not in table:
+        raise checks.InputError(f"unknown {kind} preset {name!r}; known: {', '.join(table)}")
+    return table[name]
+
+
+def stokes_number(mass: float, speed: float, viscosity: float, radius: float) -> float:
+    """St = m V0 / (6 pi mu a) / a (SI inputs)."""
+    return mass * speed / (6.0 * math.pi * viscosity * radius**2)
+
+
+def elasticity_parameter(theta, viscosity, speed, radius, layer_thickness) -> float:
+    """eps = 4 theta mu V0 a^(3/2) / x0^(5/2) (SI inputs, theta in 1/Pa)."""
+    return 4.0 * theta * viscosity * speed * radius**1.5 / layer_thickness**2.5
+
+
+def hertz_max_compression(eps: float, St: float) -> float:
+    """Dry Hertz maximum approach of a sphere on a half-space, scaled by x0.
+
+    delta_max = (15 m V0^2 / (16 E* a^(1/2)))^(2/5) with 1/E* = pi theta; with m V0 = 6 pi mu
+    a^2 St and theta from eps this is (90 pi^2/64 eps St)^(2/5) x0 = (13.88 eps St)^(2/5) x0.
+    """
+    return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
+
+
+def reduced_radius(a1: float, a2: float) -> float:
+    """a = a1 a2 / (a1 + a2) for two spheres (a2 = inf: a wall)."""
+    return a1 if math.isinf(a2) else a1 * a2 / (a1 + a2)
+
+
+def reduced_mass(m1: float, m2: float) -> float:
+    """m = m1 m2 / (m1 + m2) for two spheres (m2 = inf: a wall)."""
+    return m1 if math.isinf(m2) else m1 * m2 / (m1 + m2)
+
+
+LAYERS = ("thin", "immersed")
+
+
+@dataclass(frozen=True)
+class CollisionParameters:
+    """Dimensionless inputs of one collision (DSH scales; see the module docstring).
+
+    St > 0; eps > 0; delta = x0/a in (0, 1); p_cav <= 0 (-inf: no cavitation limit, the
+    default); e_dry in (0, 1] (1: pure EHD); layer "thin" or "immersed"; angle [deg] of the
+    impact velocity from the wall normal, in [0, 90); spin = a Omega0 / V0 (positive in the
+    rolling sense, see ehdfem.tangential); inertia_factor k = I/(m a^2) in (0, 2/3] (2/5 solid,
+    2/3 thin shell).
+    """
+
+    St: float
+    eps: float
+    delta: float = 0.01
+    p_cav: float = -math.inf
+    e_dry: float = 1.0
+    layer: str = "thin"
+    angle: float = 0.0
+    spin: float = 0.0
+    inertia_factor: float = 0.4
+
+    def __post_init__(self):
+        checks.positive("St", self.St)
+        checks.positive("eps", self.eps)
+        checks.number("delta", self.delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
+        if self.p_cav != -math.inf:
+            checks.number("p_cav", self.p_cav, upper=0.0)
+        checks.number("e_dry", self.e_dry, lower=0.0, upper=1.0, lower_open=True)
+        checks.choice("layer", self.layer, LAYERS)
+        checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
+        checks.number("spin", self.spin)
+        checks.number(
+            "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
+        )
+
+    @property
+    def tangential_speed(self) -> float:
+        """U0 / V0 = tan(angle)."""
+        return math.tan(math.radians(self.angle))
+
+
+@dataclass(frozen=True)
+class Scales:
+    """SI units of the scaled quantities: gap [m], radius [m], time [s], velocity [m/s],
+    pressure [Pa], force [N], energy [J], and the sphere radius a [m]."""
+
+    gap: float
+    radius: float
+    time: float
+    velocity: float
+    pressure: float
+    force: float
+    energy: float
+    sphere_radius: float
+
+
+@dataclass(frozen=True)
+class PhysicalCollision:
+    """Physical inputs (SI): sphere radius [m], materials, liquid, impact speed |v| [m/s], angle
+    from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
+    pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
+    inertia factor and an optional sphere mass [kg] (default 4/3 pi a^3 rho)."""
+
+    radius: float
+    sphere: Material
+    wall: Material
+    liquid: Liquid
+    speed: float
+    layer_thickness: float
+    angle: float = 0.0
+    layer: str = "thin"
+    e_dry: float = 1.0
+    spin: float = 0.0
+    ambient_pressure: float = ATMOSPHERE
+    cavitation_pressure: float | None = None
+    inertia_factor: float = 0.4
+    sphere_mass: float | None = field(default=None)
+
+    def __post_init__(self):
+        checks.positive("radius", self.radius)
+        checks.positive("speed", self.speed)
+        checks.positive("layer_thickness", self.layer_thickness)
+        if self.layer_thickness >= self.radius:
+            raise checks.InputError(
+                f"layer_thickness = {self.layer_thickness!r} m must be smaller than the radius "
+                f"{self.radius!r} m (the allowed range is (0, radius))"
+            )
+        checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
+        checks.positive("ambient_pressure", self.ambient_pressure)
+        if self.cavitation_pressure is not None:
+            checks.number(
+                "cavitation_pressure",
+                self.cavitation_pressure,
+                lower=0.0,
+                upper=self.ambient_pressure,
+            )
+        if self.sphere_mass is not None:
+            checks.positive("sphere_mass", self.sphere_mass)
+        self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
+
+    @property
+    def normal_speed(self) -> float:
+        """V0 = |v| cos(angle) [m/s]."""
+        return self.speed * math.cos(math.radians(self.angle))
+
+    @property
+    def tangential_speed(self) -> float:
+        """U0 = |v| sin(angle) [m/s]."""
+        return self.speed * math.sin(math.radians(self.angle))
+
+    @property
+    def mass(self) -> float:
+        """Sphere mass [kg]."""
+        if self.sphere_mass is not None:
+            return self.sphere_mass
+        return 4.0 / 3.0 * math.pi * self.radius**3 * self.sphere.density
+
+    @property
+    def theta(self) -> float:
+        """theta = sum (1 - nu^2)/(pi E) [1/Pa]."""
+        return sum(
+            (1 - s.poisson_ratio**2) / (math.pi * s.young_modulus) for s in (self.sphere, self.wall)
+        )
+
+    def dimensionless(self) -> CollisionParameters:
+        """St, eps, delta, P_cav, e_dry, ... for these inputs."""
+        mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
+        p_cav = (
+            self.liquid.vapour_pressure
+            if self.cavitation_pressure is None
+            else self.cavitation_pressure
+        )
+        return CollisionParameters(
+            St=stokes_number(self.mass, v0, mu, a),
+            eps=elasticity_parameter(self.theta, mu, v0, a, x0),
+            delta=x0 / a,
+            p_cav=(p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a),
+            e_dry=self.e_dry,
+            layer=self.layer,
+            angle=self.angle,
+            spin=self.spin * a / v0,
+            inertia_factor=self.inertia_factor,
+        )
+
+    def scales(self) -> Scales:
+        """The SI units of the scaled results."""
+        mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
+        return Scales(
+            gap=x0,
+            radius=math.sqrt(a * x0),
+            time=x0 / v0,
+            velocity=v0,
+            pressure=mu * v0 * a / x0**2,
+            force=6.0 * math.pi * mu * v0 * a**2 / x0,
+            energy=self.mass * v0**2,
+            sphere_radius=a,
+        )

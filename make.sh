@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# ehdfem's single entry point: `bash make.sh JOB`. Every job first makes sure the machine is set
+# up (Debian's FEniCSx stack by apt, a venv on Debian's python with the rest from PyPI); that
+# part is idempotent and takes a second when everything is already there.
+#   setup    only the set-up
+#   example  the main job: an oblique collision, results printed, plots and fields in out/example
+#   test     the test suite: serial pytest, then the MPI tests under mpirun -n 2
+#   lint     ruff check and ruff format --check
+#   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
+              python3-scipy python3-matplotlib python3-venv python3-pip openmpi-bin)
+VENV=.venv
+PY=$VENV/bin/python
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export MPLBACKEND=Agg
+
+setup() {
+    local missing=() sudo=""
+    for package in "${APT_PACKAGES[@]}"; do
+        dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \
+            || missing+=("$package")
+    done
+    if ((${#missing[@]})); then
+        [ "$(id -u)" -eq 0 ] || sudo=sudo
+        echo "setup: installing Debian packages: ${missing[*]}"
+        $sudo apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    fi
+    [ -x "$PY" ] || /usr/bin/python3 -m venv --system-site-packages "$VENV"
+    local stamp="$VENV/.ehdfem-installed" want
+    want=$(cat pyproject.toml constraints.txt | sha256sum | cut -d' ' -f1)
+    if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+        echo "setup: installing ehdfem and its Python dependencies into $VENV"
+        "$PY" -m pip install -q --disable-pip-version-check -c constraints.txt -e ".[test]"
+        echo "$want" > "$stamp"
+    fi
+    "$PY" -c 'import numpy, sys; sys.exit(numpy.__version__.startswith("1.") == False)' \
+        || { echo "setup: numpy >= 2 found in $VENV; Debian's compiled modules need numpy 1.x" >&2; exit 1; }
+}
+
+run_tests() {
+    "$PY" -m pytest -q "$@"
+    # The same suite on two MPI ranks, without the tests marked serial.
+    local status=0
+    mpirun -n 2 "$PY" -m pytest -q -p no:cacheprovider -m "not serial" "$@" || status=$?
+    [ "$status" -eq 0 ] || [ "$status" -eq 5 ] || exit "$status"   # 5: no MPI test selected
+}
+
+job=${1:-}
+shift || true
+case "$job" in
+    setup) setup ;;
+    example) setup; "$VENV/bin/ehdfem" collide --example --plots out/example --json out/example/result.json "$@" ;;
+    test) setup; run_tests "$@" ;;
+    lint) setup; "$VENV/bin/ruff" check . && "$VENV/bin/ruff" format --check . ;;
+    bench) setup; for script in benchmarks/*.py; do "$PY" "$script" "$@"; done ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench [args]" >&2; exit 2 ;;
+esac

@@ -1,0 +1,81 @@
+"""`ehdfem collide`: results, JSON, plots, and refusal of bad inputs before any work."""
+
+import json
+
+import pytest
+
+from ehdfem.cli import main
+
+pytestmark = pytest.mark.serial
+
+REQUIRED = {
+    "rebound",
+    "e_n",
+    "St",
+    "eps",
+    "delta",
+    "min_film_thickness",
+    "max_force",
+    "contact_time",
+}
+
+
+def test_dimensionless_collision_writes_json_and_plots(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    code = main(
+        [
+            "collide",
+            "--St",
+            "10",
+            "--eps",
+            "1e-3",
+            "--p-cav",
+            "-2",
+            "--angle",
+            "30",
+            "--json",
+            str(out),
+            "--plots",
+            str(tmp_path / "plots"),
+        ]
+    )
+    assert code == 0
+    result = json.loads(out.read_text())
+    assert REQUIRED <= result.keys()
+    assert result["rebound"] is True and 0 < result["e_n"] < 1 and 0 < result["e_t"] < 1
+    for name in ("histories.png", "profiles.png", "tangential.png"):
+        assert (tmp_path / "plots" / name).stat().st_size > 10_000
+    assert "e_n" in capsys.readouterr().out
+
+
+def test_physical_collision_reports_si_values(capsys):
+    code = main(["collide", "--example", "--json", "-"])
+    assert code == 0
+    text = capsys.readouterr().out
+    result = json.loads(text[text.index("{") :])
+    assert result["si"]["contact_time_s"] > 0 and result["St"] > 1
+
+
+@pytest.mark.parametrize(
+    ("args", "name"),
+    [
+        (["--St", "0", "--eps", "1e-3"], "St"),
+        (["--St=-5", "--eps", "1e-3"], "St"),
+        (["--St", "10", "--eps", "0"], "eps"),
+        (["--St", "10", "--eps=-1e-3"], "eps"),
+        (["--St", "10", "--eps", "1e-3", "--delta", "0"], "delta"),
+        (["--St", "10", "--eps", "1e-3", "--angle", "90"], "angle"),
+        (["--St", "10", "--eps", "1e-3", "--angle=-1"], "angle"),
+        (["--St", "10", "--eps", "1e-3", "--e-dry", "0"], "e_dry"),
+        (["--St", "10", "--eps", "1e-3", "--e-dry", "1.2"], "e_dry"),
+        (["--St", "10", "--eps", "1e-3", "--p-cav", "3"], "p_cav"),
+        (["--St", "nan", "--eps", "1e-3"], "St"),
+        (["--example", "--sphere", "unobtainium"], "unobtainium"),
+        (["--example", "--liquid", "mercury_tea"], "mercury_tea"),
+        (["--St", "10"], "eps"),
+    ],
+)
+def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
+    assert main(["collide", *args]) == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err

@@ -1,0 +1,80 @@
+"""The Reynolds film against exact rigid-sphere solutions (DESIGN.md section 5).
+
+For a rigid sphere approaching at speed V, H = X + R^2/2 and the quasi-steady film pressure is
+P = -3 V (1/H^2 - 1) in a thin layer (P = 0 where H = 1) and P = -3 V / H^2 fully immersed, with
+force F = (1/3) int P R dR = -V (1/X - 2 + X) and -V / X.
+"""
+
+import numpy as np
+import pytest
+
+from ehdfem.film import Film, radial_grid
+
+pytestmark = pytest.mark.serial
+
+
+def quasi_steady(film, gap, velocity):
+    """Solve m V + K(H) P = 0 for P (dry nodes P = 0) on a rigid film at gap X."""
+    h = gap + 0.5 * film.radii**2
+    state = film.assemble(h, np.zeros_like(h))
+    lower, diag, upper = state.conductance
+    matrix = np.diag(diag) + np.diag(lower[1:], -1) + np.diag(upper[:-1], 1)
+    rhs = -state.mass * velocity
+    fixed = np.flatnonzero(state.dry)
+    matrix[fixed] = 0.0
+    matrix[fixed, fixed] = 1.0
+    rhs[fixed] = 0.0
+    pressure = np.linalg.solve(matrix, rhs)
+    return pressure, float(state.force_weights @ pressure), state
+
+
+def test_edge_is_where_film_reaches_layer_thickness():
+    film = Film(radial_grid(50, 0.3, 1.6), "thin")
+    gap = 0.3
+    n_wet, edge = film.wetted_edge(gap + 0.5 * film.radii**2)
+    assert edge == pytest.approx(np.sqrt(2 * (1 - gap)), rel=2e-3)  # linear interpolation of R^2
+    assert film.radii[n_wet - 1] < edge <= film.radii[n_wet]
+
+
+@pytest.mark.parametrize("layer", ["thin", "immersed"])
+def test_rigid_force_converges_at_second_order(layer):
+    gap, velocity = 0.01, -1.0
+    exact = -velocity * (1 / gap - 2 + gap) if layer == "thin" else -velocity / gap
+    outer = 1.5 if layer == "thin" else 30.0
+    errors = []
+    for n in (50, 100, 200):
+        film = Film(radial_grid(n, np.sqrt(gap), outer), layer)
+        _, force, _ = quasi_steady(film, gap, velocity)
+        errors.append(abs(force / exact - 1))
+    orders = np.log2(np.array(errors[:-1]) / errors[1:])
+    assert errors[-1] < 2e-3
+    assert np.all(orders > 1.7), orders
+
+
+def test_rigid_pressure_profile_thin_layer():
+    gap, velocity = 0.02, -0.7
+    film = Film(radial_grid(200, np.sqrt(gap), 1.5), "thin")
+    pressure, _, state = quasi_steady(film, gap, velocity)
+    h = gap + 0.5 * film.radii**2
+    exact = np.where(h < 1, -3 * velocity * (1 / h**2 - 1), 0.0)
+    assert np.abs(pressure - exact).max() / exact.max() < 2e-3
+    assert state.edge_radius == pytest.approx(np.sqrt(2 * (1 - gap)), rel=1e-3)
+
+
+def test_dissipation_equals_work_of_the_film():
+    """(1/3) P.K P equals -F V for the rigid quasi-steady film (power balance, exact for the
+    discrete system because the force weights are the lumped masses / 3)."""
+    film = Film(radial_grid(80, 0.2, 1.5), "thin")
+    pressure, force, state = quasi_steady(film, 0.05, -0.5)
+    assert film.dissipation_rate(state, pressure) == pytest.approx(-force * -0.5, rel=1e-12)
+
+
+def test_cavitation_holds_nodes_where_suction_would_exceed_the_limit():
+    film = Film(radial_grid(40, 0.2, 1.5), "thin", p_cav=-2.0)
+    pressure = np.full(40, -3.0)
+    residual = np.ones(40)
+    dry = np.zeros(40, bool)
+    dry[30:] = True
+    cavitated = film.cavitated(pressure, residual, np.ones(40), dry)
+    assert cavitated[:30].all() and not cavitated[30:].any()
+    assert not Film(film.radii, "thin").cavitated(pressure, residual, np.ones(40), dry).any()

@@ -1,0 +1,97 @@
+"""Normal collision: exact limits, energy balance, grid convergence (DESIGN.md section 5)."""
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from ehdfem.collision import DEFAULT_NODES, collide
+from ehdfem.compliance import RigidSolids
+from ehdfem.film import radial_grid
+from ehdfem.normal import IntegratorOptions, solve_normal
+from ehdfem.scales import CollisionParameters, hertz_max_compression
+
+pytestmark = pytest.mark.serial
+
+
+def thin_layer_loss(gap):
+    """Velocity lost by a rigid sphere in a thin layer, times St: ln(1/X) - 3/2 + 2X - X^2/2."""
+    return np.log(1 / gap) - 1.5 + 2 * gap - 0.5 * gap**2
+
+
+RIGID = {
+    "immersed": (lambda gap: np.log(1 / gap), 30.0),
+    "thin": (thin_layer_loss, 1.05 * np.sqrt(2)),
+}
+
+
+@pytest.mark.parametrize("layer", ["thin", "immersed"])
+def test_rigid_sphere_stops_at_the_exact_gap(layer):
+    """|V| = 1 - loss(X)/St along the approach; the sphere stops where loss(X) = St.
+    Tolerance 0.5 % on the stopping gap (the gap depends exponentially on St: a relative force
+    error e moves it by about e*St) and the matching 0.005/St on the velocity along the way
+    (near the stop dV = dX/(X St)); 200 nodes, rtol 1e-5."""
+    St = 3.0
+    loss, outer = RIGID[layer]
+    stop = brentq(lambda x: loss(x) - St, 1e-12, 0.999)
+    params = CollisionParameters(St=St, eps=1.0, layer=layer)
+    result = solve_normal(
+        params, RigidSolids(radial_grid(200, np.sqrt(stop), outer)), IntegratorOptions(rtol=1e-5)
+    )
+    hist = result.history
+    assert result.status == "stick" and not result.rebound and result.e_n == 0.0
+    assert hist.gap[-1] == pytest.approx(stop, rel=5e-3)
+    approaching = hist.velocity < 0
+    exact_speed = 1 - loss(hist.gap[approaching]) / St
+    assert np.abs(-hist.velocity[approaching] - exact_speed).max() < 0.005 / St
+
+
+def test_dry_hertz_limit_of_the_maximum_compression():
+    """At large St the film is negligible: the approach reaches the Hertz compression
+    (13.88 eps St)^(2/5) (within 2 %) and the sphere comes back at nearly its impact speed."""
+    params = CollisionParameters(St=5e3, eps=1e-6, layer="thin")
+    result = collide(params, refinements=0)
+    assert result.normal.max_compression == pytest.approx(
+        hertz_max_compression(1e-6, 5e3), rel=0.02
+    )
+    assert result.normal.max_rebound_velocity > 0.98
+
+
+@pytest.mark.parametrize("layer", ["thin", "immersed"])
+def test_energy_balance_without_cavitation(layer):
+    """Kinetic + elastic energy lost = viscous dissipation, to discretisation error: below
+    2e-3 of the impact energy at the default settings and smaller with finer time steps."""
+    params = CollisionParameters(St=10.0, eps=1e-3, layer=layer)
+    coarse = collide(params).normal.energy_error
+    fine = collide(params, options=IntegratorOptions(rtol=2e-6)).normal.energy_error
+    assert coarse < 2e-3
+    assert fine < coarse
+
+
+def test_no_rebound_below_the_critical_stokes_number():
+    result = collide(CollisionParameters(St=2.0, eps=1e-3, layer="thin", p_cav=-2.0)).normal
+    assert not result.rebound and result.e_n == 0.0 and result.status == "stick"
+
+
+def test_rebound_and_e_dry():
+    """Above St_c the sphere leaves the layer; e_n = e_dry * (EHD exit speed)."""
+    pure = collide(CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)).normal
+    damped = collide(
+        CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, e_dry=0.8)
+    ).normal
+    assert pure.rebound and 0 < pure.e_n < 1
+    assert damped.e_n == pytest.approx(0.8 * pure.e_n, rel=1e-12)
+
+
+@pytest.mark.slow
+def test_grid_convergence_of_the_restitution():
+    """e_n changes by less than 0.5 % when the default grid is doubled; the observed order
+    from three grids is printed (the integrator runs at a tight tolerance so that only the
+    grid changes)."""
+    params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)
+    options = IntegratorOptions(rtol=2e-6)
+    nodes = (DEFAULT_NODES // 2, DEFAULT_NODES, 2 * DEFAULT_NODES)
+    e = [collide(params, nodes=n, options=options).normal.e_n for n in nodes]
+    order = np.log2(abs(e[0] - e[1]) / abs(e[1] - e[2]))
+    print(f"e_n on {nodes} nodes: {e}; observed order {order:.2f}")
+    assert abs(e[2] / e[1] - 1) < 5e-3
+    assert abs(e[2] / e[1] - 1) < abs(e[1] / e[0] - 1)

@@ -102,7 +102,7 @@ def _preset(kind, name, table):
 
 
 def stokes_number(mass: float, speed: float, viscosity: float, radius: float) -> float:
-    """St = m V0 / (6 pi mu a) / a (SI inputs)."""
+    """St = m V0 / (6 pi mu a^2) (SI inputs)."""
     return mass * speed / (6.0 * math.pi * viscosity * radius**2)
 
 

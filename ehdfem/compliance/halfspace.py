@@ -20,7 +20,7 @@ presence on strongly non-uniform grids) to ~1e-12 without adaptive quadrature.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import ellipk
+from scipy.special import ellipkm1
 
 from ..checks import InputError, number
 
@@ -29,7 +29,7 @@ _REGULAR_X = 0.5 * (_GAUSS[0] + 1.0)
 _REGULAR_W = 0.5 * _GAUSS[1]
 
 
-def _graded_rule(levels: int = 16, ratio: float = 0.15):
+def _graded_rule(levels: int = 12, ratio: float = 0.15):
     """Nodes and weights on [0, 1] for integrands with a log singularity at 0: Gauss on
     [q^(k+1), q^k], k = 0..levels-1, and on [0, q^levels]."""
     edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1)])
@@ -42,11 +42,11 @@ def _graded_rule(levels: int = 16, ratio: float = 0.15):
 _GRADED_X, _GRADED_W = _graded_rule()
 
 
-def _ring_kernel(radius, s):
-    """S/(R+S) K(4RS/(R+S)^2), evaluated away from S = R."""
-    total = radius + s
-    m = np.clip(4.0 * radius * s / total**2, 0.0, 1.0 - 1e-16)
-    return s / total * ellipk(m)
+def _ring_kernel(radius, offset):
+    """S/(R+S) K(m) at S = R + offset, with K from 1 - m = (offset/(R+S))^2: the offset is
+    carried separately so that S next to R keeps its full relative accuracy."""
+    total = 2.0 * radius + offset
+    return (radius + offset) / total * ellipkm1((offset / total) ** 2)
 
 
 def influence_matrix(radii: np.ndarray) -> np.ndarray:
@@ -64,22 +64,24 @@ def influence_matrix(radii: np.ndarray) -> np.ndarray:
     close = dist < length[None, :]
     matrix = np.zeros((n, n))
     node, cell = np.nonzero(~close)
-    _accumulate(matrix, r, node, cell, _REGULAR_X[None, :], _REGULAR_W)
-    for toward_left in (True, False):
-        node, cell = np.nonzero(close & (near_left == toward_left))
-        x = _GRADED_X if toward_left else 1.0 - _GRADED_X
-        _accumulate(matrix, r, node, cell, x[None, :], _GRADED_W)
+    _accumulate(matrix, r, node, cell, _REGULAR_X, _REGULAR_W, from_right=False)
+    for from_right in (False, True):
+        node, cell = np.nonzero(close & (near_left != from_right))
+        _accumulate(matrix, r, node, cell, _GRADED_X, _GRADED_W, from_right)
     return matrix
 
 
-def _accumulate(matrix, r, node, cell, x, w):
-    """Add the contributions of (node, cell) pairs with local quadrature (x in [0, 1], w)."""
-    left = r[cell][:, None]
+def _accumulate(matrix, r, node, cell, u, w, from_right):
+    """Add the (node, cell) contributions of a rule (u, w) on [0, 1] measured from the cell's
+    left end, or from its right end (so that S next to R_i is computed without cancellation)."""
     length = (r[cell + 1] - r[cell])[:, None]
-    s = left + length * x
-    values = _ring_kernel(r[node][:, None], s) * w * length
-    np.add.at(matrix, (node, cell), (values * (1.0 - x)).sum(axis=1))
-    np.add.at(matrix, (node, cell + 1), (values * x).sum(axis=1))
+    radius = r[node][:, None]
+    start = (r[cell + 1] if from_right else r[cell])[:, None]
+    offset = (start - radius) + (-length if from_right else length) * u
+    to_right = 1.0 - u if from_right else u  # weight of the hat of the cell's right node
+    values = _ring_kernel(radius, offset) * w * length
+    np.add.at(matrix, (node, cell), (values * (1.0 - to_right)).sum(axis=1))
+    np.add.at(matrix, (node, cell + 1), (values * to_right).sum(axis=1))
 
 
 class HalfSpaceCompliance:

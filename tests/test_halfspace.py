@@ -1,0 +1,120 @@
+"""Half-space ring-load kernel against exact elastic contact results (DESIGN.md section 5)."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.special import ellipkm1
+
+from ehdfem.checks import InputError
+from ehdfem.collision import DEFAULT_NODES
+from ehdfem.compliance.halfspace import HalfSpaceCompliance, influence_matrix
+from ehdfem.film import Film, radial_grid
+
+pytestmark = pytest.mark.serial
+
+
+def contact_grid(n, c=1.0, outer=2.5):
+    """A film grid like the collisions' (fine radius = contact radius) with a node at R = c."""
+    r = radial_grid(n, c, outer)
+    r[np.argmin(np.abs(r - c))] = c
+    return r
+
+
+def hertz_deflection(r, c=1.0, p0=1.0, eps=1.0):
+    """W for P = p0 sqrt(1 - R^2/c^2): pi^2 eps p0 (2c^2 - R^2)/(16 c) inside, and outside
+    (pi eps p0 / (8 c)) ((2c^2 - R^2) asin(c/R) + c sqrt(R^2 - c^2))."""
+    outside = np.maximum(r, c)
+    return np.where(
+        r <= c,
+        np.pi**2 * eps * p0 * (2 * c**2 - r**2) / (16 * c),
+        np.pi
+        * eps
+        * p0
+        / (8 * c)
+        * ((2 * c**2 - outside**2) * np.arcsin(c / outside) + c * np.sqrt(outside**2 - c**2)),
+    )
+
+
+def hertz_errors(n):
+    r = contact_grid(n)
+    w = HalfSpaceCompliance(r, 1.0).deflection(np.sqrt(np.clip(1 - r**2, 0, None)))
+    return r, np.abs(w / hertz_deflection(r) - 1)
+
+
+def test_hertz_pressure_at_the_default_grid():
+    """At the default number of nodes: 1e-3 inside 0.9 c, 2e-3 at the rim and outside. The
+    error is the linear interpolation of the square-root edge of the pressure, not the
+    quadrature (checked separately below)."""
+    r, err = hertz_errors(DEFAULT_NODES)
+    assert err[r <= 0.9].max() < 1e-3
+    assert err.max() < 2e-3
+
+
+def test_hertz_error_converges_at_second_order():
+    errors = [hertz_errors(n)[1][0] for n in (80, 160, 320)]
+    orders = np.log2(np.array(errors[:-1]) / errors[1:])
+    assert np.all((orders > 1.7) & (orders < 2.6)), orders
+
+
+def test_uniform_disc_centre_and_rim():
+    """Uniform P on R < c: W(0) = pi eps P c / 2 and W(c) = eps P c (2/pi of the centre). The
+    jump is a ramp over 1e-6 c, which also tests cells right next to a much longer one."""
+    c = 0.8
+    base = radial_grid(150, c, 3.0)
+    r = np.unique(np.concatenate([base[np.abs(base - c) > 1e-2], [c, c * (1 + 1e-6)]]))
+    w = HalfSpaceCompliance(r, 2.0).deflection((r <= c).astype(float))
+    assert w[0] == pytest.approx(np.pi * 2.0 * c / 2, rel=1e-5)
+    assert w[r == c][0] == pytest.approx(2.0 * c, rel=2e-3)
+
+
+def test_matrix_integrates_the_interpolant_exactly():
+    """Against adaptive quadrature of the continuous integral of the same piecewise-linear
+    pressure, cell by cell; on the cells next to R the substitution S = R +- L u^4 removes the
+    logarithm. Agreement to 1e-8 of max |W| (the level at which adaptive references agree)."""
+    r = radial_grid(60, 0.5, 2.0)
+    p = np.clip(1 - r**2 / 4, 0, None) ** 2
+    w = influence_matrix(r) @ p
+
+    def integrand(offset, radius):  # at S = radius + offset
+        s = radius + offset
+        ring = s / (2 * radius + offset) * ellipkm1((offset / (2 * radius + offset)) ** 2)
+        return np.interp(s, r, p) * ring
+
+    def cell(a, b, radius):
+        if radius in (a, b):  # S = radius + sign L u^4, dS = 4 L u^3 du
+            sign, length = (1.0 if radius == a else -1.0), b - a
+            return quad(
+                lambda u: integrand(sign * length * u**4, radius) * 4 * length * u**3,
+                0,
+                1,
+                epsabs=1e-14,
+                epsrel=1e-12,
+            )[0]
+        return quad(lambda s: integrand(s - radius, radius), a, b, epsabs=1e-14, epsrel=1e-12)[0]
+
+    for i in (0, 7, 23, 41, 59):
+        reference = sum(cell(a, b, r[i]) for a, b in zip(r[:-1], r[1:], strict=True))
+        assert w[i] == pytest.approx(reference, abs=1e-8 * np.abs(w).max())
+
+
+def test_reciprocity():
+    """Betti: int phi_i W[phi_j] R dR is symmetric. With the lumped masses M of the film, M A is
+    symmetric up to the lumping error, which halves when the grid is refined (first order; its
+    relative Frobenius norm is 0.9 % at 60 nodes)."""
+    asymmetry = []
+    for n in (60, 120, 240):
+        r = radial_grid(n, 0.5, 2.0)
+        energy = Film(r).full_mass[:, None] * influence_matrix(r)
+        asymmetry.append(np.linalg.norm(energy - energy.T) / np.linalg.norm(energy))
+    assert asymmetry[0] < 1e-2
+    ratios = np.array(asymmetry[:-1]) / asymmetry[1:]
+    assert np.all((ratios > 1.8) & (ratios < 2.2)), ratios
+
+
+@pytest.mark.parametrize(
+    ("radii", "eps"),
+    [([0.1, 0.2, 0.3], 1.0), ([0.0, 0.2, 0.1], 1.0), ([0.0, 0.1], 1.0), ([0.0, 0.1, 0.2], -1.0)],
+)
+def test_bad_input(radii, eps):
+    with pytest.raises(InputError):
+        HalfSpaceCompliance(np.array(radii), eps)

@@ -55,17 +55,18 @@ def plot_profiles(result, path: Path) -> Path:
     """Pressure P(R) and film thickness H(R) at the snapshot instants."""
     hist = result.history
     fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(11, 4.5))
-    colours = plt.cm.viridis(np.linspace(0, 0.9, len(snapshot_indices(result))))
-    edge = np.nanmax(np.where(np.isfinite(hist.edge_radius), hist.edge_radius, np.nan))
-    r_max = 1.2 * edge if np.isfinite(edge) else 3.0 * np.sqrt(max(result.max_compression, 0.05))
-    shown = result.radii <= r_max
-    for colour, i in zip(colours, snapshot_indices(result), strict=True):
+    steps = snapshot_indices(result)
+    colours = plt.cm.viridis(np.linspace(0, 0.9, len(steps)))
+    # show the radii where the pressure matters: 1.5 times the widest 1 % support of P
+    pressure = np.abs(hist.pressure[steps])
+    loaded = result.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
+    shown = result.radii <= 1.5 * (loaded.max() if len(loaded) else result.radii[-1])
+    for colour, i in zip(colours, steps, strict=True):
         label = f"T = {hist.time[i]:.4g}"
         ax_p.plot(result.radii[shown], hist.pressure[i][shown], color=colour, label=label)
-        ax_h.plot(result.radii[shown], hist.film_thickness[i][shown], color=colour, label=label)
+        ax_h.semilogy(result.radii[shown], hist.film_thickness[i][shown], color=colour, label=label)
     ax_p.set_ylabel("pressure P (by $\\mu V_0 a/x_0^2$)")
     ax_h.set_ylabel("film thickness H (by $x_0$)")
-    ax_h.set_ylim(0, min(1.2, float(np.nanmax(hist.film_thickness[:, shown]))))
     for ax in (ax_p, ax_h):
         ax.set_xlabel("radius R (by $\\sqrt{a x_0}$)")
         ax.grid(alpha=0.3)

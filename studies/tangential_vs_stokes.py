@@ -2,10 +2,11 @@
 
 Thin layer, P_cav = -10, e_dry = 1, zero initial spin, 30 degrees (e_t does not depend on it).
 Writes studies/results/tangential_vs_stokes.csv and docs/figures/tangential_vs_stokes.png.
-Run: .venv/bin/python studies/tangential_vs_stokes.py
+Run: .venv/bin/python studies/tangential_vs_stokes.py [--plot-only]
 """
 
 import csv
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -52,34 +53,49 @@ def run():
     return rows
 
 
-def main():
-    rows = run()
-    out = ROOT / "studies" / "results" / "tangential_vs_stokes.csv"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    with out.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+def plot(rows, figure):
     fig, (ax_e, ax_s) = plt.subplots(1, 2, figsize=(11, 4.5))
     for eps, colour in zip(ELASTICITY, ("C0", "C1", "C2"), strict=True):
         for model, style in zip(MODELS, ("-", "--"), strict=True):
-            sel = [r for r in rows if r["eps"] == eps and r["model"] == model]
-            st = [r["St"] for r in sel]
+            sel = [r for r in rows if float(r["eps"]) == eps and r["model"] == model]
+            st = np.array([float(r["St"]) for r in sel])
+            e_t = np.array([float(r["e_t"]) for r in sel])
+            spin = np.array([float(r["spin_change"]) for r in sel])
+            stuck = np.array([r["at"] == "stop" for r in sel])
             label = f"eps = {eps:g}, {model}"
-            ax_e.semilogx(st, [r["e_t"] for r in sel], style, color=colour, label=label)
-            ax_s.semilogx(st, [r["spin_change"] for r in sel], style, color=colour, label=label)
+            ax_e.semilogx(st, e_t, style, color=colour, label=label)
+            ax_s.semilogx(st, spin, style, color=colour, label=label)
+            ax_e.semilogx(st[stuck], e_t[stuck], "o", mfc="none", color=colour)
+            ax_s.semilogx(st[stuck], spin[stuck], "o", mfc="none", color=colour)
     ax_e.set_ylabel("tangential restitution e_t")
     ax_s.set_ylabel(r"spin change a$\Delta\Omega/U_0$")
     for ax in (ax_e, ax_s):
         ax.set_xlabel("St")
         ax.grid(alpha=0.3, which="both")
     ax_e.legend(fontsize=7)
-    fig.suptitle("thin layer, delta = 0.01, P_cav = -10 (open symbols: sticking, state at stop)")
+    fig.suptitle(
+        "thin layer, delta = 0.01, P_cav = -10; open circles: the sphere sticks (state at stop)"
+    )
     fig.tight_layout()
-    figure = ROOT / "docs" / "figures" / "tangential_vs_stokes.png"
     figure.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(figure, dpi=120)
-    print(f"wrote {out} and {figure}")
+
+
+def main():
+    table = ROOT / "studies" / "results" / "tangential_vs_stokes.csv"
+    figure = ROOT / "docs" / "figures" / "tangential_vs_stokes.png"
+    if "--plot-only" in sys.argv:
+        with table.open() as f:
+            rows = list(csv.DictReader(f))
+    else:
+        rows = run()
+        table.parent.mkdir(parents=True, exist_ok=True)
+        with table.open("w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(rows)
+    plot(rows, figure)
+    print(f"wrote {table} and {figure}")
 
 
 if __name__ == "__main__":

@@ -55,7 +55,7 @@ class IntegratorOptions:
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
     """
 
-    rtol: float = 2e-4
+    rtol: float = 5e-5
     order: int = 3
     max_growth: float = 1.5
     newton_tol: float = 1e-7

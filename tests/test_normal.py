@@ -56,15 +56,21 @@ def test_dry_hertz_limit_of_the_maximum_compression():
     assert result.normal.max_rebound_velocity > 0.98
 
 
-@pytest.mark.parametrize("layer", ["thin", "immersed"])
-def test_energy_balance_without_cavitation(layer):
-    """Kinetic + elastic energy lost = viscous dissipation, to discretisation error: below
-    2e-3 of the impact energy at the default settings and smaller with finer time steps."""
-    params = CollisionParameters(St=10.0, eps=1e-3, layer=layer)
-    coarse = collide(params).normal.energy_error
-    fine = collide(params, options=IntegratorOptions(rtol=2e-6)).normal.energy_error
-    assert coarse < 2e-3
-    assert fine < coarse
+def test_energy_balance_without_cavitation():
+    """Kinetic + elastic energy lost = viscous dissipation, to discretisation error: in a thin
+    layer the imbalance is below 2e-3 of the impact energy at the defaults and falls with the
+    time step (below 1e-4 at rtol = 2e-7); fully immersed it stays below 1e-3 (the part left at
+    fine steps, 5e-4, is the far field beyond R = 30, whose force is in the dynamics but whose
+    dissipation is not in the balance)."""
+    thin = CollisionParameters(St=10.0, eps=1e-3, layer="thin")
+    errors = [
+        collide(thin, options=IntegratorOptions(rtol=r)).normal.energy_error
+        for r in (IntegratorOptions.rtol, 2e-6, 2e-7)
+    ]
+    assert errors[0] < 2e-3 and errors[2] < 1e-4
+    assert errors[0] > errors[1] > errors[2]
+    immersed = CollisionParameters(St=10.0, eps=1e-3, layer="immersed")
+    assert collide(immersed).normal.energy_error < 1e-3
 
 
 def test_no_rebound_below_the_critical_stokes_number():

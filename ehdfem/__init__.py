@@ -1,0 +1,8 @@
+"""ehdfem: elastohydrodynamic wet collisions of a sphere with a liquid-covered wall."""
+
+from importlib.metadata import PackageNotFoundError, version
+
+try:
+    __version__ = version("ehdfem")
+except PackageNotFoundError:  # running from a source tree that was not installed
+    __version__ = "0+unknown"

@@ -1,4 +1,5 @@
-"""Command line: ``ehdfem collide`` (one collision).
+"""Command line: ``ehdfem collide`` (one collision), ``ehdfem sweep`` (a study file over MPI
+ranks), ``ehdfem critical`` (the critical Stokes number).
 
 Inputs are either dimensionless (``--St --eps --delta ...``, DSH scales) or physical
 (``--sphere --wall --liquid --radius --speed --layer-thickness ...``, SI units); ``--example``
@@ -18,6 +19,7 @@ from . import checks, viz
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
 from .normal import IntegratorOptions, NormalSolverError
 from .scales import CollisionParameters, PhysicalCollision, liquid, material
+from .study import Study, critical_stokes, run_study
 
 EXAMPLE = dict(
     sphere="steel",
@@ -85,6 +87,21 @@ def _parser() -> argparse.ArgumentParser:
     )
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
     num.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+
+    s = sub.add_parser("sweep", help="run a study file (TOML) over the MPI ranks; resumable")
+    s.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
+
+    k = sub.add_parser("critical", help="critical Stokes number St_c by bisection on rebound")
+    k.add_argument("--eps", type=float, required=True, help="elasticity parameter, > 0")
+    k.add_argument("--delta", type=float, default=0.01, help="x0/a, (0, 1)")
+    k.add_argument("--layer", choices=("thin", "immersed"), default="thin")
+    k.add_argument("--p-cav", type=float, default=None, help="cavitation pressure (scaled), <= 0")
+    k.add_argument("--bracket", type=float, nargs=2, default=(1.0, 1000.0), metavar=("LOW", "HIGH"))
+    k.add_argument("--rtol", type=float, default=1e-3, help="relative width of the final bracket")
+    k.add_argument("--nodes", type=int, default=DEFAULT_NODES)
+    k.add_argument(
+        "--json", metavar="FILE", help="write {St_c, bracket, ...} as JSON ('-': stdout)"
+    )
     return parser
 
 
@@ -153,13 +170,7 @@ def collide_command(args) -> int:
     summary = result.summary()
     print("ehdfem collide: results (dimensionless, DSH scales; SI under si)")
     _print_table(summary)
-    if args.json:
-        text = json.dumps(summary, indent=2)
-        if args.json == "-":
-            print(text)
-        else:
-            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-            Path(args.json).write_text(text + "\n")
+    _write_json(summary, args.json)
     if args.plots:
         out = Path(args.plots)
         paths = [
@@ -173,10 +184,63 @@ def collide_command(args) -> int:
     return 0
 
 
+def sweep_command(args) -> int:
+    from mpi4py import MPI
+
+    comm = MPI.COMM_WORLD
+    study = Study(args.study)
+    if comm.rank == 0:
+        print(f"ehdfem sweep {study.name}: {len(study.points)} points on {comm.size} rank(s)")
+    run_study(study, comm, progress=print if comm.rank == 0 else None)
+    if comm.rank == 0:
+        print(f"wrote {study.table}")
+    return 0
+
+
+def critical_command(args) -> int:
+    checks.positive("eps", args.eps)
+    params = CollisionParameters(
+        St=1.0,
+        eps=args.eps,
+        delta=args.delta,
+        layer=args.layer,
+        p_cav=-np.inf if args.p_cav is None else args.p_cav,
+    )
+    found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes)
+    out = {
+        **found,
+        "eps": args.eps,
+        "delta": args.delta,
+        "layer": args.layer,
+        "p_cav": args.p_cav,
+        "nodes": args.nodes,
+    }
+    print(
+        f"St_c = {found['St_c']:.6g} (bracket {found['bracket'][0]:.6g} .. "
+        f"{found['bracket'][1]:.6g}, rtol {args.rtol:g}, {found['collisions']} collisions)"
+    )
+    _write_json(out, args.json)
+    return 0
+
+
+def _write_json(data: dict, target: str | None) -> None:
+    if not target:
+        return
+    text = json.dumps(data, indent=2)
+    if target == "-":
+        print(text)
+    else:
+        Path(target).parent.mkdir(parents=True, exist_ok=True)
+        Path(target).write_text(text + "\n")
+
+
+COMMANDS = {"collide": collide_command, "sweep": sweep_command, "critical": critical_command}
+
+
 def main(argv=None) -> int:
     args = _parser().parse_args(argv)
     try:
-        return collide_command(args)
+        return COMMANDS[args.command](args)
     except checks.InputError as err:
         print(f"ehdfem: error: {err}", file=sys.stderr)
         return 2

@@ -1,0 +1,130 @@
+"""Studies: resumable sweeps over MPI ranks and the critical Stokes number."""
+
+import csv
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+from ehdfem.checks import InputError
+from ehdfem.collision import collide
+from ehdfem.scales import CollisionParameters
+from ehdfem.study import Study, critical_stokes, run_study
+
+SMALL = """
+name = "small"
+[grid]
+St = [4.0, 12.0, 40.0]
+eps = [1e-3, 1e-2]
+p_cav = [-5.0]
+angle = [30.0]
+[numerics]
+nodes = 60
+[output]
+table = "out/small.csv"
+"""
+
+
+def read_table(path):
+    with open(path) as f:
+        return [
+            {k: v for k, v in row.items() if k not in ("seconds", "version")}
+            for row in csv.DictReader(f)
+        ]
+
+
+def shared_dir(comm):
+    """A temporary folder that every rank sees (created by rank 0)."""
+    return Path(comm.bcast(tempfile.mkdtemp(prefix="ehdfem-study-") if comm.rank == 0 else None))
+
+
+def test_sweep_on_all_ranks_equals_one_process():
+    """Run under mpirun -n 2 too: the table from all ranks equals the one from one process."""
+    comm = MPI.COMM_WORLD
+    folder = shared_dir(comm)
+    for name in ("parallel", "serial"):
+        (folder / name).mkdir(exist_ok=True)
+        (folder / name / "small.toml").write_text(SMALL)
+    comm.Barrier()
+    run_study(Study(folder / "parallel" / "small.toml"), comm, progress=None)
+    if comm.rank == 0:
+        run_study(Study(folder / "serial" / "small.toml"), None, progress=None)
+        parallel = read_table(folder / "parallel" / "out" / "small.csv")
+        serial = read_table(folder / "serial" / "out" / "small.csv")
+        assert len(parallel) == 6 and parallel == serial
+        assert all(row["status"].startswith("ok:") for row in parallel)
+    comm.Barrier()
+
+
+@pytest.mark.serial
+def test_killed_sweep_resumes_with_every_point_once(tmp_path):
+    """SIGKILL a sweep at three different moments (while points are running); after a last
+    full run every point is in the table exactly once and every finished point survived."""
+    study_file = tmp_path / "small.toml"
+    study_file.write_text(
+        SMALL.replace("St = [4.0, 12.0, 40.0]", "St = [4.0, 8.0, 12.0, 20.0, 40.0]")
+    )
+    study = Study(study_file)
+    command = [sys.executable, "-m", "ehdfem.cli", "sweep", str(study_file)]
+    survivors = set()
+    for target, delay in ((1, 0.0), (3, 0.05), (5, 0.15)):  # kill once `target` points are done
+        process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.monotonic() + 120
+        while len(list(study.point_dir.glob("*.json"))) < target and time.monotonic() < deadline:
+            time.sleep(0.01)
+        time.sleep(delay)
+        process.send_signal(signal.SIGKILL)
+        process.wait()
+        finished = {p.stem for p in study.point_dir.glob("*.json")}
+        assert survivors <= finished  # nothing finished is lost
+        survivors = finished
+    assert len(survivors) < len(study.points)  # the kills did interrupt the study
+    subprocess.run(command, check=True, capture_output=True)
+    rows = read_table(study.table)
+    assert len(rows) == len(study.points) == len({(row["St"], row["eps"]) for row in rows}) == 10
+    assert not list(study.point_dir.glob(".*.tmp"))
+
+
+@pytest.mark.serial
+def test_critical_stokes_number_agrees_with_a_scan():
+    """Bisection on the outcome brackets St_c to 1e-3; a scan in 1 % steps finds the first
+    rebound inside the bracket widened by one scan step."""
+    params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0)
+    found = critical_stokes(params, bracket=(1.0, 20.0), rtol=1e-3, nodes=60)
+    lo, hi = found["bracket"]
+    assert hi / lo - 1 <= 1e-3
+    scan = found["St_c"] * np.exp(np.linspace(-0.05, 0.05, 11))
+    outcome = [
+        collide(
+            CollisionParameters(St=s, eps=1e-2, layer="thin", p_cav=-5.0), nodes=60
+        ).normal.rebound
+        for s in scan
+    ]
+    first = scan[outcome.index(True)]
+    assert not any(outcome[: outcome.index(True)]) and all(outcome[outcome.index(True) :])
+    assert lo / 1.0101 <= first <= hi * 1.0101
+
+
+@pytest.mark.serial
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("[grid]\nSt = [1.0]\n", "eps"),
+        ("[grid]\nSt = [1.0]\neps = [0.1]\ncolour = [1]\n", "colour"),
+        ("[grid]\nSt = [-1.0]\neps = [0.1]\n", "St"),
+        ("[grid]\nSt = {logspace = [1, 2, 3]}\neps = [0.1]\n", "geomspace"),
+        ("[grid]\nSt = [1.0]\neps = [0.1]\n[numerics]\nnodes = 5\n", "nodes"),
+        ("[grid\n", "study file"),
+    ],
+)
+def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match=message):
+        Study(path)

@@ -7,6 +7,7 @@
 #   test     the test suite: serial pytest, then the MPI tests under mpirun -n 2
 #   lint     ruff check and ruff format --check
 #   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
+#   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -49,6 +50,17 @@ run_tests() {
     [ "$status" -eq 0 ] || [ "$status" -eq 5 ] || exit "$status"   # 5: no MPI test selected
 }
 
+run_study() {
+    # The source's results end to end: sweep on 2 ranks, St_c per eps, fits, figures.
+    local results=studies/results
+    mpirun -n 2 "$VENV/bin/ehdfem" sweep studies/kantak_davis.toml
+    for eps in 1e-6 1e-5 1e-4 1e-3 1e-2; do
+        "$VENV/bin/ehdfem" critical --eps "$eps" --p-cav=-10 --json "$results/critical_$eps.json"
+    done
+    "$VENV/bin/ehdfem" fit "$results/kantak_davis.csv" --json "$results/kantak_davis_fit.json"
+    "$PY" studies/kantak_davis_figures.py
+}
+
 job=${1:-}
 shift || true
 case "$job" in
@@ -57,5 +69,6 @@ case "$job" in
     test) setup; run_tests "$@" ;;
     lint) setup; "$VENV/bin/ruff" check . && "$VENV/bin/ruff" format --check . ;;
     bench) setup; for script in benchmarks/*.py; do "$PY" "$script" "$@"; done ;;
-    *) echo "usage: bash make.sh setup|example|test|lint|bench [args]" >&2; exit 2 ;;
+    study) setup; run_study ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench|study [args]" >&2; exit 2 ;;
 esac

@@ -1,5 +1,5 @@
 """Command line: ``ehdfem collide`` (one collision), ``ehdfem sweep`` (a study file over MPI
-ranks), ``ehdfem critical`` (the critical Stokes number).
+ranks), ``ehdfem critical`` (the critical Stokes number), ``ehdfem fit`` (closed-form fits).
 
 Inputs are either dimensionless (``--St --eps --delta ...``, DSH scales) or physical
 (``--sphere --wall --liquid --radius --speed --layer-thickness ...``, SI units); ``--example``
@@ -9,6 +9,7 @@ runs a steel sphere hitting a glass plate through a 0.3 mm silicone-oil layer at
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import sys
 from pathlib import Path
@@ -16,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from . import checks, viz
+from .closedform import fit_table
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
 from .normal import IntegratorOptions, NormalSolverError
 from .scales import CollisionParameters, PhysicalCollision, liquid, material
@@ -102,6 +104,10 @@ def _parser() -> argparse.ArgumentParser:
     k.add_argument(
         "--json", metavar="FILE", help="write {St_c, bracket, ...} as JSON ('-': stdout)"
     )
+
+    f = sub.add_parser("fit", help="closed-form fits (and DEM formulas) against a sweep table")
+    f.add_argument("table", help="CSV table written by ehdfem sweep")
+    f.add_argument("--json", metavar="FILE", help="write the fits as JSON ('-': stdout)")
     return parser
 
 
@@ -234,7 +240,38 @@ def _write_json(data: dict, target: str | None) -> None:
         Path(target).write_text(text + "\n")
 
 
-COMMANDS = {"collide": collide_command, "sweep": sweep_command, "critical": critical_command}
+def fit_command(args) -> int:
+    path = Path(args.table)
+    if not path.is_file():
+        raise checks.InputError(f"table {args.table!r} does not exist")
+    with path.open() as f:
+        fits = fit_table(list(csv.DictReader(f)))
+    for group in fits["normal"]:
+        print(
+            f"eps = {group['eps']:g}: e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
+            f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}"
+        )
+    for name in ("critical_stokes_law", "tangential_loss", "spin_change"):
+        if name in fits:
+            law = fits[name]
+            terms = " ".join(f"{k}^{v:.4g}" for k, v in law.items() if k in ("St", "eps"))
+            print(
+                f"{name}: {law['coefficient']:.4g} {terms}"
+                f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}"
+            )
+    for name, errors in fits["dem_formulas"].items():
+        error, rms = errors["max_error"], errors["rms_error"]
+        print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}")
+    _write_json(fits, args.json)
+    return 0
+
+
+COMMANDS = {
+    "collide": collide_command,
+    "sweep": sweep_command,
+    "critical": critical_command,
+    "fit": fit_command,
+}
 
 
 def main(argv=None) -> int:

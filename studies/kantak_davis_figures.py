@@ -1,0 +1,89 @@
+"""Figures of the kantak_davis study: e_n, St_c, e_t and spin change, fits against data.
+
+Reads studies/results/kantak_davis.csv (ehdfem sweep), critical_*.json (ehdfem critical) and
+kantak_davis_fit.json (ehdfem fit); writes docs/figures/kantak_davis_*.png.
+"""
+
+import csv
+import json
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ehdfem.closedform import davis_rager_good, fit_power_law, legendre, power_law  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "studies" / "results"
+FIGURES = ROOT / "docs" / "figures"
+
+
+def main():
+    with (RESULTS / "kantak_davis.csv").open() as f:
+        rows = [r for r in csv.DictReader(f) if r["status"].startswith("ok")]
+    fits = json.loads((RESULTS / "kantak_davis_fit.json").read_text())
+    critical = sorted(
+        (json.loads(p.read_text()) for p in RESULTS.glob("critical_*.json")), key=lambda c: c["eps"]
+    )
+    eps_values = sorted({float(r["eps"]) for r in rows})
+    colours = plt.cm.viridis(np.linspace(0, 0.9, len(eps_values)))
+    FIGURES.mkdir(parents=True, exist_ok=True)
+
+    fig, (ax_n, ax_c) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for eps, colour in zip(eps_values, colours, strict=True):
+        sel = [r for r in rows if float(r["eps"]) == eps]
+        St = np.array([float(r["St"]) for r in sel])
+        ax_n.semilogx(
+            St, [float(r["e_n"]) for r in sel], "o", ms=3, color=colour, label=f"eps = {eps:g}"
+        )
+        group = next(g for g in fits["normal"] if g["eps"] == eps)
+        fine = np.geomspace(St.min(), St.max(), 200)
+        ax_n.semilogx(
+            fine, davis_rager_good(fine, group["St_c"], group["e_inf"]), "-", color=colour, lw=1
+        )
+    ax_n.semilogx(fine, legendre(fine), "k--", lw=1, label="Legendre et al. 2006")
+    ax_n.set_xlabel("St")
+    ax_n.set_ylabel("e_n (e_dry = 1)")
+    ax_n.legend(fontsize=7)
+    ax_n.set_title("computed (dots), e_inf (1 - St_c/St) fits (lines)", fontsize=9)
+    eps_c = np.array([c["eps"] for c in critical])
+    ax_c.loglog(eps_c, [c["St_c"] for c in critical], "o", label="bisection (ehdfem critical)")
+    for law, style, what in (
+        (fit_power_law({"eps": eps_c}, np.array([c["St_c"] for c in critical])), "-", "power law"),
+        (fits["critical_stokes_law"], ":", "St_c of the e_n fits"),
+    ):
+        label = f"{what}: {law['coefficient']:.3g} eps^{law['eps']:.3g}"
+        ax_c.loglog(eps_c, power_law(law, eps=eps_c), style, label=label)
+    ax_c.set_xlabel("eps")
+    ax_c.set_ylabel("St_c")
+    ax_c.legend(fontsize=8)
+    fig.suptitle("thin layer, delta = 0.01, P_cav = -10")
+    fig.tight_layout()
+    fig.savefig(FIGURES / "kantak_davis_normal.png", dpi=120)
+
+    fig, (ax_t, ax_s) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for eps, colour in zip(eps_values, colours, strict=True):
+        sel = [r for r in rows if float(r["eps"]) == eps and float(r["e_n"]) > 0]
+        St = np.array([float(r["St"]) for r in sel])
+        ax_t.loglog(
+            St, [1 - float(r["e_t"]) for r in sel], "o", ms=3, color=colour, label=f"eps = {eps:g}"
+        )
+        ax_s.loglog(St, [float(r["spin_change"]) for r in sel], "o", ms=3, color=colour)
+        for ax, name in ((ax_t, "tangential_loss"), (ax_s, "spin_change")):
+            ax.loglog(St, 0.01 * power_law(fits[name], St=St, eps=eps), "-", color=colour, lw=1)
+    ax_t.set_ylabel("1 - e_t")
+    ax_s.set_ylabel(r"a$\Delta\Omega/U_0$")
+    for ax in (ax_t, ax_s):
+        ax.set_xlabel("St")
+    ax_t.legend(fontsize=7)
+    fig.suptitle("rebounding spheres; lines: delta A St^B eps^C fits")
+    fig.tight_layout()
+    fig.savefig(FIGURES / "kantak_davis_tangential.png", dpi=120)
+    print(f"wrote {FIGURES}/kantak_davis_normal.png and kantak_davis_tangential.png")
+
+
+if __name__ == "__main__":
+    main()

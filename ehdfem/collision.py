@@ -76,6 +76,7 @@ class CollisionResult:
             "contact_time": n.contact_time,
             "max_compression": n.max_compression,
             "energy_error": n.energy_error,
+            "rtol": n.rtol,
             "film_nodes": len(n.radii),
             "time_steps": n.steps,
             "e_t": None,

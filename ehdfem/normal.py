@@ -115,6 +115,7 @@ class NormalResult:
     stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
     at the end (meaningful without cavitation). ``status``: "rebound", "stick" or "stalled".
+    ``rtol``: the local time-step tolerance used (with ``energy_error``, the achieved accuracy).
     """
 
     params: CollisionParameters
@@ -133,6 +134,7 @@ class NormalResult:
     steps: int
     rejected_steps: int
     newton_iterations: int
+    rtol: float
 
 
 def _derivative_weights(nodes):
@@ -506,6 +508,7 @@ def solve_normal(params: CollisionParameters, compliance, options: IntegratorOpt
         steps=len(hist.time) - 1,
         rejected_steps=rejected,
         newton_iterations=iterations,
+        rtol=options.rtol,
     )
 
 

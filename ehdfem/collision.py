@@ -19,7 +19,7 @@ from .scales import CollisionParameters, PhysicalCollision, hertz_max_compressio
 from .tangential import MODELS as TANGENTIAL_MODELS
 from .tangential import TangentialResult, solve_tangential
 
-MODELS = ("halfspace",)
+MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
@@ -39,6 +39,20 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     else:
         outer = max(IMMERSED_OUTER_RADIUS, 10.0 * fine)
     return radial_grid(nodes, min(fine, 0.5 * outer), outer)
+
+
+def elasticity(
+    params: CollisionParameters, radii: np.ndarray, model: str = "halfspace", solids=None
+):
+    """The compliance at the film nodes: elastic half-spaces, or FE solids (an
+    :class:`ehdfem.compliance.fem.FESolids`, built for params.delta if not given; equal
+    Poisson ratios 0.3 and moduli by default, see docs/fem.md)."""
+    if model == "halfspace":
+        return HalfSpaceCompliance(radii, params.eps)
+    from .compliance.fem import FESolids
+
+    solids = solids or FESolids(params.delta, radii)
+    return solids.compliance(params.eps)
 
 
 @dataclass
@@ -132,7 +146,7 @@ def collide(
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
     for attempt in range(refinements + 1):
-        compliance = HalfSpaceCompliance(film_radii(params, nodes * 2**attempt), params.eps)
+        compliance = elasticity(params, film_radii(params, nodes * 2**attempt), model)
         try:
             normal = solve_normal(params, compliance, options)
         except FilmClosedError:

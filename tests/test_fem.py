@@ -1,0 +1,95 @@
+"""FE solids (DOLFINx): compliance against the half-space, Hertz, mesh convergence, MPI."""
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+
+from ehdfem.checks import InputError
+from ehdfem.collision import collide
+from ehdfem.compliance.fem import FESolids
+from ehdfem.compliance.halfspace import HalfSpaceCompliance
+from ehdfem.film import radial_grid
+from ehdfem.scales import CollisionParameters
+
+RADII = radial_grid(60, 0.5, 2.0)
+
+
+def hertz_like(radii):
+    return np.sqrt(np.clip(1 - (radii / 0.8) ** 2, 0, None))
+
+
+@pytest.fixture(scope="module")
+def small_delta():
+    return FESolids(1e-3, RADII, comm=MPI.COMM_SELF).compliance(1.0)
+
+
+@pytest.mark.serial
+def test_compliance_matches_the_half_space_near_the_axis(small_delta):
+    """delta = 1e-3: within 1 % for R <= 0.5. The difference is physical, the finite sphere
+    (a load-proportional shift of order F/(E a)), and shrinks like sqrt(delta)."""
+    fe = small_delta.deflection(hertz_like(RADII))
+    hs = HalfSpaceCompliance(RADII, 1.0).deflection(hertz_like(RADII))
+    near = RADII <= 0.5
+    assert np.abs(fe[near] / hs[near] - 1).max() < 0.01
+
+
+@pytest.mark.serial
+def test_hertz_contact_with_fe_solids():
+    """Dry contact solved with the FE compliance (active set on P >= 0, H >= 0): at the
+    approach -X = c^2 the contact radius is c and the peak pressure 8c/(pi^2 eps) (Hertz,
+    scaled), both within 2 % (delta = 1e-4, 100 film nodes)."""
+    radii = radial_grid(100, 1.0, 2.0)
+    eps, c = 1.0, 1.0
+    matrix = FESolids(1e-4, radii, comm=MPI.COMM_SELF).compliance(eps).matrix
+    rigid = -(c**2) + 0.5 * radii**2  # X + R^2/2
+    active = radii < c
+    for _ in range(50):
+        pressure = np.zeros_like(radii)
+        pressure[active] = np.linalg.solve(matrix[np.ix_(active, active)], -rigid[active])
+        gap = rigid + matrix @ pressure
+        new = (active & (pressure > 0)) | (~active & (gap < 0))
+        if (new == active).all():
+            break
+        active = new
+    assert radii[active].max() == pytest.approx(c, rel=0.02)
+    assert pressure[0] == pytest.approx(8 * c / (np.pi**2 * eps), rel=0.02)
+
+
+@pytest.mark.serial
+def test_mesh_convergence_of_the_compliance():
+    """The mesh follows the film grid; refining the film grid (and so the mesh) converges the
+    deflection under a smooth pressure, (1 - R^2/1.5^2)^2. The observed order is printed; it
+    must exceed 1.5 (second order expected: linear pressure between nodes, P2 elements)."""
+    deflections = []
+    for n in (30, 60, 120):
+        radii = radial_grid(n, 0.5, 2.0)
+        smooth = np.clip(1 - (radii / 1.5) ** 2, 0, None) ** 2
+        w = FESolids(1e-3, radii, comm=MPI.COMM_SELF).compliance(1.0).deflection(smooth)
+        deflections.append(w[0])
+    changes = np.abs(np.diff(deflections))
+    order = np.log2(changes[0] / changes[1])
+    print(f"W(0) on 30/60/120 film nodes: {deflections}; observed order {order:.2f}")
+    assert order > 1.5
+
+
+def test_same_compliance_on_two_ranks_as_on_one():
+    """Runs under mpirun -n 2 too: the distributed FE compliance equals the one-process one."""
+    radii = radial_grid(20, 0.5, 2.0)
+    distributed = FESolids(1e-3, radii, comm=MPI.COMM_WORLD).compliance(1.0).matrix
+    single = FESolids(1e-3, radii, comm=MPI.COMM_SELF).compliance(1.0).matrix
+    assert np.abs(distributed - single).max() < 1e-8 * np.abs(single).max()
+
+
+@pytest.mark.serial
+def test_fe_collision_agrees_with_the_half_space_at_small_delta():
+    """St = 10, eps = 1e-3, thin layer, P_cav = -2, delta = 1e-3: e_n within 1 %."""
+    params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, delta=1e-3)
+    half_space = collide(params, nodes=120).normal.e_n
+    fem = collide(params, model="fem", nodes=120).normal.e_n
+    assert fem == pytest.approx(half_space, rel=0.01)
+
+
+@pytest.mark.serial
+def test_film_beyond_half_the_sphere_is_refused():
+    with pytest.raises(InputError, match="film"):
+        FESolids(0.1, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)

@@ -3,7 +3,8 @@
 # up (Debian's FEniCSx stack by apt, a venv on Debian's python with the rest from PyPI); that
 # part is idempotent and takes a second when everything is already there.
 #   setup    only the set-up
-#   example  the main job: an oblique collision, results printed, plots and fields in out/example
+#   example  the main job: an oblique collision with both models (half-space, FE), results
+#            printed, plots, JSON and the FE fields (XDMF) in out/example/
 #   test     the test suite: serial pytest, then the MPI tests under mpirun -n 2
 #   lint     ruff check and ruff format --check
 #   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
@@ -12,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
-              python3-scipy python3-matplotlib python3-venv python3-pip openmpi-bin)
+              python3-scipy python3-matplotlib python3-h5py python3-venv python3-pip openmpi-bin)
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -68,10 +69,18 @@ job=${1:-}
 shift || true
 case "$job" in
     setup) setup ;;
-    example) setup; "$VENV/bin/ehdfem" collide --example --plots out/example --json out/example/result.json "$@" ;;
+    example) setup
+        echo "== half-space model (asymptotic theory)"
+        "$VENV/bin/ehdfem" collide --example --plots out/example/halfspace --json out/example/halfspace.json "$@"
+        echo "== FE model (DOLFINx solids)"
+        "$VENV/bin/ehdfem" collide --example --model fem --plots out/example/fem --json out/example/fem.json \
+            --fields out/example/fem/fields.xdmf "$@" ;;
     test) setup; run_tests "$@" ;;
     lint) setup; "$VENV/bin/ruff" check . && "$VENV/bin/ruff" format --check . ;;
-    bench) setup; for script in benchmarks/*.py; do "$PY" "$script" "$@"; done ;;
+    bench) setup
+        "$PY" benchmarks/normal_collision.py "$@"
+        "$PY" benchmarks/sweep.py "$@"
+        mpirun -n 2 "$PY" benchmarks/fem_collision.py "$@" ;;
     study) setup; run_study ;;
     *) echo "usage: bash make.sh setup|example|test|lint|bench|study [args]" >&2; exit 2 ;;
 esac

@@ -89,6 +89,12 @@ def _parser() -> argparse.ArgumentParser:
     )
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
     num.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+    num.add_argument(
+        "--fields",
+        metavar="FILE.xdmf",
+        help="FE model: displacement and stresses of both solids at maximum force and "
+        "at the end, as XDMF for ParaView",
+    )
 
     s = sub.add_parser("sweep", help="run a study file (TOML) over the MPI ranks; resumable")
     s.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
@@ -177,6 +183,16 @@ def collide_command(args) -> int:
     print("ehdfem collide: results (dimensionless, DSH scales; SI under si)")
     _print_table(summary)
     _write_json(summary, args.json)
+    if args.fields:
+        if args.model != "fem":
+            raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
+        hist = result.normal.history
+        steps = sorted({int(np.argmax(hist.force)), len(hist.time) - 1})
+        Path(args.fields).parent.mkdir(parents=True, exist_ok=True)
+        result.compliance.solids.write_fields(
+            args.fields, [(hist.time[i], hist.pressure[i]) for i in steps], result.params.eps
+        )
+        print(f"  wrote {args.fields} (T = {', '.join(f'{hist.time[i]:.4g}' for i in steps)})")
     if args.plots:
         out = Path(args.plots)
         paths = [

@@ -59,13 +59,15 @@ def elasticity(
 class CollisionResult:
     """A collision's outcome: the normal motion (:class:`ehdfem.normal.NormalResult`), the
     tangential motion (:class:`ehdfem.tangential.TangentialResult`, None for a head-on impact),
-    the elasticity model used and, for physical inputs, the inputs (to convert back to SI)."""
+    the elasticity model used, for physical inputs the inputs (to convert back to SI), and the
+    compliance object (FE solids keep their mesh for writing fields)."""
 
     params: CollisionParameters
     model: str
     normal: NormalResult
     tangential: TangentialResult | None = None
     physical: PhysicalCollision | None = None
+    compliance: object = None
 
     def summary(self) -> dict:
         """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"."""
@@ -146,7 +148,7 @@ def collide(
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
     for attempt in range(refinements + 1):
-        compliance = elasticity(params, film_radii(params, nodes * 2**attempt), model)
+        compliance = elasticity(params, film_radii(params, nodes * 2**attempt), model, physical)
         try:
             normal = solve_normal(params, compliance, options)
         except FilmClosedError:
@@ -154,10 +156,5 @@ def collide(
                 raise
             continue
         oblique = params.tangential_speed > 0
-        return CollisionResult(
-            params,
-            model,
-            normal,
-            solve_tangential(normal, tangential) if oblique else None,
-            physical,
-        )
+        tangential_result = solve_tangential(normal, tangential) if oblique else None
+        return CollisionResult(params, model, normal, tangential_result, physical, compliance)

@@ -93,3 +93,27 @@ def test_fe_collision_agrees_with_the_half_space_at_small_delta():
 def test_film_beyond_half_the_sphere_is_refused():
     with pytest.raises(InputError, match="film"):
         FESolids(0.1, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
+
+
+@pytest.mark.serial
+def test_fields_are_written_for_paraview(tmp_path):
+    """XDMF with displacement, von Mises and hydrostatic stress per instant, finite values."""
+    import h5py
+    import meshio
+
+    radii = radial_grid(20, 0.5, 2.0)
+    solids = FESolids(1e-3, radii, comm=MPI.COMM_SELF)
+    path = tmp_path / "fields.xdmf"
+    solids.write_fields(path, [(0.5, hertz_like(radii)), (1.0, 0.5 * hertz_like(radii))], eps=1e-3)
+    with meshio.xdmf.TimeSeriesReader(str(path)) as reader:
+        points, _ = reader.read_points_cells()
+        assert points.shape[1] >= 2 and reader.num_steps == 2
+    with h5py.File(path.with_suffix(".h5")) as h5:
+        names = set(h5["Function"])
+        assert names == {"displacement", "von_mises", "hydrostatic"}
+        for name in names:
+            for step in h5["Function"][name].values():
+                assert np.isfinite(step[()]).all()
+        steps = sorted(h5["Function"]["von_mises"])
+        first, second = (h5["Function"]["von_mises"][k][()] for k in steps)
+        assert np.allclose(second, 0.5 * first, rtol=1e-8, atol=1e-12)  # linear elasticity

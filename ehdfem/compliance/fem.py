@@ -122,6 +122,7 @@ class FESolids:
         def stress(v):
             return lmbda * ufl.tr(strain(v)) * ufl.Identity(3) + 2 * mu * strain(v)
 
+        self.stress = stress
         u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
         self.v = v
         a = fem.form(ufl.inner(stress(u), strain(v)) * r * ufl.dx)
@@ -219,22 +220,78 @@ class FESolids:
     def compliance(self, eps: float) -> FECompliance:
         """The film compliance on the film nodes in the units of the half-space kernel (see the
         module docstring); one solve per film node."""
-        radii, scale = self.radii, math.sqrt(self.delta)
+        radii = self.radii
         unit = np.empty((len(radii), len(radii)))
         for j in range(len(radii)):
             hat = np.zeros(len(radii))
             hat[j] = 1.0
-            u = self.displacement(lambda r, hat=hat: np.interp(r / scale, radii, hat, right=0.0))
-            unit[:, j] = self.gap_opening(u, radii * scale)
-        factor = checks.positive("eps", eps) / (4 * self.theta_e_ref * scale)
-        return FECompliance(radii, factor * unit)
+            unit[:, j] = self.gap_opening(self.displacement(self._film_pressure(hat)), self.radii_a)
+        return FECompliance(radii, self.scale(eps) * unit, self, eps)
+
+    @property
+    def radii_a(self):
+        """The film nodes in units of the sphere radius."""
+        return self.radii * math.sqrt(self.delta)
+
+    def scale(self, eps: float) -> float:
+        """x0 per (a p / E_ref): FE displacements to the gap unit (module docstring)."""
+        return checks.positive("eps", eps) / (4 * self.theta_e_ref * math.sqrt(self.delta))
+
+    def _film_pressure(self, nodal):
+        """The film pressure with nodal values ``nodal`` as a function of r (by a)."""
+        scale = math.sqrt(self.delta)
+        return lambda r: np.interp(r / scale, self.radii, nodal, right=0.0)
+
+    def write_fields(self, path, snapshots, eps: float) -> None:
+        """XDMF (ParaView) of the solids under the film pressure at several instants.
+
+        ``snapshots``: (time, nodal pressure) pairs, time by x0/V0 and pressure by mu V0 a/x0^2.
+        Written per instant: ``displacement`` (by x0), ``von_mises`` and ``hydrostatic`` stress
+        (by mu V0 a / x0^2, one value per cell); the mesh is in units of the sphere radius a,
+        axisymmetric (r, z).
+        Each field is the displacement relative to the sphere's centre of mass in the sphere.
+        """
+        import ufl
+        from dolfinx import fem, io
+
+        W = fem.FunctionSpace(
+            self.mesh, ("DG", 0)
+        )  # cell values: the hoop strain u_r/r is 0/0 on the axis
+        V1 = fem.VectorFunctionSpace(self.mesh, ("CG", 1))
+        displacement, von_mises, hydrostatic = fem.Function(V1), fem.Function(W), fem.Function(W)
+        displacement.name, von_mises.name, hydrostatic.name = (
+            "displacement",
+            "von_mises",
+            "hydrostatic",
+        )
+        sigma = self.stress(self.u)
+        deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
+        points = W.element.interpolation_points()
+        expressions = (
+            fem.Expression(ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), points),
+            fem.Expression(ufl.tr(sigma) / 3, points),
+        )
+        sphere_dofs = fem.locate_dofs_topological(V1, 2, self.cell_tags.find(self.geometry.SPHERE))
+        with io.XDMFFile(self.comm, str(path), "w") as xdmf:
+            xdmf.write_mesh(self.mesh)
+            for time, nodal in snapshots:
+                u = self.displacement(self._film_pressure(nodal))
+                centre = self.comm.allreduce(fem.assemble_scalar(self.centre)) / self.sphere_volume
+                displacement.interpolate(u)
+                displacement.x.array[:] *= self.scale(eps)
+                displacement.x.array.reshape(-1, 2)[sphere_dofs, 1] -= centre * self.scale(eps)
+                von_mises.interpolate(expressions[0])
+                hydrostatic.interpolate(expressions[1])
+                for field in (displacement, von_mises, hydrostatic):
+                    xdmf.write_function(field, time)
 
 
 class FECompliance:
-    """Compliance matrix of FE solids at the film nodes (same interface as the half-space)."""
+    """Compliance matrix of FE solids at the film nodes (same interface as the half-space);
+    ``solids`` and ``eps`` are kept for writing the full fields."""
 
-    def __init__(self, radii, matrix):
-        self.radii, self.matrix = radii, matrix
+    def __init__(self, radii, matrix, solids=None, eps=None):
+        self.radii, self.matrix, self.solids, self.eps = radii, matrix, solids, eps
 
     def deflection(self, pressure):
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""

@@ -1,0 +1,70 @@
+"""FE collision cost: mesh size, compliance build, collision time, and FE / half-space ratio.
+
+The example collision (steel on glass through 0.3 mm of silicone oil, delta = 0.047) at the
+default film resolution; run it as `mpirun -n 2 python benchmarks/fem_collision.py` to use both
+cores for the FE part (the time integration is the same code for both models). Writes
+benchmarks/results/fem_collision.json. Targets (issue 4): compliance build under 30 s, and an
+FE collision (after the build) at most twice a half-space one.
+"""
+
+import json
+import time
+from pathlib import Path
+
+from mpi4py import MPI
+
+from ehdfem.collision import DEFAULT_NODES, film_radii
+from ehdfem.compliance.fem import FESolids
+from ehdfem.compliance.halfspace import HalfSpaceCompliance
+from ehdfem.normal import solve_normal
+from ehdfem.scales import PhysicalCollision, liquid, material
+
+
+def main():
+    params = PhysicalCollision(
+        radius=6.35e-3,
+        sphere=material("steel"),
+        wall=material("glass"),
+        liquid=liquid("silicone_oil_100cst"),
+        speed=1.0,
+        angle=30.0,
+        layer_thickness=3e-4,
+    ).dimensionless()
+    radii = film_radii(params, DEFAULT_NODES)
+    start = time.perf_counter()
+    solids = FESolids(params.delta, radii, sphere=(190e9, 0.27), wall=(60e9, 0.23))
+    mesh_time = time.perf_counter() - start
+    start = time.perf_counter()
+    fem = solids.compliance(params.eps)
+    build_time = time.perf_counter() - start
+    start = time.perf_counter()
+    half_space = HalfSpaceCompliance(radii, params.eps)
+    kernel_time = time.perf_counter() - start
+    times = {}
+    for name, compliance in (("fem", fem), ("halfspace", half_space)):
+        start = time.perf_counter()
+        result = solve_normal(params, compliance)
+        times[name] = (time.perf_counter() - start, result.e_n)
+    out = {
+        "film_nodes": len(radii),
+        "cells": solids.mesh.topology.index_map(2).size_global,
+        "dofs": 2 * solids.V.dofmap.index_map.size_global,
+        "ranks": MPI.COMM_WORLD.size,
+        "mesh_and_factorisation_seconds": mesh_time,
+        "compliance_build_seconds": build_time,
+        "halfspace_kernel_seconds": kernel_time,
+        "fem_collision_seconds": times["fem"][0],
+        "halfspace_collision_seconds": times["halfspace"][0],
+        "collision_time_ratio": times["fem"][0] / times["halfspace"][0],
+        "e_n_fem": times["fem"][1],
+        "e_n_halfspace": times["halfspace"][1],
+    }
+    if MPI.COMM_WORLD.rank == 0:
+        path = Path(__file__).parent / "results" / "fem_collision.json"
+        path.parent.mkdir(exist_ok=True)
+        path.write_text(json.dumps(out, indent=2) + "\n")
+        print(json.dumps(out, indent=2))
+
+
+if __name__ == "__main__":
+    main()

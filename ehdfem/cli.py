@@ -89,6 +89,24 @@ def _parser() -> argparse.ArgumentParser:
     )
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
     num.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+    fe = c.add_argument_group("FE solids (--model fem)")
+    fe.add_argument(
+        "--lower",
+        choices=("wall", "coated", "sphere"),
+        default="wall",
+        help="body below the sphere: wall block, coated wall block, or a second sphere",
+    )
+    fe.add_argument("--coating-thickness", type=float, help="coating thickness (by a), > 0")
+    fe.add_argument(
+        "--coating-stiffness", type=float, default=1.0, help="coating Young's modulus / wall's, > 0"
+    )
+    fe.add_argument("--coating-poisson", type=float, default=0.3, help="coating Poisson ratio")
+    fe.add_argument(
+        "--radius-ratio",
+        type=float,
+        default=1.0,
+        help="two spheres: upper radius / lower radius (a is the reduced radius)",
+    )
     num.add_argument(
         "--fields",
         metavar="FILE.xdmf",
@@ -173,11 +191,37 @@ def _print_table(summary: dict) -> None:
         print(f"  {key:<{width}}  {text}")
 
 
+def _solids(args, inputs) -> dict | None:
+    """FESolids options from the command line (None for the default wall block)."""
+    if args.lower == "wall":
+        return None
+    if args.model != "fem":
+        raise checks.InputError(f"--lower {args.lower} needs --model fem")
+    if args.lower == "sphere":
+        return {"lower": "sphere", "radius_ratio": args.radius_ratio}
+    if args.coating_thickness is None:
+        raise checks.InputError("--lower coated needs --coating-thickness (by a), > 0")
+    wall = inputs.wall.young_modulus if isinstance(inputs, PhysicalCollision) else 1.0
+    return {
+        "lower": "coated",
+        "coating_thickness": args.coating_thickness,
+        "coating": (
+            checks.positive("coating-stiffness", args.coating_stiffness) * wall,
+            args.coating_poisson,
+        ),
+    }
+
+
 def collide_command(args) -> int:
     inputs = _inputs(args)
     options = IntegratorOptions(rtol=args.rtol)
     result = collide(
-        inputs, model=args.model, nodes=args.nodes, options=options, tangential=args.tangential
+        inputs,
+        model=args.model,
+        nodes=args.nodes,
+        options=options,
+        tangential=args.tangential,
+        solids=_solids(args, inputs),
     )
     summary = result.summary()
     print("ehdfem collide: results (dimensionless, DSH scales; SI under si)")

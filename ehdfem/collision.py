@@ -41,18 +41,23 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     return radial_grid(nodes, min(fine, 0.5 * outer), outer)
 
 
-def elasticity(
-    params: CollisionParameters, radii: np.ndarray, model: str = "halfspace", solids=None
-):
-    """The compliance at the film nodes: elastic half-spaces, or FE solids (an
-    :class:`ehdfem.compliance.fem.FESolids`, built for params.delta if not given; equal
-    Poisson ratios 0.3 and moduli by default, see docs/fem.md)."""
+def elasticity(params: CollisionParameters, radii, model="halfspace", physical=None, solids=None):
+    """The compliance at the film nodes: elastic half-spaces, or FE solids
+    (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta with the materials of the
+    physical inputs, or, for dimensionless inputs, identical materials with Poisson ratio 0.3
+    (the half-space only sees theta; the solids also see the moduli ratio and the nu's).
+    ``solids``: further FESolids arguments (lower body, coating, radius ratio)."""
     if model == "halfspace":
         return HalfSpaceCompliance(radii, params.eps)
     from .compliance.fem import FESolids
 
-    solids = solids or FESolids(params.delta, radii)
-    return solids.compliance(params.eps)
+    materials = {}
+    if physical is not None:
+        materials = {
+            name: (m.young_modulus, m.poisson_ratio)
+            for name, m in (("sphere", physical.sphere), ("wall", physical.wall))
+        }
+    return FESolids(params.delta, radii, **materials, **(solids or {})).compliance(params.eps)
 
 
 @dataclass
@@ -126,6 +131,7 @@ def collide(
     options: IntegratorOptions | None = None,
     refinements: int = 2,
     tangential: str = "couette",
+    solids: dict | None = None,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
 
@@ -134,7 +140,9 @@ def collide(
     run again on a grid with twice the nodes, at most ``refinements`` times; the nodes used are
     reported in the result (``film_nodes``). ``tangential``: the film model of the
     tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential`); it is solved
-    when the impact is oblique (angle > 0).
+    when the impact is oblique (angle > 0). ``solids``: for the FE model, arguments of
+    :class:`ehdfem.compliance.fem.FESolids` (e.g. ``lower="coated"``, ``coating=(E, nu)``,
+    ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``).
     """
     physical = params if isinstance(params, PhysicalCollision) else None
     if physical is not None:
@@ -148,7 +156,8 @@ def collide(
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
     for attempt in range(refinements + 1):
-        compliance = elasticity(params, film_radii(params, nodes * 2**attempt), model, physical)
+        radii = film_radii(params, nodes * 2**attempt)
+        compliance = elasticity(params, radii, model, physical, solids)
         try:
             normal = solve_normal(params, compliance, options)
         except FilmClosedError:

@@ -117,3 +117,30 @@ def test_fields_are_written_for_paraview(tmp_path):
         steps = sorted(h5["Function"]["von_mises"])
         first, second = (h5["Function"]["von_mises"][k][()] for k in steps)
         assert np.allclose(second, 0.5 * first, rtol=1e-8, atol=1e-12)  # linear elasticity
+
+
+@pytest.mark.serial
+@pytest.mark.parametrize(
+    ("options", "expected", "tolerance"),
+    [
+        # a coating of the wall's own material changes nothing
+        ({"lower": "coated", "coating": (1.0, 0.3), "coating_thickness": 0.02}, "wall", 1e-5),
+        # a thick coating 10x softer: theta_eff / theta = (1 + 10) / 2 against the bare wall
+        ({"lower": "coated", "coating": (0.1, 0.3), "coating_thickness": 1.0}, 5.5, 0.01),
+        # two spheres (radii 2a and 2a, or 4a and 4a/3) behave like half-spaces near the axis
+        ({"lower": "sphere", "radius_ratio": 1.0}, "halfspace", 0.01),
+        ({"lower": "sphere", "radius_ratio": 3.0}, "halfspace", 0.01),
+    ],
+)
+def test_coated_wall_and_two_spheres(small_delta, options, expected, tolerance):
+    """Exact limits of the other geometries at delta = 1e-3, on the axis and for R <= 0.5."""
+    pressure = hertz_like(RADII)
+    w = FESolids(1e-3, RADII, comm=MPI.COMM_SELF, **options).compliance(1.0).deflection(pressure)
+    if expected == "wall":
+        reference = small_delta.deflection(pressure)
+    elif expected == "halfspace":
+        reference = HalfSpaceCompliance(RADII, 1.0).deflection(pressure)
+    else:
+        reference = expected * small_delta.deflection(pressure)
+    near = RADII <= 0.5
+    assert np.abs(w[near] / reference[near] - 1).max() < tolerance

@@ -89,6 +89,13 @@ def _parser() -> argparse.ArgumentParser:
     )
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
     num.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR")
+    num.add_argument(
+        "--field-times",
+        type=float,
+        nargs="+",
+        metavar="T",
+        help="with --fields: further instants T (by x0/V0) to write",
+    )
     fe = c.add_argument_group("FE solids (--model fem)")
     fe.add_argument(
         "--lower",
@@ -110,8 +117,8 @@ def _parser() -> argparse.ArgumentParser:
     num.add_argument(
         "--fields",
         metavar="FILE.xdmf",
-        help="FE model: displacement and stresses of both solids at maximum force and "
-        "at the end, as XDMF for ParaView",
+        help="FE model: displacement and stresses of both solids at maximum compression, "
+        "maximum force and the end (and --field-times), as XDMF for ParaView",
     )
 
     s = sub.add_parser("sweep", help="run a study file (TOML) over the MPI ranks; resumable")
@@ -191,6 +198,27 @@ def _print_table(summary: dict) -> None:
         print(f"  {key:<{width}}  {text}")
 
 
+def field_snapshots(normal, times=None) -> list:
+    """(T, nodal pressure) at maximum compression, maximum force, the end (exit or stop) and
+    any requested times T (by x0/V0; the pressure is interpolated linearly between steps)."""
+    hist = normal.history
+    chosen = {
+        hist.time[int(np.argmin(hist.gap))],
+        hist.time[int(np.argmax(hist.force))],
+        hist.time[-1],
+    }
+    for t in times or []:
+        checks.number("field time", t, lower=0.0, upper=float(hist.time[-1]))
+        chosen.add(t)
+    snapshots = []
+    for t in sorted(chosen):
+        i = min(int(np.searchsorted(hist.time, t)), len(hist.time) - 1)
+        j = max(i - 1, 0)
+        w = 0.0 if i == j else (t - hist.time[j]) / (hist.time[i] - hist.time[j])
+        snapshots.append((float(t), (1 - w) * hist.pressure[j] + w * hist.pressure[i]))
+    return snapshots
+
+
 def _solids(args, inputs) -> dict | None:
     """FESolids options from the command line (None for the default wall block)."""
     if args.lower == "wall":
@@ -230,13 +258,10 @@ def collide_command(args) -> int:
     if args.fields:
         if args.model != "fem":
             raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
-        hist = result.normal.history
-        steps = sorted({int(np.argmax(hist.force)), len(hist.time) - 1})
+        snapshots = field_snapshots(result.normal, args.field_times)
         Path(args.fields).parent.mkdir(parents=True, exist_ok=True)
-        result.compliance.solids.write_fields(
-            args.fields, [(hist.time[i], hist.pressure[i]) for i in steps], result.params.eps
-        )
-        print(f"  wrote {args.fields} (T = {', '.join(f'{hist.time[i]:.4g}' for i in steps)})")
+        result.compliance.solids.write_fields(args.fields, snapshots, result.params.eps)
+        print(f"  wrote {args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
     if args.plots:
         out = Path(args.plots)
         paths = [

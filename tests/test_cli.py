@@ -2,8 +2,10 @@
 
 import json
 
+import numpy as np
 import pytest
 
+from ehdfem.checks import InputError
 from ehdfem.cli import main
 
 pytestmark = pytest.mark.serial
@@ -79,3 +81,25 @@ def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
     assert main(["collide", *args]) == 2
     err = capsys.readouterr().err
     assert name in err and "Traceback" not in err
+
+
+def test_field_instants_include_requested_times():
+    """Maximum compression, maximum force, the end, and requested times (pressure linear in T
+    between steps); a time outside the collision is refused."""
+    from ehdfem.cli import field_snapshots
+    from ehdfem.collision import collide
+    from ehdfem.scales import CollisionParameters
+
+    normal = collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), nodes=60).normal
+    hist = normal.history
+    t = 0.5 * (hist.time[10] + hist.time[11])
+    snapshots = field_snapshots(normal, [t])
+    times = [s[0] for s in snapshots]
+    assert times == sorted(times) and t in times and hist.time[-1] in times
+    assert (
+        hist.time[int(hist.gap.argmin())] in times and hist.time[int(hist.force.argmax())] in times
+    )
+    pressure = dict(snapshots)[t]
+    assert np.allclose(pressure, 0.5 * (hist.pressure[10] + hist.pressure[11]))
+    with pytest.raises(InputError, match="field time"):
+        field_snapshots(normal, [hist.time[-1] + 1])

@@ -90,9 +90,11 @@ def test_fe_collision_agrees_with_the_half_space_at_small_delta():
 
 
 @pytest.mark.serial
-def test_film_beyond_half_the_sphere_is_refused():
+def test_film_reaching_round_the_sphere_is_refused():
+    """The film must stay within 0.7 of the (smaller) sphere radius: R = 2 at delta = 0.2 is
+    r = 0.89 a."""
     with pytest.raises(InputError, match="film"):
-        FESolids(0.1, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
+        FESolids(0.2, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
 
 
 @pytest.mark.serial

@@ -132,6 +132,7 @@ def _parser() -> argparse.ArgumentParser:
     k.add_argument("--bracket", type=float, nargs=2, default=(1.0, 1000.0), metavar=("LOW", "HIGH"))
     k.add_argument("--rtol", type=float, default=1e-3, help="relative width of the final bracket")
     k.add_argument("--nodes", type=int, default=DEFAULT_NODES)
+    k.add_argument("--model", choices=MODELS, default="halfspace")
     k.add_argument(
         "--json", metavar="FILE", help="write {St_c, bracket, ...} as JSON ('-': stdout)"
     )
@@ -297,7 +298,7 @@ def critical_command(args) -> int:
         layer=args.layer,
         p_cav=-np.inf if args.p_cav is None else args.p_cav,
     )
-    found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes)
+    found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes, model=args.model)
     out = {
         **found,
         "eps": args.eps,
@@ -305,6 +306,7 @@ def critical_command(args) -> int:
         "layer": args.layer,
         "p_cav": args.p_cav,
         "nodes": args.nodes,
+        "model": args.model,
     }
     print(
         f"St_c = {found['St_c']:.6g} (bracket {found['bracket'][0]:.6g} .. "

@@ -128,3 +128,12 @@ def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):
     path.write_text(text)
     with pytest.raises(InputError, match=message):
         Study(path)
+
+
+@pytest.mark.serial
+def test_critical_stokes_number_of_the_fe_model():
+    """At delta = 1e-3 the FE solids are half-spaces to 1 %: St_c agrees within 1 %."""
+    params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0, delta=1e-3)
+    half_space = critical_stokes(params, bracket=(1.0, 20.0), nodes=60)["St_c"]
+    fem = critical_stokes(params, bracket=(1.0, 20.0), nodes=60, model="fem")["St_c"]
+    assert fem == pytest.approx(half_space, rel=0.01)

@@ -223,15 +223,32 @@ def collect(study: Study) -> list[dict]:
 
 
 def write_table(study: Study, rows: list[dict]) -> Path:
-    """Write the CSV table atomically."""
-    study.table.parent.mkdir(parents=True, exist_ok=True)
-    names = list(dict.fromkeys(itertools.chain.from_iterable(rows))) if rows else list(GRID_KEYS)
+    """Write the study's CSV table atomically."""
+    return write_csv(study.table, rows, list(GRID_KEYS))
+
+
+def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
+    """Write rows (dicts; the header is the union of their keys) to a CSV file atomically."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    names = list(dict.fromkeys(itertools.chain.from_iterable(rows))) if rows else list(empty_header)
     text = io.StringIO()
     writer = csv.DictWriter(text, fieldnames=names)
     writer.writeheader()
     writer.writerows(rows)
-    _write_atomic(study.table, text.getvalue())
-    return study.table
+    _write_atomic(path, text.getvalue())
+    return path
+
+
+def computed_or_loaded(path: Path, compute, load: bool) -> list[dict]:
+    """The rows of a study script: read from the CSV ``path`` when ``load`` (to redraw figures),
+    otherwise ``compute()`` them and write them there atomically."""
+    if load:
+        with Path(path).open() as f:
+            return list(csv.DictReader(f))
+    rows = compute()
+    write_csv(path, rows)
+    return rows
 
 
 def critical_stokes(

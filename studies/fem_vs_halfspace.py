@@ -7,7 +7,6 @@ of thickness 0.3 and 3 contact-radius scales sqrt(delta) a; two spheres of equal
 Run: .venv/bin/python studies/fem_vs_halfspace.py [--plot-only]   (about 5 minutes)
 """
 
-import csv
 import sys
 from pathlib import Path
 
@@ -19,6 +18,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.scales import CollisionParameters  # noqa: E402
+from ehdfem.study import computed_or_loaded  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DELTAS = (0.001, 0.003, 0.01, 0.03, 0.1)
@@ -99,16 +99,7 @@ def plot(rows, figure):
 def main():
     table = ROOT / "studies" / "results" / "fem_vs_halfspace.csv"
     figure = ROOT / "docs" / "figures" / "fem_vs_halfspace.png"
-    if "--plot-only" in sys.argv:
-        with table.open() as f:
-            rows = list(csv.DictReader(f))
-    else:
-        rows = run()
-        table.parent.mkdir(parents=True, exist_ok=True)
-        with table.open("w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+    rows = computed_or_loaded(table, run, load="--plot-only" in sys.argv)
     plot(rows, figure)
     print(f"wrote {table} and {figure}")
 

@@ -5,7 +5,6 @@ Writes studies/results/tangential_vs_stokes.csv and docs/figures/tangential_vs_s
 Run: .venv/bin/python studies/tangential_vs_stokes.py [--plot-only]
 """
 
-import csv
 import sys
 from pathlib import Path
 
@@ -17,6 +16,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.scales import CollisionParameters  # noqa: E402
+from ehdfem.study import computed_or_loaded  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STOKES = np.geomspace(3, 1000, 16)
@@ -84,16 +84,7 @@ def plot(rows, figure):
 def main():
     table = ROOT / "studies" / "results" / "tangential_vs_stokes.csv"
     figure = ROOT / "docs" / "figures" / "tangential_vs_stokes.png"
-    if "--plot-only" in sys.argv:
-        with table.open() as f:
-            rows = list(csv.DictReader(f))
-    else:
-        rows = run()
-        table.parent.mkdir(parents=True, exist_ok=True)
-        with table.open("w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-            writer.writeheader()
-            writer.writerows(rows)
+    rows = computed_or_loaded(table, run, load="--plot-only" in sys.argv)
     plot(rows, figure)
     print(f"wrote {table} and {figure}")
 

@@ -74,7 +74,10 @@ case "$job" in
         "$VENV/bin/ehdfem" collide --example --plots out/example/halfspace --json out/example/halfspace.json "$@"
         echo "== FE model (DOLFINx solids)"
         "$VENV/bin/ehdfem" collide --example --model fem --plots out/example/fem --json out/example/fem.json \
-            --fields out/example/fem/fields.xdmf "$@" ;;
+            --fields out/example/fem/fields.xdmf "$@"
+        echo "== picture of the deformed solids and film animation (FE model)"
+        "$VENV/bin/ehdfem" render --example --out out/example/fem/render.png \
+            --animation out/example/fem/film.gif "$@" ;;
     test) setup; run_tests "$@" ;;
     lint) setup; "$VENV/bin/ruff" check . && "$VENV/bin/ruff" format --check . ;;
     bench) setup

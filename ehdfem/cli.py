@@ -35,10 +35,8 @@ EXAMPLE = dict(
 PHYSICAL = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="ehdfem", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
-    c = sub.add_parser("collide", help="simulate one collision and print its results")
+def _collision_arguments(c) -> None:
+    """The inputs of one collision (shared by collide and render)."""
     dim = c.add_argument_group("dimensionless inputs (DSH scales)")
     dim.add_argument("--St", type=float, help="Stokes number m V0 / (6 pi mu a^2), > 0")
     dim.add_argument(
@@ -120,6 +118,29 @@ def _parser() -> argparse.ArgumentParser:
         help="FE model: displacement and stresses of both solids at maximum compression, "
         "maximum force and the end (and --field-times), as XDMF for ParaView",
     )
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="ehdfem", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    _collision_arguments(
+        sub.add_parser("collide", help="simulate one collision and print its results")
+    )
+    r = sub.add_parser(
+        "render", help="FE collision: picture of the deformed solids (and a film GIF)"
+    )
+    _collision_arguments(r)
+    r.add_argument("--out", default="render.png", help="PNG file (default render.png)")
+    r.add_argument("--time", type=float, help="instant T (by x0/V0); default: maximum compression")
+    r.add_argument(
+        "--field",
+        choices=("von_mises", "hydrostatic", "displacement", "pressure"),
+        default="von_mises",
+    )
+    r.add_argument(
+        "--magnification", type=float, help="displacement display factor (default: automatic)"
+    )
+    r.add_argument("--animation", metavar="FILE.gif", help="also write the film animation")
 
     s = sub.add_parser("sweep", help="run a study file (TOML) over the MPI ranks; resumable")
     s.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
@@ -353,8 +374,40 @@ def fit_command(args) -> int:
     return 0
 
 
+def render_command(args) -> int:
+    from .render import animate_film, render_solids
+
+    args.model = "fem"
+    inputs = _inputs(args)
+    result = collide(
+        inputs,
+        model="fem",
+        nodes=args.nodes,
+        options=IntegratorOptions(rtol=args.rtol),
+        tangential=args.tangential,
+        solids=_solids(args, inputs),
+    )
+    hist = result.normal.history
+    time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
+    pressure = dict(field_snapshots(result.normal, [time]))[time]
+    p = result.params
+    title = (
+        f"St = {p.St:.4g}, eps = {p.eps:.3g}, delta = {p.delta:.3g}: T = {time:.4g}, "
+        f"e_n = {result.normal.e_n:.4f}"
+    )
+    magnification = render_solids(
+        result.compliance.solids, pressure, p.eps, args.out, args.field, args.magnification, title
+    )
+    print(f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})")
+    if args.animation:
+        frames = animate_film(result.normal, args.animation)
+        print(f"  wrote {args.animation} ({frames} frames)")
+    return 0
+
+
 COMMANDS = {
     "collide": collide_command,
+    "render": render_command,
     "sweep": sweep_command,
     "critical": critical_command,
     "fit": fit_command,

@@ -1,0 +1,195 @@
+"""Pictures of a collision: deformed solids (pyvista, off-screen) and a film animation (GIF).
+
+`render_solids` shows the axisymmetric (r, z) FE solution as the full meridional cut through
+the axis (mirrored to negative r) in a 3-D view with the sphere's surface for context, with
+the displacement magnified by a stated factor and coloured by von Mises stress, hydrostatic
+stress or displacement magnitude (range 1st-99.5th percentile, stated on the picture); a second
+view is a close-up of the contact. Lengths are by the sphere
+radius a, stresses by mu V0 a / x0^2, displacements by x0 (magnified for display only).
+
+`animate_film` writes a GIF of the film thickness H(R) and pressure P(R) next to the sphere's
+gap X(T) and velocity V(T), through approach, maximum compression and rebound.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import checks
+
+FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
+
+
+def _section(solids, nodal_pressure, eps, field, magnification):
+    """The (r, z) triangles deformed by the magnified displacement, with the field at points."""
+    import pyvista
+    import ufl
+    from dolfinx import fem, plot
+
+    solids.displacement(solids._film_pressure(nodal_pressure))
+    upper, lower = solids._centres()
+    scale = solids.scale(eps)
+    vertices = fem.VectorFunctionSpace(solids.mesh, ("CG", 1))
+    u = fem.Function(vertices)
+    u.interpolate(solids.u)
+    cells, types, x = plot.create_vtk_mesh(solids.mesh, 2)
+    grid = pyvista.UnstructuredGrid(cells, types, x)
+    displacement = u.x.array.reshape(-1, 2).copy()
+    in_sphere = np.zeros(len(x), bool)
+    in_sphere[
+        fem.locate_dofs_topological(vertices, 2, solids.cell_tags.find(solids.geometry.SPHERE))
+    ] = True
+    displacement[in_sphere, 1] -= upper
+    if solids.lower == "sphere":
+        displacement[~in_sphere, 1] -= lower
+    displacement *= scale  # by x0
+    if field == "displacement":
+        grid.point_data[field] = np.linalg.norm(displacement, axis=1)
+    elif field == "pressure":
+        grid.point_data[field] = solids._film_pressure(nodal_pressure)(x[:, 0]) * (
+            np.abs(x[:, 1]) < 1e-9
+        )
+    else:
+        sigma = solids.stress(solids.u)
+        deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
+        value = (
+            ufl.sqrt(1.5 * ufl.inner(deviator, deviator))
+            if field == "von_mises"
+            else ufl.tr(sigma) / 3
+        )
+        cell_space = fem.FunctionSpace(solids.mesh, ("DG", 0))
+        f = fem.Function(cell_space)
+        f.interpolate(fem.Expression(value, cell_space.element.interpolation_points()))
+        grid.cell_data[field] = f.x.array[: grid.n_cells]
+        grid = grid.cell_data_to_point_data()
+    # displacement by x0, geometry by a: x0 = delta a
+    grid.points[:, :2] += magnification * solids.delta * displacement
+    return grid
+
+
+def render_solids(
+    solids,
+    nodal_pressure,
+    eps,
+    path,
+    field="von_mises",
+    magnification=None,
+    title="",
+    size=(1600, 800),
+):
+    """PNG of the deformed solids (overview cut-away + contact close-up). ``magnification``:
+    display factor on the displacement (default: so that the largest displacement shows as
+    a tenth of the contact region). Returns the magnification used."""
+    import pyvista
+
+    checks.choice("field", field, FIELDS)
+    pyvista.OFF_SCREEN = True
+    if magnification is None:
+        probe = _section(solids, nodal_pressure, eps, "displacement", 0.0)
+        largest = float(probe.point_data["displacement"].max()) * solids.delta
+        magnification = 0.1 * solids.radii_a[-1] / max(largest, 1e-300)
+    magnification = checks.positive("magnification", magnification)
+    section = _section(solids, nodal_pressure, eps, field, magnification)
+    # (r, z) -> (x, 0, z), mirrored to -x: the full meridional cut through the axis
+    flat = section.copy()
+    flat.points[:] = np.column_stack(
+        [flat.points[:, 0], np.zeros(flat.n_points), flat.points[:, 1]]
+    )
+    mirror = flat.copy()
+    mirror.points[:, 0] *= -1
+    cut = flat.merge(mirror)
+    values = cut.point_data[field]
+    limits = (float(np.percentile(values, 1)), float(np.percentile(values, 99.5)))
+    upper = solids.radius_upper
+    context = pyvista.Sphere(
+        radius=upper,
+        center=(0, 0, solids.delta + upper),
+        theta_resolution=90,
+        phi_resolution=45,
+        start_theta=90,
+        end_theta=360,
+    )
+    plotter = pyvista.Plotter(off_screen=True, shape=(1, 2), window_size=size)
+    for column, half_width in enumerate((1.3 * upper, 3.0 * solids.radii_a[-1])):
+        plotter.subplot(0, column)
+        top = 2 * upper + solids.delta if column == 0 else half_width
+        box = [-half_width, half_width, -1, 1, -half_width, top]
+        plotter.add_mesh(
+            cut.clip_box(box, invert=False),
+            scalars=field,
+            cmap="viridis",
+            clim=limits,
+            show_scalar_bar=False,
+        )
+        if column == 0:
+            plotter.add_mesh(context, color="lightgrey", opacity=0.25)
+        plotter.view_xz()
+        plotter.camera.azimuth = 25
+        plotter.camera.elevation = 20
+        plotter.reset_camera()
+        plotter.camera.zoom(1.3)
+        label = "meridional cut" if column == 0 else "contact close-up"
+        plotter.add_text(
+            f"{label}; displacement x {magnification:.3g}; {field.replace('_', ' ')} "
+            f"from {limits[0]:.3g} to {limits[1]:.3g}",
+            font_size=9,
+            position="lower_left",
+        )
+    plotter.subplot(0, 0)
+    plotter.add_text(title, font_size=10, position="upper_left")
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    plotter.screenshot(str(path))
+    plotter.close()
+    return magnification
+
+
+def animate_film(normal, path, frames: int = 40, fps: int = 10) -> int:
+    """GIF of H(R) and P(R) next to X(T) and V(T); returns the number of frames written."""
+    import imageio.v2 as imageio
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    frames = checks.integer("frames", frames, lower=2, upper=2000)
+    hist = normal.history
+    steps = np.unique(
+        np.searchsorted(hist.time, np.linspace(0, hist.time[-1], frames)).clip(
+            0, len(hist.time) - 1
+        )
+    )
+    pressure = np.abs(hist.pressure)
+    loaded = normal.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
+    shown = normal.radii <= 1.5 * (loaded.max() if len(loaded) else normal.radii[-1])
+    images = []
+    for i in steps:
+        fig, axes = plt.subplots(2, 2, figsize=(9, 6))
+        (ax_h, ax_x), (ax_p, ax_v) = axes
+        ax_h.semilogy(normal.radii[shown], hist.film_thickness[i][shown])
+        ax_h.set_ylim(max(hist.min_film.min() * 0.5, 1e-6), 2.0)
+        ax_h.set_ylabel("film H (by x0)")
+        ax_p.plot(normal.radii[shown], hist.pressure[i][shown])
+        ax_p.set_ylim(
+            min(0.0, hist.pressure[:, shown].min()) * 1.05, hist.pressure[:, shown].max() * 1.05
+        )
+        ax_p.set_ylabel("pressure P (by mu V0 a/x0^2)")
+        ax_p.set_xlabel("R (by sqrt(a x0))")
+        for ax, values, label in (
+            (ax_x, hist.gap, "gap X (by x0)"),
+            (ax_v, hist.velocity, "velocity V (by V0)"),
+        ):
+            ax.plot(hist.time, values, color="0.7")
+            ax.plot(hist.time[: i + 1], values[: i + 1], color="C0")
+            ax.plot(hist.time[i], values[i], "o", color="C3")
+            ax.set_ylabel(label)
+        ax_v.set_xlabel("T (by x0/V0)")
+        fig.suptitle(f"T = {hist.time[i]:.4g}")
+        fig.tight_layout()
+        fig.canvas.draw()
+        images.append(np.asarray(fig.canvas.buffer_rgba())[:, :, :3].copy())
+        plt.close(fig)
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    imageio.mimsave(str(path), images, duration=1.0 / fps, loop=0)
+    return len(images)

@@ -1,0 +1,45 @@
+"""Pictures: a render is a PNG of the requested size with the solids in frame; the animation
+has the expected frames."""
+
+import imageio.v2 as imageio
+import numpy as np
+import pytest
+
+from ehdfem.collision import collide
+from ehdfem.render import animate_film, render_solids
+from ehdfem.scales import CollisionParameters
+
+pytestmark = pytest.mark.serial
+
+
+@pytest.fixture(scope="module")
+def fe_collision():
+    params = CollisionParameters(
+        St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, delta=0.01, angle=30.0
+    )
+    return collide(params, model="fem", nodes=40)
+
+
+def test_render_is_a_picture_of_the_solids(fe_collision, tmp_path):
+    hist = fe_collision.normal.history
+    i = int(np.argmin(hist.gap))
+    path = tmp_path / "solids.png"
+    magnification = render_solids(
+        fe_collision.compliance.solids, hist.pressure[i], 1e-3, path, title="test", size=(800, 400)
+    )
+    image = imageio.imread(path)[:, :, :3]
+    assert image.shape == (400, 800, 3) and magnification > 0
+    colours = {tuple(c) for c in image.reshape(-1, 3)[::7]}
+    assert len(colours) > 50  # a colour map, not a blank or single-colour frame
+    drawn = (image.sum(axis=2) < 700).mean()  # pixels that are not (near) white
+    assert 0.1 < drawn < 0.95
+    for half in (image[:, :400], image[:, 400:]):  # both views hold the solids
+        assert (half.sum(axis=2) < 700).mean() > 0.05
+
+
+def test_animation_has_one_frame_per_sampled_step(fe_collision, tmp_path):
+    path = tmp_path / "film.gif"
+    frames = animate_film(fe_collision.normal, path, frames=12)
+    hist = fe_collision.normal.history
+    expected = len(np.unique(np.searchsorted(hist.time, np.linspace(0, hist.time[-1], 12))))
+    assert frames == expected == len(imageio.mimread(path))

@@ -1,10 +1,11 @@
 """Pictures of a collision: deformed solids (pyvista, off-screen) and a film animation (GIF).
 
-`render_solids` shows the axisymmetric (r, z) FE solution as the full meridional cut through
-the axis (mirrored to negative r) in a 3-D view with the sphere's surface for context, with
-the displacement magnified by a stated factor and coloured by von Mises stress, hydrostatic
-stress or displacement magnitude (range 1st-99.5th percentile, stated on the picture); a second
-view is a close-up of the contact. Lengths are by the sphere
+`render_solids` revolves the axisymmetric (r, z) FE solution about the axis into a 3-D
+cut-away (270 degrees: the surfaces of revolution of the solids' boundaries plus the two flat
+cuts that show the field inside), with the displacement magnified by a stated factor and
+coloured by von Mises stress, hydrostatic stress or displacement magnitude (range from the
+1st to the 99.5th percentile, stated on the picture; logarithmic over at most 4 decades for
+the positive fields); a second view is a close-up of the contact. Lengths are by the sphere
 radius a, stresses by mu V0 a / x0^2, displacements by x0 (magnified for display only).
 
 `animate_film` writes a GIF of the film thickness H(R) and pressure P(R) next to the sphere's
@@ -69,6 +70,21 @@ def _section(solids, nodal_pressure, eps, field, magnification):
     return grid
 
 
+def _cut_away(section, angle=270.0, resolution=72):
+    """The (r, z) section revolved about the axis over ``angle`` degrees: the outer boundary as
+    surfaces of revolution plus the two flat cuts at 0 and ``angle`` degrees (field kept)."""
+    flat = section.extract_surface(algorithm="dataset_surface")
+    flat.points[:] = np.column_stack(
+        [flat.points[:, 0], np.zeros(flat.n_points), flat.points[:, 1]]
+    )
+    edges = flat.extract_feature_edges(
+        boundary_edges=True, feature_edges=False, manifold_edges=False, non_manifold_edges=False
+    )
+    shell = edges.extrude_rotate(resolution=resolution, angle=angle, capping=False)
+    turned = flat.rotate_z(angle, inplace=False)
+    return flat, turned, shell
+
+
 def render_solids(
     solids,
     nodal_pressure,
@@ -92,48 +108,37 @@ def render_solids(
         magnification = 0.1 * solids.radii_a[-1] / max(largest, 1e-300)
     magnification = checks.positive("magnification", magnification)
     section = _section(solids, nodal_pressure, eps, field, magnification)
-    # (r, z) -> (x, 0, z), mirrored to -x: the full meridional cut through the axis
-    flat = section.copy()
-    flat.points[:] = np.column_stack(
-        [flat.points[:, 0], np.zeros(flat.n_points), flat.points[:, 1]]
-    )
-    mirror = flat.copy()
-    mirror.points[:, 0] *= -1
-    cut = flat.merge(mirror)
-    values = cut.point_data[field]
+    values = section.point_data[field]
     limits = (float(np.percentile(values, 1)), float(np.percentile(values, 99.5)))
     upper = solids.radius_upper
-    context = pyvista.Sphere(
-        radius=upper,
-        center=(0, 0, solids.delta + upper),
-        theta_resolution=90,
-        phi_resolution=45,
-        start_theta=90,
-        end_theta=360,
-    )
+    lower = solids.radius_lower or upper
     plotter = pyvista.Plotter(off_screen=True, shape=(1, 2), window_size=size)
-    for column, half_width in enumerate((1.3 * upper, 3.0 * solids.radii_a[-1])):
+    logarithmic = field in ("von_mises", "displacement")  # positive, spanning decades
+    if logarithmic:
+        limits = (max(limits[0], limits[1] * 1e-4), limits[1])
+    for column, half_width in enumerate((1.3 * max(upper, lower), 1.5 * solids.radii_a[-1])):
         plotter.subplot(0, column)
         top = 2 * upper + solids.delta if column == 0 else half_width
-        box = [-half_width, half_width, -1, 1, -half_width, top]
-        plotter.add_mesh(
-            cut.clip_box(box, invert=False),
-            scalars=field,
-            cmap="viridis",
-            clim=limits,
-            show_scalar_bar=False,
-        )
-        if column == 0:
-            plotter.add_mesh(context, color="lightgrey", opacity=0.25)
+        bottom = -2 * lower if column == 0 else -half_width
+        window = section.clip_box([0, half_width, bottom, top, -1, 1], invert=False)
+        for piece in _cut_away(window):
+            plotter.add_mesh(
+                piece,
+                scalars=field,
+                cmap="viridis",
+                clim=limits,
+                log_scale=logarithmic,
+                show_scalar_bar=False,
+            )
         plotter.view_xz()
         plotter.camera.azimuth = 25
         plotter.camera.elevation = 20
         plotter.reset_camera()
-        plotter.camera.zoom(1.3)
-        label = "meridional cut" if column == 0 else "contact close-up"
+        plotter.camera.zoom(1.0 if column == 0 else 1.3)
+        label = "cut-away (270 deg)" if column == 0 else "contact close-up"
         plotter.add_text(
             f"{label}; displacement x {magnification:.3g}; {field.replace('_', ' ')} "
-            f"from {limits[0]:.3g} to {limits[1]:.3g}",
+            f"from {limits[0]:.3g} to {limits[1]:.3g}{' (log)' if logarithmic else ''}",
             font_size=9,
             position="lower_left",
         )

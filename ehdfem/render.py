@@ -21,6 +21,7 @@ import numpy as np
 from . import checks
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
+BAR_WIDTH = 160  # pixels kept for the colour bar
 
 
 def _section(solids, nodal_pressure, eps, field, magnification):
@@ -112,7 +113,9 @@ def render_solids(
     limits = (float(np.percentile(values, 1)), float(np.percentile(values, 99.5)))
     upper = solids.radius_upper
     lower = solids.radius_lower or upper
-    plotter = pyvista.Plotter(off_screen=True, shape=(1, 2), window_size=size)
+    plotter = pyvista.Plotter(
+        off_screen=True, shape=(1, 2), window_size=(size[0] - BAR_WIDTH, size[1])
+    )
     logarithmic = field in ("von_mises", "displacement")  # positive, spanning decades
     if logarithmic:
         limits = (max(limits[0], limits[1] * 1e-4), limits[1])
@@ -144,10 +147,38 @@ def render_solids(
         )
     plotter.subplot(0, 0)
     plotter.add_text(title, font_size=10, position="upper_left")
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    plotter.screenshot(str(path))
+    image = plotter.screenshot(return_img=True)
     plotter.close()
+    _with_colour_bar(image, field, limits, logarithmic, size, path)
     return magnification
+
+
+def _with_colour_bar(image, field, limits, logarithmic, size, path):
+    """Save the rendered image with a colour bar beside it, ``size`` pixels in all (drawn by
+    matplotlib: VTK's own scalar bar aborts when VTK shares the process with Debian's DOLFINx
+    libraries)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import LogNorm, Normalize
+
+    fig = plt.figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
+    share = image.shape[1] / size[0]
+    ax = fig.add_axes([0, 0, share, 1])
+    ax.imshow(image)
+    ax.axis("off")
+    bar = fig.add_axes([share + 0.1 * (1 - share), 0.15, 0.15 * (1 - share), 0.7])
+    norm = LogNorm(*limits) if logarithmic else Normalize(*limits)
+    units = "(by x0)" if field == "displacement" else "(by mu V0 a / x0^2)"
+    fig.colorbar(
+        plt.cm.ScalarMappable(norm=norm, cmap="viridis"),
+        cax=bar,
+        label=f"{field.replace('_', ' ')} {units}",
+    )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
 
 
 def animate_film(normal, path, frames: int = 40, fps: int = 10) -> int:

@@ -282,7 +282,12 @@ def collide_command(args) -> int:
             raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
         snapshots = field_snapshots(result.normal, args.field_times)
         Path(args.fields).parent.mkdir(parents=True, exist_ok=True)
-        result.compliance.solids.write_fields(args.fields, snapshots, result.params.eps)
+        result.compliance.solids.write_fields(
+            args.fields,
+            snapshots,
+            result.params.eps,
+            units=result.physical.scales() if result.physical else None,
+        )
         print(f"  wrote {args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
     if args.plots:
         out = Path(args.plots)

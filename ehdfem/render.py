@@ -5,7 +5,8 @@ cut-away (270 degrees: the surfaces of revolution of the solids' boundaries plus
 cuts that show the field inside), with the displacement magnified by a stated factor and
 coloured by von Mises stress, hydrostatic stress or displacement magnitude (range from the
 1st to the 99.5th percentile, stated on the picture; logarithmic over at most 4 decades for
-the positive fields); a second view is a close-up of the contact. Lengths are by the sphere
+the positive fields); a second view is a close-up of the contact with the film pressure
+profile drawn above the contact. Lengths are by the sphere
 radius a, stresses by mu V0 a / x0^2, displacements by x0 (magnified for display only).
 
 `animate_film` writes a GIF of the film thickness H(R) and pressure P(R) next to the sphere's
@@ -86,6 +87,23 @@ def _cut_away(section, angle=270.0, resolution=72):
     return flat, turned, shell
 
 
+def _pressure_curve(solids, nodal_pressure):
+    """The film pressure P(r) drawn above the wall's contact face in both cut planes, its
+    height scaled so that the peak stands at a third of the film radius (a picture of the
+    pressure profile, not to any length scale)."""
+    import pyvista
+
+    r = solids.radii_a
+    peak = max(float(np.abs(nodal_pressure).max()), 1e-300)
+    height = nodal_pressure / peak * r[-1] / 3
+    curves = []
+    for angle in (0.0, 270.0):
+        c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
+        points = np.column_stack([r * c, r * s, solids.delta / 2 + height])
+        curves.append(pyvista.lines_from_points(points))
+    return curves[0].merge(curves[1])
+
+
 def render_solids(
     solids,
     nodal_pressure,
@@ -133,12 +151,14 @@ def render_solids(
                 log_scale=logarithmic,
                 show_scalar_bar=False,
             )
+        if column == 1:
+            plotter.add_mesh(_pressure_curve(solids, nodal_pressure), color="red", line_width=4)
         plotter.view_xz()
         plotter.camera.azimuth = 25
         plotter.camera.elevation = 20
         plotter.reset_camera()
         plotter.camera.zoom(1.0 if column == 0 else 1.3)
-        label = "cut-away (270 deg)" if column == 0 else "contact close-up"
+        label = "cut-away (270 deg)" if column == 0 else "contact close-up; red: film pressure"
         plotter.add_text(
             f"{label}; displacement x {magnification:.3g}; {field.replace('_', ' ')} "
             f"from {limits[0]:.3g} to {limits[1]:.3g}{' (log)' if logarithmic else ''}",

@@ -1,5 +1,7 @@
 """FE solids (DOLFINx): compliance against the half-space, Hertz, mesh convergence, MPI."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from mpi4py import MPI
@@ -97,28 +99,51 @@ def test_film_reaching_round_the_sphere_is_refused():
         FESolids(0.2, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
 
 
-@pytest.mark.serial
 def test_fields_are_written_for_paraview(tmp_path):
-    """XDMF with displacement, von Mises and hydrostatic stress per instant, finite values."""
-    import h5py
+    """Runs on 2 ranks too: one XDMF time series (gathered by rank 0) holding displacement,
+    von Mises and hydrostatic stress per instant, finite, linear in the load, in SI when
+    given the scales."""
     import meshio
 
+    from ehdfem.scales import Scales
+
+    comm = MPI.COMM_WORLD
+    folder = Path(comm.bcast(str(tmp_path) if comm.rank == 0 else None))
     radii = radial_grid(20, 0.5, 2.0)
-    solids = FESolids(1e-3, radii, comm=MPI.COMM_SELF)
-    path = tmp_path / "fields.xdmf"
-    solids.write_fields(path, [(0.5, hertz_like(radii)), (1.0, 0.5 * hertz_like(radii))], eps=1e-3)
-    with meshio.xdmf.TimeSeriesReader(str(path)) as reader:
-        points, _ = reader.read_points_cells()
-        assert points.shape[1] >= 2 and reader.num_steps == 2
-    with h5py.File(path.with_suffix(".h5")) as h5:
-        names = set(h5["Function"])
-        assert names == {"displacement", "von_mises", "hydrostatic"}
-        for name in names:
-            for step in h5["Function"][name].values():
-                assert np.isfinite(step[()]).all()
-        steps = sorted(h5["Function"]["von_mises"])
-        first, second = (h5["Function"]["von_mises"][k][()] for k in steps)
-        assert np.allclose(second, 0.5 * first, rtol=1e-8, atol=1e-12)  # linear elasticity
+    solids = FESolids(1e-3, radii, comm=comm)
+    snapshots = [(0.5, hertz_like(radii)), (1.0, 0.5 * hertz_like(radii))]
+    units = Scales(
+        gap=1e-4,
+        radius=0.0,
+        time=2e-4,
+        velocity=0.5,
+        pressure=300.0,
+        force=0.0,
+        energy=0.0,
+        sphere_radius=0.1,
+    )
+    solids.write_fields(folder / "scaled.xdmf", snapshots, eps=1e-3)
+    solids.write_fields(folder / "si.xdmf", snapshots, eps=1e-3, units=units)
+    comm.Barrier()
+    if comm.rank != 0:
+        return
+    steps = {}
+    for name in ("scaled", "si"):
+        with meshio.xdmf.TimeSeriesReader(str(folder / f"{name}.xdmf")) as reader:
+            points, cells = reader.read_points_cells()
+            steps[name] = [reader.read_data(k) for k in range(reader.num_steps)]
+            steps[name + "_points"] = points
+    (t0, point0, cell0), (t1, point1, cell1) = steps["scaled"]
+    assert (t0, t1) == (0.5, 1.0)
+    assert set(point0) == {"displacement"} and set(cell0) == {"von_mises", "hydrostatic"}
+    for data in (point0["displacement"], cell0["von_mises"][0], cell0["hydrostatic"][0]):
+        assert np.isfinite(data).all() and np.abs(data).max() > 0
+    assert np.allclose(cell1["von_mises"][0], 0.5 * cell0["von_mises"][0], rtol=1e-8, atol=1e-12)
+    si_time, si_points, si_cells = steps["si"][0]
+    assert si_time == pytest.approx(0.5 * 2e-4)
+    assert np.allclose(steps["si_points"], 0.1 * steps["scaled_points"])
+    assert np.allclose(si_points["displacement"], 1e-4 * point0["displacement"])
+    assert np.allclose(si_cells["von_mises"][0], 300.0 * cell0["von_mises"][0])
 
 
 @pytest.mark.serial

@@ -26,7 +26,9 @@ whole (St, eps) sweep at fixed delta and materials.
 
 from __future__ import annotations
 
+import contextlib
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -264,46 +266,79 @@ class FESolids:
             unit[:, j] = self.gap_opening()
         return FECompliance(self.radii, self.scale(eps) * unit, self, eps)
 
-    def write_fields(self, path, snapshots, eps: float) -> None:
-        """XDMF (ParaView) of the solids under the film pressure at several instants.
+    def write_fields(self, path, snapshots, eps: float, units=None) -> None:
+        """XDMF time series (ParaView, meshio) of the solids under the film pressure.
 
         ``snapshots``: (time, nodal pressure) pairs, time by x0/V0 and pressure by mu V0 a/x0^2.
-        Written per instant: ``displacement`` (by x0; free spheres relative to their centre of
-        mass), ``von_mises`` and ``hydrostatic`` stress (by mu V0 a / x0^2, one value per cell:
-        the hoop strain u_r/r is 0/0 at vertices on the axis); the mesh is by a, in (r, z).
+        Per instant: point field ``displacement`` (by x0; free spheres relative to their centre
+        of mass) and cell fields ``von_mises`` and ``hydrostatic`` (by mu V0 a / x0^2; per cell,
+        as the hoop strain u_r/r is 0/0 at vertices on the axis). The (r, z) mesh is by a. With
+        ``units`` (:class:`ehdfem.scales.Scales`) everything is in SI instead: mesh and
+        displacement in m, stresses in Pa, time in s. Gathered and written by rank 0.
         """
+        import meshio
         import ufl
-        from dolfinx import fem, io
+        from dolfinx import fem, plot
 
-        cells = fem.FunctionSpace(self.mesh, ("DG", 0))
+        cells_space = fem.FunctionSpace(self.mesh, ("DG", 0))
         vertices = fem.VectorFunctionSpace(self.mesh, ("CG", 1))
-        displacement = fem.Function(vertices, name="displacement")
-        von_mises = fem.Function(cells, name="von_mises")
-        hydrostatic = fem.Function(cells, name="hydrostatic")
+        displacement = fem.Function(vertices)
         sigma = self.stress(self.u)
         deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
-        points = cells.element.interpolation_points()
+        points = cells_space.element.interpolation_points()
         expressions = {
-            von_mises: fem.Expression(ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), points),
-            hydrostatic: fem.Expression(ufl.tr(sigma) / 3, points),
+            "von_mises": fem.Expression(ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), points),
+            "hydrostatic": fem.Expression(ufl.tr(sigma) / 3, points),
         }
+        stress_field = fem.Function(cells_space)
         body_dofs = [
             fem.locate_dofs_topological(vertices, 2, self.cell_tags.find(tag))
             for tag, *_ in self.bodies
         ]
-        scale = self.scale(eps)
-        with io.XDMFFile(self.comm, str(path), "w") as xdmf:
-            xdmf.write_mesh(self.mesh)
-            for time, nodal in snapshots:
-                self.displacement(self._film_pressure(nodal))
-                displacement.interpolate(self.u)
-                for dofs, centre in zip(body_dofs, self._centres(), strict=False):
-                    displacement.x.array.reshape(-1, 2)[dofs, 1] -= centre
-                displacement.x.array[:] *= scale
-                for field, expression in expressions.items():
-                    field.interpolate(expression)
-                for field in (displacement, von_mises, hydrostatic):
-                    xdmf.write_function(field, time)
+        owned = self.mesh.topology.index_map(2).size_local
+        topology, _, coordinates = plot.create_vtk_mesh(vertices)
+        triangles = topology.reshape(-1, 4)[:owned, 1:]
+        cell_dofs = cells_space.dofmap.list.array[:owned]
+        length, gap, stress_unit, time_unit = (
+            (units.sphere_radius, units.gap, units.pressure, units.time)
+            if units
+            else (1.0, 1.0, 1.0, 1.0)
+        )
+        local = {"points": coordinates[:, :2] * length, "triangles": triangles, "steps": []}
+        for time, nodal in snapshots:
+            self.displacement(self._film_pressure(nodal))
+            displacement.interpolate(self.u)
+            values = displacement.x.array.reshape(-1, 2).copy()
+            for dofs, centre in zip(body_dofs, self._centres(), strict=False):
+                values[dofs, 1] -= centre
+            step = {"time": time * time_unit, "displacement": values * self.scale(eps) * gap}
+            for name, expression in expressions.items():
+                stress_field.interpolate(expression)
+                step[name] = stress_field.x.array[cell_dofs] * stress_unit
+            local["steps"].append(step)
+        parts = self.comm.gather(local, root=0)
+        if self.comm.rank != 0:
+            return
+        offsets = np.cumsum([0] + [len(p["points"]) for p in parts[:-1]])
+        mesh_points = np.concatenate([p["points"] for p in parts])
+        mesh_cells = np.concatenate(
+            [p["triangles"] + o for p, o in zip(parts, offsets, strict=True)]
+        )
+        path = Path(path).resolve()
+        path.parent.mkdir(parents=True, exist_ok=True)
+        # meshio 5.0 (Debian) writes the .h5 beside the working directory: write from path's folder
+        with contextlib.chdir(path.parent), meshio.xdmf.TimeSeriesWriter(path.name) as writer:
+            writer.write_points_cells(mesh_points, [("triangle", mesh_cells)])
+            for k, step in enumerate(parts[0]["steps"]):
+                merged = {
+                    name: np.concatenate([p["steps"][k][name] for p in parts])
+                    for name in ("displacement", "von_mises", "hydrostatic")
+                }
+                writer.write_data(
+                    step["time"],
+                    point_data={"displacement": merged["displacement"]},
+                    cell_data={name: [merged[name]] for name in expressions},
+                )
 
 
 class FECompliance:

@@ -27,7 +27,9 @@ whole (St, eps) sweep at fixed delta and materials.
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +37,32 @@ import numpy as np
 from .. import checks
 
 LOWER_BODIES = ("wall", "coated", "sphere")
+
+
+MESH_CACHE = Path(os.environ.get("EHDFEM_MESH_CACHE", Path.home() / ".cache" / "ehdfem" / "meshes"))
+
+
+def _cached_mesh(gmsh, build, arguments) -> None:
+    """Load the gmsh mesh for ``arguments`` from the cache, or build it and store it there
+    (``EHDFEM_MESH_CACHE``, default ~/.cache/ehdfem/meshes; keyed by a hash of the arguments
+    and of the generator's source, written atomically)."""
+    import inspect
+
+    key = hashlib.sha1(
+        repr(
+            [np.asarray(a).tolist() if isinstance(a, np.ndarray) else a for a in arguments]
+        ).encode()
+    )
+    key.update(inspect.getsource(build).encode())
+    path = MESH_CACHE / f"{key.hexdigest()[:20]}.msh"
+    if path.exists():
+        gmsh.open(str(path))
+        return
+    build(*arguments)
+    MESH_CACHE.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.msh")
+    gmsh.write(str(tmp))
+    os.replace(tmp, path)
 
 
 class FESolids:
@@ -96,7 +124,7 @@ class FESolids:
         gmsh.option.setNumber("General.Terminal", 0)
         try:
             if self.comm.rank == 0:
-                geometry.build(
+                arguments = (
                     self.delta,
                     self.radii_a,
                     lower,
@@ -105,6 +133,7 @@ class FESolids:
                     self.radius_lower or 1.0,
                     coating_thickness,
                 )
+                _cached_mesh(gmsh, geometry.build, arguments)
             self.mesh, self.cell_tags, self.facet_tags = gmshio.model_to_mesh(
                 gmsh.model, self.comm, 0, gdim=2
             )

@@ -114,6 +114,18 @@ def test_bad_physical_inputs(changes, name):
         glass_on_glass(**changes)
 
 
+def test_reduced_radius_and_mass_for_two_spheres():
+    """1/a = 1/a1 + 1/a2 (a wall is a2 = inf); the FE two-sphere radii 1 + a1/a2 and 1 + a2/a1
+    (by a) are a1/a and a2/a."""
+    from ehdfem.scales import reduced_mass, reduced_radius
+
+    assert reduced_radius(2.0, 2.0) == 1.0 and reduced_radius(3.0, math.inf) == 3.0
+    assert reduced_mass(4.0, 4.0) == 2.0 and reduced_mass(5.0, math.inf) == 5.0
+    a1, a2 = 4.0, 1.0
+    a = reduced_radius(a1, a2)
+    assert (a1 / a, a2 / a) == pytest.approx((1 + a1 / a2, 1 + a2 / a1), rel=1e-14)
+
+
 def test_unknown_presets_are_named():
     with pytest.raises(InputError, match="kryptonite"):
         material("kryptonite")

@@ -4,21 +4,38 @@ All quantities are scaled (DSH 1986): radius R by sqrt(a x0), film thickness H b
 by mu V0 a / x0^2, time T by x0 / V0. The film obeys
 
     dH/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),        0 < R < R_edge,
-    dP/dR = 0 at R = 0,    P >= P_cav (cavitation by truncation),
+    dP/dR = 0 at R = 0,    P >= P_cav (cavitation),
 
 with P = 0 at the wetted edge R_edge where H = 1 (thin layer), or, fully immersed, the far-field
 condition P ~ H^-2 (exact for the rigid-sphere solution P = -3 V / H^2) at the last node.
 
+Cavitation models (``cavitation``):
+
+- "truncate" (the source's): P >= P_cav as a complementarity with the Reynolds residual; in the
+  cavitated zone the Reynolds equation is dropped, so liquid is neither tracked nor conserved.
+- "mass-conserving" (Jakobsson-Floberg-Olsson, in the Elrod-Adams p-theta form): the liquid
+  fraction theta in [0, 1] of the gap is an unknown, and everywhere in the film
+
+      d(theta H)/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),
+      P - P_cav >= 0,   1 - theta >= 0,   (P - P_cav)(1 - theta) = 0,
+
+  so a cavity (theta < 1, P = P_cav) holds the liquid it had and refills only with liquid that
+  flows in. The node unknown is P where the film is full and theta where it is cavitated.
+- "none": unlimited suction (P_cav ignored).
+
+With a pressure-dependent viscosity mu(P) (:mod:`ehdfem.viscosity`) H^3 becomes H^3 mu0/mu(P).
+
 Discretisation: continuous piecewise-linear (P1) finite elements in R with the weight R, the
 lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss quadrature of
-int R H^3 / 12 dR with H linear on the element (exact for that H). The thin-layer edge is cut
+int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu). The thin-layer edge is cut
 into its element (the element is shortened to end at R_edge, where P = 0 and H = 1), so the
 edge moves continuously rather than node by node. The film does not know about time stepping:
 it assembles, for a given film thickness H and pressure P, the weak-form pieces
 
-    sum_j m_i dH_i/dT + (K(H) P)_i = 0     (free nodes)
+    m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
 
-plus the derivative D = d(K(H) P)/dH, the nodes that are dry or cavitated, and the force.
+plus the derivatives D = d(K P)/dH and E = d(K P)/dP - K (piezoviscosity), the dry and
+cavitated nodes, and the force.
 """
 
 from __future__ import annotations
@@ -29,8 +46,10 @@ import numpy as np
 import scipy.linalg
 
 from . import checks
+from .viscosity import Viscosity
 
 LAYERS = ("thin", "immersed")
+CAVITATION = ("truncate", "mass-conserving", "none")
 
 # 3-point Gauss-Legendre on [0, 1]: integrates R H^3 exactly for linear R and H.
 _GAUSS_XI = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
@@ -78,13 +97,15 @@ class FilmState:
     """The assembled film for one pressure and film-thickness iterate (scaled units).
 
     ``mass``: lumped m_i; ``conductance`` (lower, diagonal, upper) of K(H); ``dflux_dH`` the
-    tridiagonal D = d(K(H) P)/dH; ``force_weights`` f with St dV/dT = f . P; ``dry`` nodes hold
+    tridiagonal D = d(K P)/dH; ``dflux_dP`` the tridiagonal d(K P)/dP - K from the
+    pressure-dependent viscosity (zero bands at constant viscosity); ``force_weights`` f with St dV/dT = f . P; ``dry`` nodes hold
     P = 0 (outside the wetted edge); ``edge_radius`` is R_edge (inf when fully immersed).
     """
 
     mass: np.ndarray
     conductance: tuple[np.ndarray, np.ndarray, np.ndarray]
     dflux_dH: tuple[np.ndarray, np.ndarray, np.ndarray]
+    dflux_dP: tuple[np.ndarray, np.ndarray, np.ndarray]
     force_weights: np.ndarray
     dry: np.ndarray
     edge_radius: float
@@ -108,20 +129,35 @@ class Film:
 
     ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
     P ~ H^-2 at the last node). ``p_cav``: the cavitation pressure (scaled by mu V0 a / x0^2,
-    <= 0; -inf for no limit).
+    <= 0; -inf for no limit). ``cavitation``: "truncate", "mass-conserving" or "none" (see the
+    module docstring). ``viscosity``: a :class:`ehdfem.viscosity.Viscosity` (default constant).
     """
 
-    def __init__(self, radii: np.ndarray, layer: str = "thin", p_cav: float = -np.inf):
+    def __init__(
+        self,
+        radii: np.ndarray,
+        layer: str = "thin",
+        p_cav: float = -np.inf,
+        cavitation: str = "truncate",
+        viscosity: Viscosity | None = None,
+    ):
         self.radii = np.asarray(radii, dtype=float)
         self.layer = checks.choice("layer", layer, LAYERS)
+        self.cavitation = checks.choice("cavitation", cavitation, CAVITATION)
         if p_cav != -np.inf:
             p_cav = checks.number("p_cav", p_cav, upper=0.0)
-        self.p_cav = p_cav
+        self.p_cav = -np.inf if cavitation == "none" else p_cav
+        self.viscosity = viscosity or Viscosity()
         left, right = self.radii[:-1], self.radii[1:]
         self._length = right - left
         self._full_mass = np.zeros_like(self.radii)
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
+
+    @property
+    def mass_conserving(self) -> bool:
+        """True when cavities track their liquid (JFO) and there is a finite P_cav."""
+        return self.cavitation == "mass-conserving" and self.p_cav != -np.inf
 
     @property
     def full_mass(self) -> np.ndarray:
@@ -174,30 +210,35 @@ class Film:
         n = len(self.radii)
         n_wet, edge, el = self._elements(h)
         lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-        d_lower, d_diagonal, d_upper = np.zeros(n), np.zeros(n), np.zeros(n)
         mass = np.zeros(n)
-        k, dk_left, dk_right = _conductance(el.gauss_r, el.length, el.h_left, el.h_right)
         regular = el.right >= 0
-        jump = pressure[el.left] - np.where(regular, pressure[el.right], 0.0)
+        p_left, p_right = pressure[el.left], np.where(regular, pressure[el.right], 0.0)
+        k, dk_dh, dk_dp = _conductance(
+            el.gauss_r, el.length, el.h_left, el.h_right, p_left, p_right, self.viscosity
+        )
         diagonal[el.left] += k
-        d_diagonal[el.left] += dk_left * jump
         r_left = self.radii[el.left]
         mass[el.left] += _descending_mass(r_left, r_left + el.length)
         left, right = el.left[regular], el.right[regular]
-        k, dk_left, dk_right, jump = k[regular], dk_left[regular], dk_right[regular], jump[regular]
-        diagonal[right] += k
-        upper[left] -= k
-        lower[right] -= k
-        d_upper[left] += dk_right * jump
-        d_lower[right] -= dk_left * jump
-        d_diagonal[right] -= dk_right * jump
+        diagonal[right] += k[regular]
+        upper[left] -= k[regular]
+        lower[right] -= k[regular]
         mass[right] += _ascending_mass(self.radii[left], self.radii[right])
+        jump = p_left - p_right
+        dflux_dH = _derivative_bands(n, el, regular, dk_dh, jump)
+        dflux_dP = _derivative_bands(n, el, regular, dk_dp, jump)
         force_weights = mass / 3.0
         if self.layer == "immersed":
-            self._add_far_field(h, pressure, diagonal, d_diagonal, force_weights)
+            self._add_far_field(h, pressure, diagonal, dflux_dH[1], force_weights)
         dry = np.arange(n) >= n_wet
         return FilmState(
-            mass, (lower, diagonal, upper), (d_lower, d_diagonal, d_upper), force_weights, dry, edge
+            mass,
+            (lower, diagonal, upper),
+            dflux_dH,
+            dflux_dP,
+            force_weights,
+            dry,
+            edge,
         )
 
     def _add_far_field(self, h, pressure, diagonal, d_diagonal, force_weights):
@@ -209,7 +250,8 @@ class Film:
         force_weights[-1] += hn / 3.0
 
     def cavitated(self, pressure, residual, scale, dry):
-        """Nodes held at P_cav: the semismooth-Newton active set of min(P - P_cav, r / s) = 0.
+        """Truncation: the nodes held at P_cav, the semismooth-Newton active set of
+        min(P - P_cav, r / s) = 0.
 
         ``residual`` r is the Reynolds residual (m dH/dT + K P) and ``scale`` s > 0 its
         diagonal sensitivity; in the cavitated zone the film would need P < P_cav and r >= 0.
@@ -218,16 +260,35 @@ class Film:
             return np.zeros_like(dry)
         return (pressure - self.p_cav < residual / scale) & ~dry
 
-    def sliding_integrals(self, film_thickness: np.ndarray, outer_radius: float = np.inf):
+    def switch(self, pressure, fill, cavitated, dry):
+        """Mass-conserving cavitation: the Elrod-Adams switch after a Newton update.
+
+        A full node whose pressure fell below P_cav ruptures (P = P_cav, theta = 1, and theta
+        becomes its unknown); a cavitated node whose liquid fraction theta reached 1 is full
+        again (theta = 1, P = P_cav, and P becomes its unknown). This is the semismooth Newton
+        for min(P - P_cav, 1 - theta) = 0. Returns (pressure, fill, cavitated).
+        """
+        ruptured = ~cavitated & (pressure < self.p_cav) & ~dry
+        refilled = cavitated & (fill >= 1.0)
+        cavitated = (cavitated & ~refilled & ~dry) | ruptured
+        pressure = np.where(cavitated | refilled, self.p_cav, pressure)
+        fill = np.where(cavitated & ~ruptured, fill, 1.0)
+        return pressure, fill, cavitated
+
+    def sliding_integrals(
+        self, film_thickness: np.ndarray, outer_radius: float = np.inf, pressure=None, fill=None
+    ):
         """(J, G, M): the film's resistance to a sliding and spinning sphere (scaled).
 
-        J = int R dR / H is the Couette shear (tangential force -2 pi mu a u_s J). The sliding
+        J = int theta (mu/mu0) R dR / H is the Couette shear (a cavity shears only its liquid
+        fraction theta; mu at the nodal ``pressure``, theta the nodal ``fill``, 1 if not given) (tangential force -2 pi mu a u_s J). The sliding
         pressure is p = 6 mu U0 sqrt(a) x0^(-3/2) w Pi(R) cos(phi), with w = (U + a Omega)/U0 and
         Pi the azimuthal mode-1 solution of the Reynolds equation on the deformed film,
 
             (1/R) (R H^3 Pi')' - H^3 Pi / R^2 = -dH/dR,   Pi(0) = 0, Pi = 0 at the edge,
 
-        (P1 elements, weak form int R H^3 Pi' v' + int H^3 Pi v / R = int H' v R). It adds
+        (P1 elements, weak form int R H^3 Pi' v' + int H^3 Pi v / R = int H' v R; H^3 stands
+        for H^3 mu0/mu with the viscosity at the nodal ``pressure``, mu0 if not given). It adds
         G = (3/2) int Pi H' R dR to the force and M = int Pi R^2 dR to the torque. Thin layer: up
         to the wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta),
         caps the logarithmic far field); beyond the last node the film is taken as the
@@ -239,19 +300,28 @@ class Film:
         inside = self.radii[el.left] < outer_radius
         el = _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
         thickness = _gauss_thickness(el.length, el.h_left, el.h_right)
+        regular = el.right >= 0
+        right = np.where(regular, el.right, 0)
+
+        def gauss(nodal, edge_value):
+            if nodal is None:
+                return np.ones_like(thickness)
+            return _gauss_values(nodal[el.left], np.where(regular, nodal[right], edge_value))
+
+        viscosity = self.viscosity.ratio(gauss(pressure, 0.0))[0]
+        liquid = gauss(fill, 1.0)
         slope = ((el.h_right - el.h_left) / el.length)[:, None] - (1 - 2 * _GAUSS_XI) * el.length[
             :, None
         ] / 2
         weight = el.length[:, None] * _GAUSS_W
         phi_left, phi_right = 1.0 - _GAUSS_XI, _GAUSS_XI
-        cube = thickness**3
+        cube = thickness**3 / viscosity
         stiff = (weight * el.gauss_r * cube).sum(axis=1) / el.length**2
         hoop = [
             (weight * cube * a * b / el.gauss_r).sum(axis=1)
             for a, b in ((phi_left, phi_left), (phi_left, phi_right), (phi_right, phi_right))
         ]
         source = weight * slope * el.gauss_r
-        regular = el.right >= 0
         diagonal, lower, upper, rhs = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
         diagonal[el.left] += stiff + hoop[0]
         rhs[el.left] += (source * phi_left).sum(axis=1)
@@ -269,7 +339,7 @@ class Film:
         pi_gauss = (
             pi[el.left, None] * phi_left + np.where(regular, pi[el.right], 0.0)[:, None] * phi_right
         )
-        shear = float((weight * el.gauss_r / thickness).sum())
+        shear = float((weight * el.gauss_r * liquid * viscosity / thickness).sum())
         force = 1.5 * float((weight * pi_gauss * slope * el.gauss_r).sum())
         torque = float((weight * pi_gauss * el.gauss_r**2).sum())
         r_last = self.radii[-1]
@@ -301,13 +371,46 @@ def _solve_tridiagonal(lower, diagonal, upper, rhs):
     return scipy.linalg.solve_banded((1, 1), bands, rhs)
 
 
-def _conductance(gauss_r, length, h_left, h_right):
-    """Element conductance k = (1/(12 L^2)) int R H^3 dR and its derivatives by H_left, H_right."""
+def _gauss_values(left, right):
+    """A linear nodal field at the Gauss points of elements, (elements, 3)."""
+    return left[:, None] * (1.0 - _GAUSS_XI) + right[:, None] * _GAUSS_XI
+
+
+def _conductance(gauss_r, length, h_left, h_right, p_left, p_right, viscosity: Viscosity):
+    """Element conductance k = (1/(12 L^2)) int R H^3 mu0/mu(P) dR (P linear on the element)
+    and its derivatives ((dk/dH_left, dk/dH_right), (dk/dP_left, dk/dP_right))."""
     h = _gauss_thickness(length, h_left, h_right)
     scale = 1.0 / (12.0 * length)
-    k = scale * ((_GAUSS_W * gauss_r * h**3).sum(axis=1))
-    dh = _GAUSS_W * gauss_r * 3.0 * h**2
-    return k, scale * (dh * (1.0 - _GAUSS_XI)).sum(axis=1), scale * (dh * _GAUSS_XI).sum(axis=1)
+    weight = _GAUSS_W * gauss_r * scale[:, None]
+    if viscosity.constant:
+        fluidity, dlog = 1.0, None
+    else:
+        ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right))
+        fluidity = 1.0 / ratio
+    k = (weight * h**3 * fluidity).sum(axis=1)
+    dh = weight * 3.0 * h**2 * fluidity
+    dk_dh = ((dh * (1.0 - _GAUSS_XI)).sum(axis=1), (dh * _GAUSS_XI).sum(axis=1))
+    if dlog is None:
+        return k, dk_dh, None
+    dp = -weight * h**3 * fluidity * dlog
+    return k, dk_dh, ((dp * (1.0 - _GAUSS_XI)).sum(axis=1), (dp * _GAUSS_XI).sum(axis=1))
+
+
+def _derivative_bands(n, el: _Elements, regular, dk, jump):
+    """Tridiagonal bands of sum_e (dk_e/dy) (P_left - P_right) for the element conductances'
+    derivatives dk = (dk/dy_left, dk/dy_right) by a nodal field y (H, or P for the viscosity;
+    None: zero bands). The cut element's right end is the edge, which is no unknown."""
+    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+    if dk is None:
+        return lower, diagonal, upper
+    dk_left, dk_right = dk
+    diagonal[el.left] += dk_left * jump
+    left, right = el.left[regular], el.right[regular]
+    dk_left, dk_right, jump = dk_left[regular], dk_right[regular], jump[regular]
+    upper[left] += dk_right * jump
+    lower[right] -= dk_left * jump
+    diagonal[right] -= dk_right * jump
+    return lower, diagonal, upper
 
 
 class FilmError(RuntimeError):

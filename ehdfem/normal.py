@@ -80,7 +80,9 @@ class NormalHistory:
     """Time histories at the accepted steps (scaled as in the module docstring).
 
     ``force`` by 6 pi mu V0 a^2 / x0; energies by m V0^2 / St (kinetic = St V^2 / 2, so the
-    initial kinetic energy is St / 2); ``pressure`` and ``film_thickness`` are (steps, nodes).
+    initial kinetic energy is St / 2); ``pressure``, ``fill`` and ``film_thickness`` are
+    (steps, nodes): ``fill`` is the liquid fraction theta of the gap (1 where the film is full,
+    and everywhere but in mass-conserving cavities), so theta H is the liquid per area (by x0).
     """
 
     time: list = field(default_factory=list)
@@ -94,6 +96,7 @@ class NormalHistory:
     elastic: list = field(default_factory=list)
     dissipated: list = field(default_factory=list)
     pressure: list = field(default_factory=list)
+    fill: list = field(default_factory=list)
     film_thickness: list = field(default_factory=list)
 
     def arrays(self):
@@ -204,10 +207,16 @@ class _Newton:
 
     def solve(self, guess, step, a0, past):
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted
-        sum of earlier values of y = (H, X, V). Returns (P, X, V, state, iterations) or raises
-        _StepFailed."""
-        h_hist, x_hist, v_hist = past
-        pressure, gap, velocity = guess
+        sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V, theta, cavitated).
+        Returns (P, X, V, theta, cavitated, state, iterations) or raises _StepFailed.
+
+        The node unknown is P, except at nodes cavitated under the mass-conserving model, where
+        it is the liquid fraction theta (P = P_cav there)."""
+        content_hist, x_hist, v_hist = past
+        pressure, gap, velocity, fill, cavitated = guess
+        mass_conserving = self.film.mass_conserving
+        if not mass_conserving:
+            fill, cavitated = np.ones_like(pressure), np.zeros(len(pressure), bool)
         previous_sets = previous_norm = None
         refresh = False
         for iteration in range(1, self.options.max_newton + 1):
@@ -215,49 +224,57 @@ class _Newton:
             if h.min() <= 0.0:
                 raise _StepFailed("film thickness not positive", np.nan)
             state = self.film.assemble(h, pressure)
-            residual = state.mass * (a0 * h + h_hist) / step + state.flux(pressure)
-            scale = state.mass * a0 / step * self.compliance_diagonal + state.conductance[1]
-            cavitated = self.film.cavitated(
-                pressure, residual, np.where(scale > 0, scale, 1.0), state.dry
-            )
+            if mass_conserving:  # a cavity the wetted edge passed over is dry, not cavitated
+                fill, cavitated = np.where(state.dry, 1.0, fill), cavitated & ~state.dry
+            residual = state.mass * (a0 * fill * h + content_hist) / step + state.flux(pressure)
+            if not mass_conserving:
+                scale = state.mass * a0 / step * self.compliance_diagonal + state.conductance[1]
+                cavitated = self.film.cavitated(
+                    pressure, residual, np.where(scale > 0, scale, 1.0), state.dry
+                )
+                residual[cavitated] = pressure[cavitated] - self.film.p_cav
             residual[state.dry] = pressure[state.dry]
-            residual[cavitated] = pressure[cavitated] - self.film.p_cav
             r_gap = a0 * gap + x_hist - step * velocity
             r_vel = self.St * (a0 * velocity + v_hist) - step * (state.force_weights @ pressure)
             rhs = -np.concatenate([residual, [r_gap, r_vel]])
-            fixed = state.dry | cavitated
-            if refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
-                self.factor = _Factorisation(
-                    self._jacobian(state, fixed, step, a0), fixed, a0 / step
-                )
-                self.factorisations += 1
+            # truncation fixes P in rows; a mass-conserving cavity swaps P for theta (columns)
+            fixed = state.dry if mass_conserving else state.dry | cavitated
+            theta_nodes = cavitated if mass_conserving else np.zeros_like(cavitated)
+            sets = (int((~state.dry).sum()), fixed.tobytes(), theta_nodes.tobytes())
+            stale = self.factor is None or self.factor.columns != sets[2]
+            if refresh or stale or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
+                self._factorise(state, fixed, step, a0, fill, h, theta_nodes)
                 refresh = False
+            rows = None if mass_conserving else partial(self._rows, state, step=step, a0=a0)
             try:
-                update = self.factor.solve(rhs, fixed, partial(self._rows, state, step=step, a0=a0))
+                update = self.factor.solve(rhs, fixed, rows)
             except _TooManyChanges:
-                self.factor = _Factorisation(
-                    self._jacobian(state, fixed, step, a0), fixed, a0 / step
-                )
-                self.factorisations += 1
+                self._factorise(state, fixed, step, a0, fill, h, theta_nodes)
                 update = self.factor.solve(rhs, fixed, None)
             n = len(pressure)
-            d_pressure, d_gap, d_velocity = update[:n], update[n], update[n + 1]
+            d_node, d_gap, d_velocity = update[:n], update[n], update[n + 1]
+            d_pressure = np.where(theta_nodes, 0.0, d_node)
+            d_fill = np.where(theta_nodes, d_node, 0.0)
             damping = 1.0
             while self.thickness(pressure + damping * d_pressure, gap + damping * d_gap).min() <= 0:
                 damping *= 0.5
                 if damping < 1e-3:
                     raise _StepFailed("Newton update closes the film", np.abs(rhs).max())
             pressure = pressure + damping * d_pressure
+            fill = fill + damping * d_fill
             gap += damping * d_gap
             velocity += damping * d_velocity
             norm = max(
                 np.abs(d_pressure).max() / (np.abs(pressure).max() + 1.0),
+                np.abs(d_fill).max(),
                 abs(d_gap) / max(h.min(), 1e-12),
                 abs(d_velocity) / (abs(velocity) + 1e-3),
             )
-            sets = (int((~state.dry).sum()), fixed.tobytes())
+            if mass_conserving:
+                pressure, fill, cavitated = self.film.switch(pressure, fill, cavitated, state.dry)
+                sets = (*sets[:2], cavitated.tobytes())
             if norm <= self.options.newton_tol and damping == 1.0 and sets == previous_sets:
-                return pressure, gap, velocity, state, iteration
+                return pressure, gap, velocity, fill, cavitated & mass_conserving, state, iteration
             if previous_norm is not None and sets == previous_sets:
                 # refresh a stale factorisation when its contraction would need > 6 more sweeps
                 # (not while the fixed nodes move: that slows the iteration whatever the matrix)
@@ -268,31 +285,42 @@ class _Newton:
         self.factor = None
         raise _StepFailed("Newton did not converge", np.abs(rhs).max())
 
-    def _rows(self, state: FilmState, rows, *, step, a0):
-        """Film rows of the Jacobian, d(m dH/dT + K(H) P)_i/d(P, X, V) = ((m a0/dt + D) C + K,
-        (m a0/dt + D) 1, 0), for the node indices ``rows``."""
+    def _factorise(self, state, fixed, step, a0, fill, h, theta_nodes):
+        """A new LU of the Jacobian; at ``theta_nodes`` (mass-conserving cavities) the unknown
+        is theta, whose column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
+        jacobian = self._jacobian(state, fixed, step, a0, fill)
+        nodes = np.flatnonzero(theta_nodes)
+        jacobian[:, nodes] = 0.0
+        jacobian[nodes, nodes] = state.mass[nodes] * a0 * h[nodes] / step
+        self.factor = _Factorisation(jacobian, fixed, a0 / step, theta_nodes.tobytes())
+        self.factorisations += 1
+
+    def _rows(self, state: FilmState, rows, *, step, a0, fill=1.0):
+        """Film rows of the Jacobian, d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) =
+        ((m theta a0/dt + D) C + K + E, (m theta a0/dt + D) 1, 0), for the node indices
+        ``rows`` (E: the viscosity's d(K P)/dP - K)."""
         n = len(state.mass)
         lower, diag, upper = state.dflux_dH
-        diag = diag + state.mass * a0 / step
+        diag = diag + state.mass * fill * a0 / step
         below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
         out = np.zeros((len(rows), n + 2))
         c = self.compliance
         out[:, :n] = (
             diag[rows, None] * c[rows] + lower[rows, None] * c[below] + upper[rows, None] * c[above]
         )
-        k_low, k_diag, k_up = state.conductance
         j = np.arange(len(rows))
-        out[j, rows] += k_diag[rows]
-        out[j, below] += k_low[rows]
-        out[j, above] += k_up[rows]
+        for k_low, k_diag, k_up in (state.conductance, state.dflux_dP):
+            out[j, rows] += k_diag[rows]
+            out[j, below] += k_low[rows]
+            out[j, above] += k_up[rows]
         out[:, n] = lower[rows] + diag[rows] + upper[rows]
         return out
 
-    def _jacobian(self, state: FilmState, fixed, step, a0):
+    def _jacobian(self, state: FilmState, fixed, step, a0, fill):
         """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the X and V rows."""
         n = len(state.mass)
         jac = np.zeros((n + 2, n + 2))
-        jac[:n] = self._rows(state, np.arange(n), step=step, a0=a0)
+        jac[:n] = self._rows(state, np.arange(n), step=step, a0=a0, fill=fill)
         fixed_rows = np.flatnonzero(fixed)
         jac[fixed_rows, :] = 0.0
         jac[fixed_rows, fixed_rows] = 1.0
@@ -313,13 +341,14 @@ class _Factorisation:
     pressures (up to ~1e8 near a rigid stop), the gap (~1e-4) and the velocity (~1) differ by
     many orders of magnitude. When the fixed nodes (dry or cavitated) differ from those the LU
     was built for, the changed rows are a rank-k correction applied by the Woodbury identity.
-    ``rate`` is the a0/dt the matrix was built for.
+    ``rate`` is the a0/dt the matrix was built for, ``columns`` the mass-conserving cavitated
+    nodes (as bytes) whose columns it holds for theta.
     """
 
     MAX_CHANGES = 12
 
-    def __init__(self, matrix, fixed, rate):
-        self.matrix, self.fixed, self.rate = matrix, fixed.copy(), rate
+    def __init__(self, matrix, fixed, rate, columns):
+        self.matrix, self.fixed, self.rate, self.columns = matrix, fixed.copy(), rate, columns
         self.col = np.abs(matrix).max(axis=0)
         self.col[self.col == 0] = 1.0
         scaled = matrix / self.col
@@ -343,7 +372,7 @@ class _Factorisation:
         y = self._base_solve(rhs)
         if len(changed) == 0:
             return y
-        if len(changed) > self.MAX_CHANGES:
+        if len(changed) > self.MAX_CHANGES or film_rows is None:
             raise _TooManyChanges
         new_rows = np.zeros((len(changed), len(rhs)))
         now_fixed = fixed[changed]
@@ -376,27 +405,15 @@ def solve_normal(params: CollisionParameters, compliance, options: IntegratorOpt
     """
     options = options or IntegratorOptions()
     radii = np.asarray(compliance.radii, dtype=float)
-    film = Film(radii, params.layer, params.p_cav)
+    film = Film(radii, params.layer, params.p_cav, params.cavitation, params.viscosity_law())
     newton = _Newton(film, np.asarray(compliance.matrix, dtype=float), params.St, options)
-    mass = film.full_mass
     n = len(radii)
 
     hist = NormalHistory()
-    pressure, gap, velocity = np.zeros(n), 1.0, -1.0
+    pressure, gap, velocity, fill = np.zeros(n), 1.0, -1.0, np.ones(n)
+    cavitated = np.zeros(n, bool)
     h = newton.thickness(pressure, gap)
-    _record(
-        hist,
-        0.0,
-        gap,
-        velocity,
-        pressure,
-        h,
-        film.assemble(h, pressure),
-        0.0,
-        params.St,
-        mass,
-        newton.compliance,
-    )
+    _record(hist, 0.0, gap, velocity, pressure, fill, h, film.assemble(h, pressure), 0.0, newton)
     dissipation_rate = 0.0
     step = options.first_step
     rejected = iterations = 0
@@ -413,17 +430,26 @@ def solve_normal(params: CollisionParameters, compliance, options: IntegratorOpt
         # order q uses q past values; the predictor for the error estimate needs q + 1
         order = min(options.order, max(len(hist.time) - 1, 1))
         weights = step * _derivative_weights([t_new, *_latest(hist.time, order)])
+        content = np.array(_latest(hist.fill, order)) * np.array(
+            _latest(hist.film_thickness, order)
+        )
         past = [
-            weights[1:] @ np.array(_latest(values, order))
-            for values in (hist.film_thickness, hist.gap, hist.velocity)
+            weights[1:] @ values
+            for values in (
+                content,
+                *(np.array(_latest(values, order)) for values in (hist.gap, hist.velocity)),
+            )
         ]
         known = min(len(hist.time), 3)
         guess = [
             _extrapolate(_latest(hist.time, known), _latest(values, known), t_new)
             for values in (hist.pressure, hist.gap, hist.velocity)
         ]
+        guess[0] = np.where(cavitated, film.p_cav, guess[0])
         try:
-            new_p, new_x, new_v, state, its = newton.solve(guess, step, weights[0], past)
+            new_p, new_x, new_v, new_fill, new_cavitated, state, its = newton.solve(
+                (*guess, hist.fill[-1], cavitated), step, weights[0], past
+            )
         except (_StepFailed, FilmError) as failure:
             if hist.min_film[-1] < CLOSED_FILM:
                 i = int(np.argmin(hist.film_thickness[-1]))
@@ -460,19 +486,8 @@ def solve_normal(params: CollisionParameters, compliance, options: IntegratorOpt
         dissipation_rate = new_rate
         old_x, old_v = gap, velocity
         pressure, gap, velocity, h = new_p, new_x, new_v, new_h
-        _record(
-            hist,
-            t_new,
-            gap,
-            velocity,
-            pressure,
-            h,
-            state,
-            dissipated,
-            params.St,
-            mass,
-            newton.compliance,
-        )
+        cavitated = new_cavitated
+        _record(hist, t_new, gap, velocity, pressure, new_fill, h, state, dissipated, newton)
         rebounding = rebounding or velocity > 0
         if gap >= 1.0 and velocity > 0:
             fraction = (1.0 - old_x) / (gap - old_x)
@@ -512,9 +527,7 @@ def solve_normal(params: CollisionParameters, compliance, options: IntegratorOpt
     )
 
 
-def _record(
-    hist, time, gap, velocity, pressure, h, state: FilmState, dissipated, St, mass, compliance
-):
+def _record(hist, time, gap, velocity, pressure, fill, h, state: FilmState, dissipated, newton):
     hist.time.append(time)
     hist.gap.append(gap)
     hist.velocity.append(velocity)
@@ -522,8 +535,10 @@ def _record(
     hist.central_film.append(h[0])
     hist.min_film.append(h.min())
     hist.edge_radius.append(state.edge_radius)
-    hist.kinetic.append(0.5 * St * velocity**2)
+    hist.kinetic.append(0.5 * newton.St * velocity**2)
+    compliance, mass = newton.compliance, newton.film.full_mass
     hist.elastic.append(float(mass * pressure @ (compliance @ pressure)) / 6.0)
     hist.dissipated.append(dissipated)
     hist.pressure.append(pressure)
+    hist.fill.append(fill)
     hist.film_thickness.append(h)

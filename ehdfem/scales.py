@@ -20,6 +20,9 @@ import math
 from dataclasses import dataclass, field
 
 from . import checks
+from .film import CAVITATION
+from .viscosity import LAWS as VISCOSITY_LAWS
+from .viscosity import ROELANDS_LOG_VISCOSITY, ROELANDS_PRESSURE, Viscosity, roelands_index
 
 ATMOSPHERE = 101325.0  # Pa
 
@@ -141,7 +144,11 @@ class CollisionParameters:
     default); e_dry in (0, 1] (1: pure EHD); layer "thin" or "immersed"; angle [deg] of the
     impact velocity from the wall normal, in [0, 90); spin = a Omega0 / V0 (positive in the
     rolling sense, see ehdfem.tangential); inertia_factor k = I/(m a^2) in (0, 2/3] (2/5 solid,
-    2/3 thin shell).
+    2/3 thin shell); cavitation "truncate" (the source's), "mass-conserving" (JFO) or "none"
+    (:mod:`ehdfem.film`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
+    pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
+    roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
+    (:mod:`ehdfem.viscosity`).
     """
 
     St: float
@@ -153,6 +160,11 @@ class CollisionParameters:
     angle: float = 0.0
     spin: float = 0.0
     inertia_factor: float = 0.4
+    cavitation: str = "truncate"
+    viscosity: str = "constant"
+    alpha: float = 0.0
+    roelands_pressure: float | None = None
+    roelands_index: float = 0.6
 
     def __post_init__(self):
         checks.positive("St", self.St)
@@ -167,6 +179,12 @@ class CollisionParameters:
         checks.number(
             "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
         )
+        checks.choice("cavitation", self.cavitation, CAVITATION)
+        self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
+
+    def viscosity_law(self) -> Viscosity:
+        """The film's viscosity law mu(P)/mu0 (scaled, :class:`ehdfem.viscosity.Viscosity`)."""
+        return Viscosity(self.viscosity, self.alpha, self.roelands_pressure, self.roelands_index)
 
     @property
     def tangential_speed(self) -> float:
@@ -194,7 +212,9 @@ class PhysicalCollision:
     """Physical inputs (SI): sphere radius [m], materials, liquid, impact speed |v| [m/s], angle
     from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
-    inertia factor and an optional sphere mass [kg] (default 4/3 pi a^3 rho)."""
+    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
+    the viscosity law and the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
+    preset]. Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float
     sphere: Material
@@ -210,6 +230,9 @@ class PhysicalCollision:
     cavitation_pressure: float | None = None
     inertia_factor: float = 0.4
     sphere_mass: float | None = field(default=None)
+    cavitation: str = "truncate"
+    viscosity: str = "constant"
+    pressure_viscosity: float | None = None
 
     def __post_init__(self):
         checks.positive("radius", self.radius)
@@ -231,6 +254,16 @@ class PhysicalCollision:
             )
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
+        if self.pressure_viscosity is not None:
+            checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
+        checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
+        if self.viscosity == "roelands" and self.liquid.viscosity <= math.exp(
+            -ROELANDS_LOG_VISCOSITY
+        ):
+            raise checks.InputError(
+                f"the Roelands law needs a viscosity above 6.31e-5 Pa s; "
+                f"{self.liquid.name} has {self.liquid.viscosity} Pa s"
+            )
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
 
     @property
@@ -257,14 +290,23 @@ class PhysicalCollision:
             (1 - s.poisson_ratio**2) / (math.pi * s.young_modulus) for s in (self.sphere, self.wall)
         )
 
+    @property
+    def alpha(self) -> float:
+        """The pressure-viscosity coefficient [1/Pa]: the given one, else the liquid's."""
+        if self.pressure_viscosity is not None:
+            return self.pressure_viscosity
+        return self.liquid.pressure_viscosity
+
     def dimensionless(self) -> CollisionParameters:
-        """St, eps, delta, P_cav, e_dry, ... for these inputs."""
+        """St, eps, delta, P_cav, e_dry, alpha, ... for these inputs."""
         mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
         p_cav = (
             self.liquid.vapour_pressure
             if self.cavitation_pressure is None
             else self.cavitation_pressure
         )
+        pressure_scale = mu * v0 * a / x0**2
+        roelands = self.viscosity == "roelands"
         return CollisionParameters(
             St=stokes_number(self.mass, v0, mu, a),
             eps=elasticity_parameter(self.theta, mu, v0, a, x0),
@@ -275,6 +317,11 @@ class PhysicalCollision:
             angle=self.angle,
             spin=self.spin * a / v0,
             inertia_factor=self.inertia_factor,
+            cavitation=self.cavitation,
+            viscosity=self.viscosity,
+            alpha=0.0 if self.viscosity == "constant" else self.alpha * pressure_scale,
+            roelands_pressure=ROELANDS_PRESSURE / pressure_scale if roelands else None,
+            roelands_index=roelands_index(self.alpha, mu) if roelands and self.alpha > 0 else 0.6,
         )
 
     def scales(self) -> Scales:

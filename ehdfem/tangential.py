@@ -25,7 +25,8 @@ u_s = U - a Omega and the rolling speed w = U + a Omega, and I = k m a^2:
   6 pi mu a U ln(a/h), torque 1/10 and 2/5 of 8 pi mu a^2 U ln(a/h).
 
 Each step of the normal solution is integrated exactly for the step's mean coefficients (a
-2x2 matrix exponential), which is exact for the Couette model given int J dT (trapezoid).
+2x2 matrix exponential, by Sylvester's formula so that it stays exact for the very large rates
+of a piezoviscous film), which is exact for the Couette model given int J dT (trapezoid).
 """
 
 from __future__ import annotations
@@ -65,12 +66,19 @@ class TangentialResult:
 
 
 def film_integrals(normal: NormalResult, model: str = "couette") -> np.ndarray:
-    """(steps, 3) array of J, G, M at each step of the normal solution (G = M = 0 for Couette)."""
+    """(steps, 3) array of J, G, M at each step of the normal solution (G = M = 0 for Couette),
+    with the film's viscosity at each step's pressure and its liquid fraction."""
     checks.choice("tangential model", model, MODELS)
     params = normal.params
-    film = Film(normal.radii, params.layer, params.p_cav)
+    film = Film(normal.radii, params.layer, params.p_cav, params.cavitation, params.viscosity_law())
     outer = 1.0 / np.sqrt(params.delta)
-    values = np.array([film.sliding_integrals(h, outer) for h in normal.history.film_thickness])
+    hist = normal.history
+    values = np.array(
+        [
+            film.sliding_integrals(h, outer, p, theta)
+            for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True)
+        ]
+    )
     if model == "couette":
         values[:, 1:] = 0.0
     return values
@@ -86,24 +94,25 @@ def solve_tangential(normal: NormalResult, model: str = "couette") -> Tangential
     tangential = params.tangential_speed  # U0 / V0
     head_on = tangential == 0.0
     spin0 = 0.0 if head_on else params.spin / tangential  # a Omega0 / U0
-    rates = (
-        delta
-        / (3 * St)
-        * np.array(
+    # mean coefficients over each step (the rates are linear in J, G, M)
+    shear_m, force_m, torque_m = (
+        0.5 * (v[1:] + v[:-1]) for v in (shear, force_pressure, torque_pressure)
+    )
+    rate = delta / (3 * St) * np.diff(hist.time)
+    rates = rate * np.array(
+        [
+            [-(shear_m + force_m), shear_m - force_m],
             [
-                [-(shear + force_pressure), shear - force_pressure],
-                [
-                    (shear + force_pressure - 3 * torque_pressure) / k,
-                    -(shear - force_pressure + 3 * torque_pressure) / k,
-                ],
-            ]
-        )
-    )  # (2, 2, steps): d(U, a Omega)/dT = rates @ (U, a Omega)
+                (shear_m + force_m - 3 * torque_m) / k,
+                -(shear_m - force_m + 3 * torque_m) / k,
+            ],
+        ]
+    )  # (2, 2, steps - 1): d(U, a Omega)/dT = rates @ (U, a Omega) / dT over each step
+    determinants = rate**2 * 6.0 * torque_m * shear_m / k  # exact, free of cancellation
     states = np.empty((len(hist.time), 2))
     states[0] = (1.0, spin0)
-    for i, dt in enumerate(np.diff(hist.time)):
-        mean = 0.5 * (rates[:, :, i] + rates[:, :, i + 1])
-        states[i + 1] = scipy.linalg.expm(mean * dt) @ states[i]
+    for i in range(len(hist.time) - 1):
+        states[i + 1] = _exponential(rates[:, :, i], determinants[i]) @ states[i]
     velocity, spin = states.T
     slip, rolling = velocity - spin, velocity + spin
     end = _end_index(normal)
@@ -120,6 +129,31 @@ def solve_tangential(normal: NormalResult, model: str = "couette") -> Tangential
         slip=slip,
         force=-delta / 3.0 * (shear * slip + force_pressure * rolling),
     )
+
+
+def _exponential(matrix, determinant):
+    """exp(matrix) for a 2x2 matrix with real eigenvalues l1, l2 (Sylvester's formula),
+
+        exp(A) = (l1 e^l2 - l2 e^l1) / (l1 - l2) I + (e^l1 - e^l2) / (l1 - l2) A,
+
+    with the small eigenvalue from the given determinant, l2 = det / l1, so that it stays exact
+    when a piezoviscous film makes l1 so large that exp(l1) underflows (there the entries of A
+    are huge and the closed forms that use them to find both eigenvalues lose l2)."""
+    trace = matrix[0, 0] + matrix[1, 1]
+    discriminant = trace**2 - 4.0 * determinant
+    if discriminant <= 0.0:
+        return scipy.linalg.expm(matrix)
+    large = 0.5 * (trace + np.copysign(np.sqrt(discriminant), trace))
+    if large == 0.0:
+        return np.eye(2)
+    small = determinant / large
+    gap = large - small
+    if abs(gap) <= 1e-8 * abs(large):
+        return scipy.linalg.expm(matrix)
+    e_large, e_small = np.exp(large), np.exp(small)
+    return (large * e_small - small * e_large) / gap * np.eye(2) + (
+        e_large - e_small
+    ) / gap * matrix
 
 
 def _end_index(normal: NormalResult) -> float:

@@ -27,9 +27,9 @@ With a pressure-dependent viscosity mu(P) (:mod:`ehdfem.viscosity`) H^3 becomes 
 
 Discretisation: continuous piecewise-linear (P1) finite elements in R with the weight R, the
 lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss quadrature of
-int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu). The thin-layer edge is cut
-into its element (the element is shortened to end at R_edge, where P = 0 and H = 1), so the
-edge moves continuously rather than node by node. The film does not know about time stepping:
+int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu).
+The thin-layer edge is cut into its element (the element is shortened to end at R_edge, where
+P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not know about time stepping:
 it assembles, for a given film thickness H and pressure P, the weak-form pieces
 
     m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
@@ -98,8 +98,8 @@ class FilmState:
 
     ``mass``: lumped m_i; ``conductance`` (lower, diagonal, upper) of K(H); ``dflux_dH`` the
     tridiagonal D = d(K P)/dH; ``dflux_dP`` the tridiagonal d(K P)/dP - K from the
-    pressure-dependent viscosity (zero bands at constant viscosity); ``force_weights`` f with St dV/dT = f . P; ``dry`` nodes hold
-    P = 0 (outside the wetted edge); ``edge_radius`` is R_edge (inf when fully immersed).
+    pressure-dependent viscosity (zero bands at constant viscosity); ``force_weights`` f with
+    St dV/dT = f . P; ``dry`` nodes hold P = 0 (outside the wetted edge); ``edge_radius`` is R_edge (inf when fully immersed).
     """
 
     mass: np.ndarray
@@ -281,7 +281,8 @@ class Film:
         """(J, G, M): the film's resistance to a sliding and spinning sphere (scaled).
 
         J = int theta (mu/mu0) R dR / H is the Couette shear (a cavity shears only its liquid
-        fraction theta; mu at the nodal ``pressure``, theta the nodal ``fill``, 1 if not given) (tangential force -2 pi mu a u_s J). The sliding
+        fraction theta; mu at the nodal ``pressure``, theta the nodal ``fill``, 1 if not given;
+        tangential force -2 pi mu0 a u_s J). The sliding
         pressure is p = 6 mu U0 sqrt(a) x0^(-3/2) w Pi(R) cos(phi), with w = (U + a Omega)/U0 and
         Pi the azimuthal mode-1 solution of the Reynolds equation on the deformed film,
 

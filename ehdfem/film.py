@@ -29,8 +29,8 @@ Discretisation: continuous piecewise-linear (P1) finite elements in R with the w
 lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss quadrature of
 int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu).
 The thin-layer edge is cut into its element (the element is shortened to end at R_edge, where
-P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not know about time stepping:
-it assembles, for a given film thickness H and pressure P, the weak-form pieces
+P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not
+know about time stepping: it assembles, for a given film thickness H and pressure P, the weak-form pieces
 
     m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
 
@@ -99,7 +99,8 @@ class FilmState:
     ``mass``: lumped m_i; ``conductance`` (lower, diagonal, upper) of K(H); ``dflux_dH`` the
     tridiagonal D = d(K P)/dH; ``dflux_dP`` the tridiagonal d(K P)/dP - K from the
     pressure-dependent viscosity (zero bands at constant viscosity); ``force_weights`` f with
-    St dV/dT = f . P; ``dry`` nodes hold P = 0 (outside the wetted edge); ``edge_radius`` is R_edge (inf when fully immersed).
+    St dV/dT = f . P; ``dry`` nodes hold P = 0 (outside the wetted edge); ``edge_radius`` is
+    R_edge (inf when fully immersed).
     """
 
     mass: np.ndarray

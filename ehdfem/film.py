@@ -30,7 +30,8 @@ lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss qua
 int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu).
 The thin-layer edge is cut into its element (the element is shortened to end at R_edge, where
 P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not
-know about time stepping: it assembles, for a given film thickness H and pressure P, the weak-form pieces
+know about time stepping: it assembles, for a given film thickness H and pressure P, the
+weak-form pieces
 
     m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
 

@@ -17,11 +17,13 @@ from pathlib import Path
 import numpy as np
 
 from . import checks, viz
-from .closedform import fit_table
+from .closedform import GROUPED, fit_table
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
+from .film import CAVITATION
 from .normal import IntegratorOptions, NormalSolverError
 from .scales import CollisionParameters, PhysicalCollision, liquid, material
 from .study import Study, critical_stokes, run_study
+from .viscosity import LAWS as VISCOSITY_LAWS
 
 EXAMPLE = dict(
     sphere="steel",
@@ -52,6 +54,18 @@ def _collision_arguments(c) -> None:
         help="cavitation pressure (p_cav - p_ambient) x0^2/(mu V0 a), <= 0; default: none",
     )
     dim.add_argument("--spin", type=float, default=0.0, help="initial spin a Omega0 / V0")
+    dim.add_argument(
+        "--alpha",
+        type=float,
+        default=0.0,
+        help="pressure-viscosity coefficient scaled by mu V0 a / x0^2, >= 0 (with --viscosity)",
+    )
+    dim.add_argument(
+        "--roelands-pressure",
+        type=float,
+        help="Roelands p_r = 1.96e8 Pa scaled by mu V0 a / x0^2, > 0 (--viscosity roelands)",
+    )
+    dim.add_argument("--roelands-index", type=float, default=0.6, help="Roelands index Z, (0, 2]")
     phys = c.add_argument_group("physical inputs (SI)")
     phys.add_argument("--sphere", help="sphere material preset (e.g. steel, glass)")
     phys.add_argument("--wall", help="wall material preset")
@@ -59,6 +73,11 @@ def _collision_arguments(c) -> None:
     phys.add_argument("--radius", type=float, help="sphere radius a [m]")
     phys.add_argument("--speed", type=float, help="impact speed |v| [m/s]")
     phys.add_argument("--layer-thickness", type=float, help="liquid layer thickness x0 [m]")
+    phys.add_argument(
+        "--pressure-viscosity",
+        type=float,
+        help="pressure-viscosity coefficient alpha [1/Pa], [0, 1e-6]; default: the liquid's",
+    )
     phys.add_argument(
         "--example",
         action="store_true",
@@ -70,6 +89,7 @@ def _collision_arguments(c) -> None:
         "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
     )
     common.add_argument("--layer", choices=("thin", "immersed"), default="thin")
+    _film_arguments(common)
     common.add_argument(
         "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
     )
@@ -120,6 +140,22 @@ def _collision_arguments(c) -> None:
     )
 
 
+def _film_arguments(group) -> None:
+    """The film's cavitation model and viscosity law (collide, render, critical)."""
+    group.add_argument(
+        "--cavitation",
+        choices=CAVITATION,
+        default="truncate",
+        help="truncate at P_cav (the source's), mass-conserving (JFO), or none",
+    )
+    group.add_argument(
+        "--viscosity",
+        choices=VISCOSITY_LAWS,
+        default="constant",
+        help="viscosity against pressure: constant, barus or roelands",
+    )
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="ehdfem", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -150,6 +186,10 @@ def _parser() -> argparse.ArgumentParser:
     k.add_argument("--delta", type=float, default=0.01, help="x0/a, (0, 1)")
     k.add_argument("--layer", choices=("thin", "immersed"), default="thin")
     k.add_argument("--p-cav", type=float, default=None, help="cavitation pressure (scaled), <= 0")
+    _film_arguments(k)
+    k.add_argument("--alpha", type=float, default=0.0, help="scaled pressure-viscosity, >= 0")
+    k.add_argument("--roelands-pressure", type=float, help="scaled Roelands p_r, > 0")
+    k.add_argument("--roelands-index", type=float, default=0.6, help="Roelands index Z")
     k.add_argument("--bracket", type=float, nargs=2, default=(1.0, 1000.0), metavar=("LOW", "HIGH"))
     k.add_argument("--rtol", type=float, default=1e-3, help="relative width of the final bracket")
     k.add_argument("--nodes", type=int, default=DEFAULT_NODES)
@@ -185,6 +225,11 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
             raise checks.InputError(
                 "give either dimensionless (--St, --eps) or physical inputs, not both"
             )
+        if args.alpha or args.roelands_pressure is not None:
+            raise checks.InputError(
+                "physical inputs take --pressure-viscosity [1/Pa], not the scaled --alpha or "
+                "--roelands-pressure"
+            )
         return PhysicalCollision(
             radius=values["radius"],
             sphere=material(values["sphere"]),
@@ -195,6 +240,13 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
             layer_thickness=values["layer_thickness"],
             layer=args.layer,
             e_dry=args.e_dry,
+            cavitation=args.cavitation,
+            viscosity=args.viscosity,
+            pressure_viscosity=args.pressure_viscosity,
+        )
+    if args.pressure_viscosity is not None:
+        raise checks.InputError(
+            "--pressure-viscosity [1/Pa] needs physical inputs; give the scaled --alpha instead"
         )
     for name in ("St", "eps"):
         if getattr(args, name) is None:
@@ -209,7 +261,19 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
         layer=args.layer,
         angle=0.0 if args.angle is None else args.angle,
         spin=args.spin,
+        **_film_parameters(args),
     )
+
+
+def _film_parameters(args) -> dict:
+    """CollisionParameters fields of the film models from the dimensionless arguments."""
+    return {
+        "cavitation": args.cavitation,
+        "viscosity": args.viscosity,
+        "alpha": args.alpha,
+        "roelands_pressure": args.roelands_pressure,
+        "roelands_index": args.roelands_index,
+    }
 
 
 def _print_table(summary: dict) -> None:
@@ -323,6 +387,7 @@ def critical_command(args) -> int:
         delta=args.delta,
         layer=args.layer,
         p_cav=-np.inf if args.p_cav is None else args.p_cav,
+        **_film_parameters(args),
     )
     found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes, model=args.model)
     out = {
@@ -333,6 +398,7 @@ def critical_command(args) -> int:
         "p_cav": args.p_cav,
         "nodes": args.nodes,
         "model": args.model,
+        **_film_parameters(args),
     }
     print(
         f"St_c = {found['St_c']:.6g} (bracket {found['bracket'][0]:.6g} .. "
@@ -361,22 +427,28 @@ def fit_command(args) -> int:
         fits = fit_table(list(csv.DictReader(f)))
     for group in fits["normal"]:
         print(
-            f"eps = {group['eps']:g}: e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
+            f"{_labels(group)}, eps = {group['eps']:g}: "
+            f"e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
             f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}"
         )
-    for name in ("critical_stokes_law", "tangential_loss", "spin_change"):
-        if name in fits:
-            law = fits[name]
-            terms = " ".join(f"{k}^{v:.4g}" for k, v in law.items() if k in ("St", "eps"))
-            print(
-                f"{name}: {law['coefficient']:.4g} {terms}"
-                f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}"
-            )
+    laws = [(f"St_c ({_labels(law['model'])})", law) for law in fits["critical_stokes_laws"]]
+    laws += [(name, fits[name]) for name in ("tangential_loss", "spin_change") if name in fits]
+    for name, law in laws:
+        terms = " ".join(f"{k}^{v:.4g}" for k, v in law.items() if k in ("St", "eps"))
+        print(
+            f"{name}: {law['coefficient']:.4g} {terms}"
+            f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}"
+        )
     for name, errors in fits["dem_formulas"].items():
         error, rms = errors["max_error"], errors["rms_error"]
         print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}")
     _write_json(fits, args.json)
     return 0
+
+
+def _labels(group: dict) -> str:
+    """The model labels of a fit group (delta, layer, P_cav, cavitation, viscosity, alpha)."""
+    return ", ".join(f"{k} = {group[k]}" for k in ("delta", *(k for k, _ in GROUPED)) if k in group)
 
 
 def render_command(args) -> int:

@@ -10,8 +10,10 @@ sphere) and converts it to the convention of its source:
   with St_Y = rho_p V D / mu = 9 St and rough the roughness height.
 - Exponential form with a free critical number (LIGGGHTS-style): e = e_max exp(-St_c / St).
 
-Fits (`fit_table`): the normal restitution per (eps, delta, layer, P_cav) group to
-e_n = e_inf (1 - St_c/St), St_c against eps as a power law St_c = A eps^B, and the tangential
+Fits (`fit_table`): the normal restitution per (eps, delta, layer, P_cav, cavitation model,
+viscosity law, alpha) group to
+e_n = e_inf (1 - St_c/St), St_c against eps as a power law St_c = A eps^B (for each model), and
+the tangential
 loss 1 - e_t = delta A St^B eps^C (and likewise the spin change), with the maximum and rms error
 over the rebounding points.
 """
@@ -25,6 +27,15 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from . import checks
+
+# the labels besides eps and delta that tell the fit groups apart, with their defaults
+GROUPED = (
+    ("layer", "thin"),
+    ("p_cav", ""),
+    ("cavitation", "truncate"),
+    ("viscosity", "constant"),
+    ("alpha", 0.0),
+)
 
 
 def davis_rager_good(St, St_c, e_dry=1.0):
@@ -98,11 +109,10 @@ def fit_table(rows: list[dict]) -> dict:
     num = lambda r, k: float(r[k])  # noqa: E731
     groups = defaultdict(list)
     for r in ok:
-        groups[(num(r, "eps"), num(r, "delta"), r.get("layer", "thin"), r.get("p_cav", ""))].append(
-            r
-        )
+        key = (num(r, "eps"), num(r, "delta"), *(str(r.get(k, d)) for k, d in GROUPED))
+        groups[key].append(r)
     normal = []
-    for (eps, delta, layer, p_cav), members in sorted(groups.items()):
+    for (eps, delta, *labels), members in sorted(groups.items()):
         St = np.array([num(r, "St") for r in members])
         e_n = np.array([num(r, "e_n") for r in members])
         if (e_n > 0).sum() < 2:
@@ -113,21 +123,28 @@ def fit_table(rows: list[dict]) -> dict:
             {
                 "eps": eps,
                 "delta": delta,
-                "layer": layer,
-                "p_cav": p_cav,
+                **dict(zip((k for k, _ in GROUPED), labels, strict=True)),
                 "e_inf": e_inf,
                 "St_c": St_c,
                 **_errors(davis_rager_good(St[rebound], St_c, e_inf), e_n[rebound]),
             }
         )
     out = {"normal": normal}
-    if len({g["eps"] for g in normal}) >= 2:
-        eps = np.array([g["eps"] for g in normal])
-        law = fit_power_law({"eps": eps}, np.array([g["St_c"] for g in normal]))
-        out["critical_stokes_law"] = {
-            **law,
-            **_errors(power_law(law, eps=eps), [g["St_c"] for g in normal]),
-        }
+    models = defaultdict(list)  # St_c against eps, for each model (delta and labels)
+    for g in normal:
+        models[(g["delta"], *(g[k] for k, _ in GROUPED))].append(g)
+    laws = []
+    for (delta, *labels), members in models.items():
+        eps = np.array([g["eps"] for g in members])
+        if len(set(eps)) < 2:
+            continue
+        St_c = np.array([g["St_c"] for g in members])
+        law = fit_power_law({"eps": eps}, St_c)
+        model = {"delta": delta, **dict(zip((k for k, _ in GROUPED), labels, strict=True))}
+        laws.append({**law, **_errors(power_law(law, eps=eps), St_c), "model": model})
+    out["critical_stokes_laws"] = laws
+    if len(laws) == 1:  # a table of one model (the usual case)
+        out["critical_stokes_law"] = laws[0]
     rebound = [r for r in ok if r.get("e_t") not in (None, "", "None") and num(r, "e_n") > 0]
     if len(rebound) >= 4:
         features = {k: np.array([num(r, k) for r in rebound]) for k in ("St", "eps")}

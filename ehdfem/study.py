@@ -5,7 +5,9 @@ A study is a TOML file (see studies/*.toml):
     [grid]                        # every combination is one point
     St = {geomspace = [3, 1000, 12]}   # or a list, or {linspace = [a, b, n]}
     eps = [1e-5, 1e-3]
-    layer = ["thin"]              # any CollisionParameters field, plus "tangential"
+    layer = ["thin"]              # any CollisionParameters field, plus "tangential", e.g.
+    cavitation = ["truncate", "mass-conserving"]
+    viscosity = ["barus"]         # with alpha (scaled), see ehdfem.viscosity
     [numerics]
     nodes = 240
     rtol = 5e-5
@@ -41,7 +43,22 @@ from .collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, fi
 from .normal import IntegratorOptions, NormalSolverError, solve_normal
 from .scales import CollisionParameters
 
-PARAMETERS = ("St", "eps", "delta", "p_cav", "e_dry", "layer", "angle", "spin", "inertia_factor")
+PARAMETERS = (
+    "St",
+    "eps",
+    "delta",
+    "p_cav",
+    "e_dry",
+    "layer",
+    "angle",
+    "spin",
+    "inertia_factor",
+    "cavitation",
+    "viscosity",
+    "alpha",
+    "roelands_pressure",
+    "roelands_index",
+)
 GRID_KEYS = (*PARAMETERS, "tangential")
 NUMERICS = ("nodes", "rtol")
 OUTPUTS = (

@@ -1,0 +1,167 @@
+"""e_n and St_c with truncated against mass-conserving cavitation, with and without
+piezoviscosity, for steel and glass spheres hitting a glass plate through a silicone-oil layer.
+
+Physical inputs (SI): sphere radius 6.35 mm, 100 cSt silicone oil (alpha = 1.5e-8 1/Pa, the
+preset), layer 0.3 mm, head-on impacts at speeds from 0.05 to 2 m/s; cavitation pressure the
+oil's vapour pressure (P_cav = -1 atm scaled), e_dry = 1. For each sphere and model the critical
+impact speed is found by bisection in log speed (to 1 %), and St_c is the Stokes number there.
+
+Every finished collision is written at once (atomically) to the CSV, and a run that is stopped
+and started again skips the points already there. Writes
+studies/results/cavitation_piezoviscosity.csv and docs/figures/cavitation_piezoviscosity.png.
+Run: .venv/bin/python studies/cavitation_piezoviscosity.py [--plot-only]
+"""
+
+import csv
+import math
+import sys
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ehdfem.collision import collide  # noqa: E402
+from ehdfem.normal import NormalSolverError  # noqa: E402
+from ehdfem.scales import PhysicalCollision, liquid, material  # noqa: E402
+from ehdfem.study import write_csv  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+TABLE = ROOT / "studies/results/cavitation_piezoviscosity.csv"
+FIGURE = ROOT / "docs/figures/cavitation_piezoviscosity.png"
+SPHERES = ("steel", "glass")
+CAVITATION = ("truncate", "mass-conserving")
+VISCOSITY = ("constant", "barus", "roelands")
+SPEEDS = np.geomspace(0.05, 2.0, 9)
+CRITICAL_RTOL = 0.01
+
+
+def inputs(sphere, speed, cavitation, viscosity):
+    return PhysicalCollision(
+        radius=6.35e-3,
+        sphere=material(sphere),
+        wall=material("glass"),
+        liquid=liquid("silicone_oil_100cst"),
+        speed=float(speed),
+        layer_thickness=3e-4,
+        cavitation=cavitation,
+        viscosity=viscosity,
+    )
+
+
+class Table:
+    """The study's rows, keyed by (sphere, cavitation, viscosity, kind, speed); resumable."""
+
+    def __init__(self, path):
+        self.path = path
+        self.rows = list(csv.DictReader(path.open())) if path.exists() else []
+
+    def key(self, row):
+        return tuple(str(row[k]) for k in ("sphere", "cavitation", "viscosity", "kind", "speed"))
+
+    def get(self, **key):
+        wanted = self.key(key)
+        return next((r for r in self.rows if self.key(r) == wanted), None)
+
+    def add(self, row):
+        self.rows.append({k: str(v) for k, v in row.items()})
+        write_csv(self.path, self.rows)
+
+
+def collision(table, sphere, cavitation, viscosity, speed, kind):
+    """The row of one collision (computed, or read back from the table)."""
+    key = dict(sphere=sphere, cavitation=cavitation, viscosity=viscosity, kind=kind, speed=speed)
+    row = table.get(**key)
+    if row is not None:
+        return row
+    physical = inputs(sphere, speed, cavitation, viscosity)
+    params = physical.dimensionless()
+    start = time.perf_counter()
+    try:
+        normal = collide(physical).normal
+        result = {"status": normal.status, "e_n": normal.e_n, "rebound": normal.rebound}
+    except NormalSolverError as err:
+        result = {"status": f"failed: {err}", "e_n": "", "rebound": ""}
+    row = {
+        **key,
+        "St": params.St,
+        "eps": params.eps,
+        "p_cav": params.p_cav,
+        "alpha": params.alpha,
+        **result,
+        "seconds": round(time.perf_counter() - start, 2),
+    }
+    table.add(row)
+    print(", ".join(f"{k}={v}" for k, v in row.items()), flush=True)
+    return table.get(**key)
+
+
+def critical(table, sphere, cavitation, viscosity):
+    """(critical speed, St there) by bisection in log speed on the rebound outcome."""
+    low, high = SPEEDS[0], SPEEDS[-1]
+    while high / low - 1 > CRITICAL_RTOL:
+        mid = float(f"{math.sqrt(low * high):.6g}")
+        row = collision(table, sphere, cavitation, viscosity, mid, "critical")
+        low, high = (low, mid) if row["rebound"] == "True" else (mid, high)
+    speed = math.sqrt(low * high)
+    return speed, inputs(sphere, speed, cavitation, viscosity).dimensionless().St
+
+
+def run(table):
+    summary = []
+    for sphere in SPHERES:
+        for cavitation in CAVITATION:
+            for viscosity in VISCOSITY:
+                for speed in SPEEDS:
+                    collision(table, sphere, cavitation, viscosity, float(speed), "sweep")
+                speed, St_c = critical(table, sphere, cavitation, viscosity)
+                summary.append((sphere, cavitation, viscosity, speed, St_c))
+    for line in summary:
+        print(
+            "St_c: sphere={} cavitation={} viscosity={} speed={:.4g} m/s St_c={:.4g}".format(*line)
+        )
+    return summary
+
+
+def plot(table):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+    for ax, sphere in zip(axes, SPHERES, strict=True):
+        for cavitation, style in zip(CAVITATION, ("-", "--"), strict=True):
+            for viscosity, colour in zip(VISCOSITY, ("C0", "C1", "C2"), strict=True):
+                rows = [
+                    r
+                    for r in table.rows
+                    if (r["sphere"], r["cavitation"], r["viscosity"], r["kind"])
+                    == (sphere, cavitation, viscosity, "sweep")
+                    and r["e_n"] != ""
+                ]
+                rows.sort(key=lambda r: float(r["St"]))
+                ax.plot(
+                    [float(r["St"]) for r in rows],
+                    [float(r["e_n"]) for r in rows],
+                    style,
+                    color=colour,
+                    marker="o",
+                    ms=3,
+                    label=f"{cavitation}, {viscosity}",
+                )
+        ax.set_xscale("log")
+        ax.set_xlabel("St")
+        ax.set_title(f"{sphere} sphere on glass, 100 cSt silicone oil, x0 = 0.3 mm")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("e_n (e_dry = 1)")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    FIGURE.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(FIGURE, dpi=120)
+    print(f"wrote {FIGURE}")
+
+
+if __name__ == "__main__":
+    table = Table(TABLE)
+    if "--plot-only" not in sys.argv:
+        run(table)
+    plot(table)

@@ -262,19 +262,21 @@ class Film:
             return np.zeros_like(dry)
         return (pressure - self.p_cav < residual / scale) & ~dry
 
-    def switch(self, pressure, fill, cavitated, dry):
+    def switch(self, pressure, fill, cavitated, dry, stiffness):
         """Mass-conserving cavitation: the Elrod-Adams switch after a Newton update.
 
-        A full node whose pressure fell below P_cav ruptures (P = P_cav, theta = 1, and theta
-        becomes its unknown); a cavitated node whose liquid fraction theta reached 1 is full
-        again (theta = 1, P = P_cav, and P becomes its unknown). This is the semismooth Newton
-        for min(P - P_cav, 1 - theta) = 0. Returns (pressure, fill, cavitated).
+        The node unknown is read as one universal variable u, P = P_cav + u (full film, u >= 0)
+        or theta = 1 + u / s (cavity, u < 0), with ``stiffness`` s = (m H a0/dt) / K_ii > 0 the
+        pressure that balances a unit change of theta in the node's equation. A full node whose
+        pressure fell below P_cav ruptures and a cavity whose theta passed 1 refills, the
+        overshoot carried over to the other variable: this is the semismooth Newton for
+        min(P - P_cav, s (1 - theta)) = 0 and it does not cycle at nodes where both vanish.
+        Returns (pressure, fill, cavitated).
         """
-        ruptured = ~cavitated & (pressure < self.p_cav) & ~dry
-        refilled = cavitated & (fill >= 1.0)
-        cavitated = (cavitated & ~refilled & ~dry) | ruptured
-        pressure = np.where(cavitated | refilled, self.p_cav, pressure)
-        fill = np.where(cavitated & ~ruptured, fill, 1.0)
+        u = np.where(cavitated, (fill - 1.0) * stiffness, pressure - self.p_cav)
+        cavitated = (u < 0.0) & ~dry
+        pressure = np.where(cavitated, self.p_cav, np.where(dry, pressure, self.p_cav + u))
+        fill = np.where(cavitated, np.maximum(1.0 + u / stiffness, 0.0), 1.0)
         return pressure, fill, cavitated
 
     def sliding_integrals(

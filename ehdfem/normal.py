@@ -271,7 +271,11 @@ class _Newton:
                 abs(d_velocity) / (abs(velocity) + 1e-3),
             )
             if mass_conserving:
-                pressure, fill, cavitated = self.film.switch(pressure, fill, cavitated, state.dry)
+                diagonal = state.conductance[1]
+                stiffness = state.mass * a0 * h / (step * np.where(diagonal > 0, diagonal, 1.0))
+                pressure, fill, cavitated = self.film.switch(
+                    pressure, fill, cavitated, state.dry, np.maximum(stiffness, 1e-300)
+                )
                 sets = (*sets[:2], cavitated.tobytes())
             if norm <= self.options.newton_tol and damping == 1.0 and sets == previous_sets:
                 return pressure, gap, velocity, fill, cavitated & mass_conserving, state, iteration

@@ -44,7 +44,9 @@ def solve_step(n):
     (St = 1e30 keeps the sphere still): the complementarity film solver alone."""
     radii = radial_grid(n, 0.5, 1.1)
     film = Film(radii, "thin", P_CAV, "mass-conserving")
-    newton = _Newton(film, np.zeros((n, n)), 1e30, IntegratorOptions(newton_tol=1e-10, max_newton=100))
+    newton = _Newton(
+        film, np.zeros((n, n)), 1e30, IntegratorOptions(newton_tol=1e-10, max_newton=100)
+    )
     _, theta, before = manufactured(radii)
     guess = (np.zeros(n), GAP, 0.0, np.ones(n), np.zeros(n, bool))
     pressure, gap, _, fill, cavitated, state, _ = newton.solve(

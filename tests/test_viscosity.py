@@ -1,0 +1,94 @@
+"""Pressure-dependent viscosity against exact results: Barus with alpha = 0, a rigid sphere's
+film force against a quadrature of the exact lubrication solution, the Roelands constants."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from ehdfem.collision import collide
+from ehdfem.compliance import RigidSolids
+from ehdfem.film import radial_grid
+from ehdfem.normal import IntegratorOptions, solve_normal
+from ehdfem.scales import CollisionParameters, PhysicalCollision, liquid, material
+from ehdfem.viscosity import Viscosity
+
+pytestmark = pytest.mark.serial
+
+
+def test_barus_with_zero_alpha_is_the_constant_viscosity():
+    """alpha = 0 is the constant-viscosity collision to round-off (and alpha = 1e-14, where
+    exp(alpha P) - 1 < 1e-9, within 1e-8)."""
+    base = dict(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+    constant = collide(CollisionParameters(**base))
+    for alpha, tol in ((0.0, 1e-14), (1e-14, 1e-8)):
+        barus = collide(CollisionParameters(**base, viscosity="barus", alpha=alpha))
+        assert barus.normal.e_n == pytest.approx(constant.normal.e_n, rel=tol)
+        assert barus.tangential.e_t == pytest.approx(constant.tangential.e_t, rel=tol)
+
+
+def exact_force(gap, velocity, law: Viscosity):
+    """Thin-layer rigid sphere: the reduced pressure q = int_0^P mu0/mu dp obeys the
+    constant-viscosity film, q = -3 V (1/H^2 - 1), so P = q^-1 and F = (1/3) int_X^1 P dH."""
+
+    def pressure(h):
+        q = -3 * velocity * (1 / h**2 - 1)
+        if law.law == "barus":
+            return -math.log1p(-law.alpha * q) / law.alpha
+        from scipy.optimize import brentq
+
+        reduced = lambda p: quad(lambda s: 1 / law.ratio(s)[0], 0, p)[0] - q  # noqa: E731
+        return brentq(reduced, 0.0, 50 * q + 1.0, xtol=1e-12 * q)
+
+    return quad(pressure, gap, 1.0, limit=200, epsabs=0, epsrel=1e-10)[0] / 3
+
+
+@pytest.mark.parametrize(
+    "law",
+    [Viscosity("barus", 5e-4), Viscosity("roelands", 5e-4, roelands_pressure=300.0)],
+    ids=["barus", "roelands"],
+)
+def test_rigid_sphere_force_with_piezoviscosity(law):
+    """A rigid sphere (St = 3) approaching through a thin piezoviscous layer: the film force at
+    each step equals the exact quasi-steady force at that step's X and V within 3e-3 (the
+    rigid constant-viscosity force has the same error on 200 nodes) while the viscosity in the
+    gap grows up to alpha q = 0.7, i.e. about 3.3 times mu0 (Barus)."""
+    params = CollisionParameters(
+        St=3.0,
+        eps=1.0,
+        viscosity=law.law,
+        alpha=law.alpha,
+        roelands_pressure=law.roelands_pressure,
+    )
+    radii = radial_grid(200, 0.1, 1.05 * math.sqrt(2))
+    hist = solve_normal(params, RigidSolids(radii), IntegratorOptions(rtol=1e-5)).history
+    steps = np.linspace(5, len(hist.time) - 5, 12).astype(int)
+    largest = max(-3 * hist.velocity[i] / hist.gap[i] ** 2 for i in steps) * law.alpha
+    assert 0.5 < largest < 0.9
+    for i in steps:
+        exact = exact_force(hist.gap[i], hist.velocity[i], law)
+        assert hist.force[i] == pytest.approx(exact, rel=3e-3)
+
+
+def test_roelands_constants_from_physical_inputs():
+    """Roelands from physical inputs: the slope d ln(mu)/dp at p = 0 is alpha, and at
+    p = p_r = 1.96e8 Pa the classical form gives mu/mu0 = exp((ln mu0 + 9.67)(2^Z - 1))."""
+    oil = liquid("silicone_oil_100cst")
+    physical = PhysicalCollision(
+        radius=6.35e-3,
+        sphere=material("steel"),
+        wall=material("glass"),
+        liquid=oil,
+        speed=1.0,
+        layer_thickness=3e-4,
+        viscosity="roelands",
+    )
+    params = physical.dimensionless()
+    scale = oil.viscosity * 1.0 * 6.35e-3 / 3e-4**2
+    law = params.viscosity_law()
+    _, slope = law.ratio(1e-9)
+    assert slope / scale == pytest.approx(oil.pressure_viscosity, rel=1e-6)
+    z = params.roelands_index
+    ratio, _ = law.ratio(1.96e8 / scale)
+    assert math.log(ratio) == pytest.approx((math.log(oil.viscosity) + 9.67) * (2**z - 1), 1e-12)

@@ -83,6 +83,7 @@ case "$job" in
     bench) setup
         "$PY" benchmarks/normal_collision.py "$@"
         "$PY" benchmarks/sweep.py "$@"
+        "$PY" benchmarks/film_options.py
         mpirun -n 2 "$PY" benchmarks/fem_collision.py "$@" ;;
     study) setup; run_study ;;
     *) echo "usage: bash make.sh setup|example|test|lint|bench|study [args]" >&2; exit 2 ;;

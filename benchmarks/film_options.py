@@ -1,0 +1,80 @@
+"""Cost of the film options: time per collision relative to truncated cavitation at constant
+viscosity (half-space model, 240 film nodes, thin layer, head-on).
+
+Cases: St = 10, eps = 1e-3, P_cav = -2 (dimensionless), and the main job's physical collision
+(steel on glass through 0.3 mm of 100 cSt silicone oil at 1 m/s), each with cavitation
+truncate / mass-conserving and viscosity constant / Barus / Roelands. Each time is the best of
+three runs. Writes benchmarks/results/film_options.json.
+Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/film_options.py
+"""
+
+import json
+import time
+from pathlib import Path
+
+from ehdfem.collision import collide
+from ehdfem.scales import CollisionParameters, PhysicalCollision, liquid, material
+
+OUT = Path(__file__).resolve().parent / "results" / "film_options.json"
+OPTIONS = [
+    (cavitation, viscosity)
+    for viscosity in ("constant", "barus", "roelands")
+    for cavitation in ("truncate", "mass-conserving")
+]
+
+
+def dimensionless(cavitation, viscosity):
+    extra = {"alpha": 1e-3, "roelands_pressure": 2e3} if viscosity != "constant" else {}
+    return CollisionParameters(
+        St=10.0, eps=1e-3, p_cav=-2.0, cavitation=cavitation, viscosity=viscosity, **extra
+    )
+
+
+def physical(cavitation, viscosity):
+    return PhysicalCollision(
+        radius=6.35e-3,
+        sphere=material("steel"),
+        wall=material("glass"),
+        liquid=liquid("silicone_oil_100cst"),
+        speed=1.0,
+        layer_thickness=3e-4,
+        cavitation=cavitation,
+        viscosity=viscosity,
+    )
+
+
+def timed(inputs):
+    best, result = float("inf"), None
+    for _ in range(3):
+        start = time.perf_counter()
+        result = collide(inputs).normal
+        best = min(best, time.perf_counter() - start)
+    return best, result
+
+
+def main():
+    rows = []
+    for case, build in (("St=10, eps=1e-3, P_cav=-2", dimensionless), ("main job", physical)):
+        reference = None
+        for cavitation, viscosity in OPTIONS:
+            seconds, result = timed(build(cavitation, viscosity))
+            reference = reference or seconds
+            row = {
+                "case": case,
+                "cavitation": cavitation,
+                "viscosity": viscosity,
+                "seconds": round(seconds, 3),
+                "relative": round(seconds / reference, 2),
+                "e_n": result.e_n,
+                "steps": result.steps,
+                "rejected_steps": result.rejected_steps,
+            }
+            rows.append(row)
+            print(json.dumps(row), flush=True)
+    OUT.parent.mkdir(parents=True, exist_ok=True)
+    OUT.write_text(json.dumps(rows, indent=2) + "\n")
+    print(f"wrote {OUT}")
+
+
+if __name__ == "__main__":
+    main()

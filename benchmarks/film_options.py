@@ -1,8 +1,8 @@
 """Cost of the film options: time per collision relative to truncated cavitation at constant
-viscosity (half-space model, 240 film nodes, thin layer, head-on).
+viscosity (half-space model, 240 film nodes, thin layer).
 
 Cases: St = 10, eps = 1e-3, P_cav = -2 (dimensionless), and the main job's physical collision
-(steel on glass through 0.3 mm of 100 cSt silicone oil at 1 m/s), each with cavitation
+(steel on glass through 0.3 mm of 100 cSt silicone oil at 1 m/s, 30 degrees), each with cavitation
 truncate / mass-conserving and viscosity constant / Barus / Roelands. Each time is the best of
 three runs. Writes benchmarks/results/film_options.json.
 Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/film_options.py
@@ -12,8 +12,9 @@ import json
 import time
 from pathlib import Path
 
+from ehdfem.cli import EXAMPLE
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters, PhysicalCollision, liquid, material
+from ehdfem.scales import CollisionParameters, from_presets
 
 OUT = Path(__file__).resolve().parent / "results" / "film_options.json"
 OPTIONS = [
@@ -31,16 +32,7 @@ def dimensionless(cavitation, viscosity):
 
 
 def physical(cavitation, viscosity):
-    return PhysicalCollision(
-        radius=6.35e-3,
-        sphere=material("steel"),
-        wall=material("glass"),
-        liquid=liquid("silicone_oil_100cst"),
-        speed=1.0,
-        layer_thickness=3e-4,
-        cavitation=cavitation,
-        viscosity=viscosity,
-    )
+    return from_presets(**EXAMPLE, cavitation=cavitation, viscosity=viscosity)
 
 
 def timed(inputs):

@@ -21,7 +21,7 @@ from .closedform import GROUPED, fit_table
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
 from .film import CAVITATION
 from .normal import IntegratorOptions, NormalSolverError
-from .scales import CollisionParameters, PhysicalCollision, liquid, material
+from .scales import CollisionParameters, PhysicalCollision, from_presets
 from .study import Study, critical_stokes, run_study
 from .viscosity import LAWS as VISCOSITY_LAWS
 
@@ -54,18 +54,6 @@ def _collision_arguments(c) -> None:
         help="cavitation pressure (p_cav - p_ambient) x0^2/(mu V0 a), <= 0; default: none",
     )
     dim.add_argument("--spin", type=float, default=0.0, help="initial spin a Omega0 / V0")
-    dim.add_argument(
-        "--alpha",
-        type=float,
-        default=0.0,
-        help="pressure-viscosity coefficient scaled by mu V0 a / x0^2, >= 0 (with --viscosity)",
-    )
-    dim.add_argument(
-        "--roelands-pressure",
-        type=float,
-        help="Roelands p_r = 1.96e8 Pa scaled by mu V0 a / x0^2, > 0 (--viscosity roelands)",
-    )
-    dim.add_argument("--roelands-index", type=float, default=0.6, help="Roelands index Z, (0, 2]")
     phys = c.add_argument_group("physical inputs (SI)")
     phys.add_argument("--sphere", help="sphere material preset (e.g. steel, glass)")
     phys.add_argument("--wall", help="wall material preset")
@@ -89,7 +77,7 @@ def _collision_arguments(c) -> None:
         "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
     )
     common.add_argument("--layer", choices=("thin", "immersed"), default="thin")
-    _film_arguments(common)
+    _film_arguments(common, dim)
     common.add_argument(
         "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
     )
@@ -140,8 +128,9 @@ def _collision_arguments(c) -> None:
     )
 
 
-def _film_arguments(group) -> None:
-    """The film's cavitation model and viscosity law (collide, render, critical)."""
+def _film_arguments(group, scaled) -> None:
+    """The film's cavitation model and viscosity law (collide, render, critical); the scaled
+    viscosity constants go into the ``scaled`` argument group."""
     group.add_argument(
         "--cavitation",
         choices=CAVITATION,
@@ -153,6 +142,20 @@ def _film_arguments(group) -> None:
         choices=VISCOSITY_LAWS,
         default="constant",
         help="viscosity against pressure: constant, barus or roelands",
+    )
+    scaled.add_argument(
+        "--alpha",
+        type=float,
+        default=0.0,
+        help="pressure-viscosity coefficient scaled by mu V0 a / x0^2, >= 0 (with --viscosity)",
+    )
+    scaled.add_argument(
+        "--roelands-pressure",
+        type=float,
+        help="Roelands p_r = 1.96e8 Pa scaled by mu V0 a / x0^2, > 0 (--viscosity roelands)",
+    )
+    scaled.add_argument(
+        "--roelands-index", type=float, default=0.6, help="Roelands index Z, (0, 2]"
     )
 
 
@@ -186,10 +189,7 @@ def _parser() -> argparse.ArgumentParser:
     k.add_argument("--delta", type=float, default=0.01, help="x0/a, (0, 1)")
     k.add_argument("--layer", choices=("thin", "immersed"), default="thin")
     k.add_argument("--p-cav", type=float, default=None, help="cavitation pressure (scaled), <= 0")
-    _film_arguments(k)
-    k.add_argument("--alpha", type=float, default=0.0, help="scaled pressure-viscosity, >= 0")
-    k.add_argument("--roelands-pressure", type=float, help="scaled Roelands p_r, > 0")
-    k.add_argument("--roelands-index", type=float, default=0.6, help="Roelands index Z")
+    _film_arguments(k, k)
     k.add_argument("--bracket", type=float, nargs=2, default=(1.0, 1000.0), metavar=("LOW", "HIGH"))
     k.add_argument("--rtol", type=float, default=1e-3, help="relative width of the final bracket")
     k.add_argument("--nodes", type=int, default=DEFAULT_NODES)
@@ -230,14 +230,8 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
                 "physical inputs take --pressure-viscosity [1/Pa], not the scaled --alpha or "
                 "--roelands-pressure"
             )
-        return PhysicalCollision(
-            radius=values["radius"],
-            sphere=material(values["sphere"]),
-            wall=material(values["wall"]),
-            liquid=liquid(values["liquid"]),
-            speed=values["speed"],
-            angle=values["angle"],
-            layer_thickness=values["layer_thickness"],
+        return from_presets(
+            **values,
             layer=args.layer,
             e_dry=args.e_dry,
             cavitation=args.cavitation,

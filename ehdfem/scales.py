@@ -337,3 +337,10 @@ class PhysicalCollision:
             energy=self.mass * v0**2,
             sphere_radius=a,
         )
+
+
+def from_presets(**values) -> PhysicalCollision:
+    """A :class:`PhysicalCollision` (SI inputs) whose ``sphere``, ``wall`` (materials) and
+    ``liquid`` are given by preset name."""
+    presets = {"sphere": material, "wall": material, "liquid": liquid}
+    return PhysicalCollision(**{k: presets[k](v) if k in presets else v for k, v in values.items()})

@@ -24,9 +24,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from ehdfem.cli import EXAMPLE  # noqa: E402
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
-from ehdfem.scales import PhysicalCollision, liquid, material  # noqa: E402
+from ehdfem.scales import from_presets  # noqa: E402
 from ehdfem.study import write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -40,13 +41,9 @@ CRITICAL_RTOL = 0.01
 
 
 def inputs(sphere, speed, cavitation, viscosity):
-    return PhysicalCollision(
-        radius=6.35e-3,
-        sphere=material(sphere),
-        wall=material("glass"),
-        liquid=liquid("silicone_oil_100cst"),
-        speed=float(speed),
-        layer_thickness=3e-4,
+    """The main job's collision, head-on, with this sphere, speed and film models."""
+    return from_presets(
+        **{**EXAMPLE, "sphere": sphere, "speed": float(speed), "angle": 0.0},
         cavitation=cavitation,
         viscosity=viscosity,
     )

@@ -391,6 +391,8 @@ def _conductance(gauss_r, length, h_left, h_right, p_left, p_right, viscosity: V
         fluidity, dlog = 1.0, None
     else:
         ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right))
+        if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
+            raise FilmError("the viscosity overflows (mu/mu0 > 1e308): pressure iterate too high")
         fluidity = 1.0 / ratio
     k = (weight * h**3 * fluidity).sum(axis=1)
     dh = weight * 3.0 * h**2 * fluidity

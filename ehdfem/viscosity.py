@@ -83,5 +83,5 @@ class Viscosity:
             base = 1.0 + compressive / p_r
             exponent = self.alpha * p_r / z * (base**z - 1.0)
             slope = np.where(pressure > 0.0, self.alpha * base ** (z - 1.0), 0.0)
-        with np.errstate(over="ignore"):  # inf (a frozen film) only in far-off Newton iterates
+        with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
             return np.exp(exponent), slope

@@ -9,7 +9,7 @@ from scipy.integrate import quad
 
 from ehdfem.collision import collide
 from ehdfem.compliance import RigidSolids
-from ehdfem.film import radial_grid
+from ehdfem.film import Film, FilmError, radial_grid
 from ehdfem.normal import IntegratorOptions, solve_normal
 from ehdfem.scales import CollisionParameters, PhysicalCollision, liquid, material
 from ehdfem.viscosity import Viscosity
@@ -92,3 +92,14 @@ def test_roelands_constants_from_physical_inputs():
     z = params.roelands_index
     ratio, _ = law.ratio(1.96e8 / scale)
     assert math.log(ratio) == pytest.approx((math.log(oil.viscosity) + 9.67) * (2**z - 1), 1e-12)
+
+
+def test_film_refuses_an_infinite_viscosity():
+    """A pressure iterate at which exp(alpha P) overflows would let the node carry any pressure
+    (zero conductance): the film refuses it, so the integrator retries the step smaller."""
+    radii = radial_grid(20, 0.3, 1.5)
+    film = Film(radii, "thin", viscosity=Viscosity("barus", 1.0))
+    h = 0.1 + 0.5 * radii**2
+    film.assemble(h, np.full(20, 700.0))  # exp(700) is finite
+    with pytest.raises(FilmError, match="viscosity overflows"):
+        film.assemble(h, np.full(20, 800.0))

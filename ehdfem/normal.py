@@ -245,7 +245,7 @@ class _Newton:
             if refresh or stale or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
                 self._factorise(state, fixed, step, a0, fill, h, theta_nodes)
                 refresh = False
-            rows = None if mass_conserving else partial(self._rows, state, step=step, a0=a0)
+            rows = partial(self._rows, state, step=step, a0=a0, fill=fill, theta_nodes=theta_nodes)
             try:
                 update = self.factor.solve(rhs, fixed, rows)
             except _TooManyChanges:
@@ -299,10 +299,11 @@ class _Newton:
         self.factor = _Factorisation(jacobian, fixed, a0 / step, theta_nodes.tobytes())
         self.factorisations += 1
 
-    def _rows(self, state: FilmState, rows, *, step, a0, fill=1.0):
+    def _rows(self, state: FilmState, rows, *, step, a0, fill=1.0, theta_nodes=None):
         """Film rows of the Jacobian, d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) =
         ((m theta a0/dt + D) C + K + E, (m theta a0/dt + D) 1, 0), for the node indices
-        ``rows`` (E: the viscosity's d(K P)/dP - K)."""
+        ``rows`` (E: the viscosity's d(K P)/dP - K), none of them in ``theta_nodes``: the
+        columns of those hold d/d(theta), which is zero off their own rows."""
         n = len(state.mass)
         lower, diag, upper = state.dflux_dH
         diag = diag + state.mass * fill * a0 / step
@@ -318,6 +319,8 @@ class _Newton:
             out[j, below] += k_low[rows]
             out[j, above] += k_up[rows]
         out[:, n] = lower[rows] + diag[rows] + upper[rows]
+        if theta_nodes is not None:
+            out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out
 
     def _jacobian(self, state: FilmState, fixed, step, a0, fill):
@@ -376,7 +379,7 @@ class _Factorisation:
         y = self._base_solve(rhs)
         if len(changed) == 0:
             return y
-        if len(changed) > self.MAX_CHANGES or film_rows is None:
+        if len(changed) > self.MAX_CHANGES:
             raise _TooManyChanges
         new_rows = np.zeros((len(changed), len(rhs)))
         now_fixed = fixed[changed]

@@ -60,3 +60,29 @@ def test_fit_table_recovers_synthetic_laws():
     assert (t["coefficient"], t["St"], t["eps"]) == pytest.approx((0.8, -0.6, 0.1), rel=1e-8)
     assert fit["spin_change"]["coefficient"] == pytest.approx(2.0, rel=1e-8)
     assert t["max_error"] < 1e-12
+
+
+def test_fit_table_keeps_film_models_apart():
+    """A table with two cavitation models (St_c = 3 eps^-0.1 and 5 eps^-0.2): each model gets
+    its own e_n fits and St_c law, recovered to 1e-10, instead of one fit over both."""
+    laws = {"truncate": (3.0, -0.1), "mass-conserving": (5.0, -0.2)}
+    rows = [
+        {
+            "status": "ok:rebound",
+            "eps": eps,
+            "delta": 0.01,
+            "cavitation": model,
+            "St": St,
+            "e_n": float(cf.davis_rager_good(St, a * eps**b, 0.9)),
+        }
+        for model, (a, b) in laws.items()
+        for eps in (1e-5, 1e-3)
+        for St in np.geomspace(10, 1000, 12)
+    ]
+    fit = cf.fit_table(rows)
+    assert len(fit["normal"]) == 4 and "critical_stokes_law" not in fit
+    found = {law["model"]["cavitation"]: law for law in fit["critical_stokes_laws"]}
+    for model, (a, b) in laws.items():
+        assert (found[model]["coefficient"], found[model]["eps"]) == pytest.approx(
+            (a, b), rel=1e-10
+        )

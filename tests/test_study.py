@@ -121,6 +121,9 @@ def test_critical_stokes_number_agrees_with_a_scan():
         ("[grid]\nSt = {logspace = [1, 2, 3]}\neps = [0.1]\n", "geomspace"),
         ("[grid]\nSt = [1.0]\neps = [0.1]\n[numerics]\nnodes = 5\n", "nodes"),
         ("[grid\n", "study file"),
+        ('[grid]\nSt = [1.0]\neps = [0.1]\ncavitation = ["jfo"]\n', "cavitation"),
+        ('[grid]\nSt = [1.0]\neps = [0.1]\nviscosity = ["roelands"]\n', "roelands_pressure"),
+        ('[grid]\nSt = [1.0]\neps = [0.1]\nviscosity = ["barus"]\nalpha = [-1]\n', "alpha"),
     ],
 )
 def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):

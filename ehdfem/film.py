@@ -266,8 +266,9 @@ class Film:
         """Mass-conserving cavitation: the Elrod-Adams switch after a Newton update.
 
         The node unknown is read as one universal variable u, P = P_cav + u (full film, u >= 0)
-        or theta = 1 + u / s (cavity, u < 0), with ``stiffness`` s = (m H a0/dt) / K_ii > 0 the
-        pressure that balances a unit change of theta in the node's equation. A full node whose
+        or theta = 1 + u / s (cavity, u < 0), with ``stiffness`` s = (m H a0/dt) / K_ii > 0 (at
+        wet nodes) the pressure that balances a unit change of theta in the node's equation
+        (scaled by mu V0 a / x0^2). A full node whose
         pressure fell below P_cav ruptures and a cavity whose theta passed 1 refills, the
         overshoot carried over to the other variable: this is the semismooth Newton for
         min(P - P_cav, s (1 - theta)) = 0 and it does not cycle at nodes where both vanish.
@@ -276,7 +277,8 @@ class Film:
         u = np.where(cavitated, (fill - 1.0) * stiffness, pressure - self.p_cav)
         cavitated = (u < 0.0) & ~dry
         pressure = np.where(cavitated, self.p_cav, np.where(dry, pressure, self.p_cav + u))
-        fill = np.where(cavitated, np.maximum(1.0 + u / stiffness, 0.0), 1.0)
+        fill = np.ones_like(fill)
+        fill[cavitated] = np.maximum(1.0 + u[cavitated] / stiffness[cavitated], 0.0)
         return pressure, fill, cavitated
 
     def sliding_integrals(

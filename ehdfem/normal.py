@@ -274,7 +274,7 @@ class _Newton:
                 diagonal = state.conductance[1]
                 stiffness = state.mass * a0 * h / (step * np.where(diagonal > 0, diagonal, 1.0))
                 pressure, fill, cavitated = self.film.switch(
-                    pressure, fill, cavitated, state.dry, np.maximum(stiffness, 1e-300)
+                    pressure, fill, cavitated, state.dry, stiffness
                 )
                 sets = (*sets[:2], cavitated.tobytes())
             if norm <= self.options.newton_tol and damping == 1.0 and sets == previous_sets:

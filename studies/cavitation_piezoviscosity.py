@@ -126,7 +126,7 @@ def run(table):
 def plot(table):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
     for ax, sphere in zip(axes, SPHERES, strict=True):
-        for cavitation, style in zip(CAVITATION, ("-", "--"), strict=True):
+        for cavitation, style, marker in zip(CAVITATION, ("-", ":"), ("o", "s"), strict=True):
             for viscosity, colour in zip(VISCOSITY, ("C0", "C1", "C2"), strict=True):
                 rows = [
                     r
@@ -141,8 +141,9 @@ def plot(table):
                     [float(r["e_n"]) for r in rows],
                     style,
                     color=colour,
-                    marker="o",
-                    ms=3,
+                    marker=marker,
+                    ms=3.5,
+                    mfc="none" if cavitation == "mass-conserving" else colour,
                     label=f"{cavitation}, {viscosity}",
                 )
         ax.set_xscale("log")

@@ -58,6 +58,26 @@ def test_physical_collision_reports_si_values(capsys):
     assert result["si"]["contact_time_s"] > 0 and result["St"] > 1
 
 
+def test_film_options_reach_the_collision(capsys):
+    """--cavitation and --viscosity with a physical alpha arrive scaled in the results:
+    alpha = alpha_SI mu V0 a / x0^2 for the example's oil, speed and layer."""
+    args = [
+        "--example",
+        "--speed",
+        "0.2",
+        "--cavitation",
+        "mass-conserving",
+        "--viscosity",
+        "barus",
+    ]
+    assert main(["collide", *args, "--pressure-viscosity", "2e-8", "--json", "-"]) == 0
+    text = capsys.readouterr().out
+    result = json.loads(text[text.index("{") :])
+    scale = 0.0965 * 0.2 * np.cos(np.radians(30)) * 6.35e-3 / 3e-4**2
+    assert result["cavitation"] == "mass-conserving" and result["viscosity"] == "barus"
+    assert result["alpha"] == pytest.approx(2e-8 * scale, rel=1e-12)
+
+
 @pytest.mark.parametrize(
     ("args", "name"),
     [
@@ -75,6 +95,11 @@ def test_physical_collision_reports_si_values(capsys):
         (["--example", "--sphere", "unobtainium"], "unobtainium"),
         (["--example", "--liquid", "mercury_tea"], "mercury_tea"),
         (["--St", "10"], "eps"),
+        (["--St", "10", "--eps", "1e-3", "--viscosity", "barus", "--alpha=-1"], "alpha"),
+        (["--St", "10", "--eps", "1e-3", "--viscosity", "roelands"], "roelands_pressure"),
+        (["--St", "10", "--eps", "1e-3", "--pressure-viscosity", "1e-8"], "--alpha"),
+        (["--example", "--alpha", "0.1"], "--pressure-viscosity"),
+        (["--example", "--viscosity", "barus", "--pressure-viscosity", "1"], "pressure_viscosity"),
     ],
 )
 def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):

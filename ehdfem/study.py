@@ -34,6 +34,7 @@ import os
 import socket
 import time
 import tomllib
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -41,7 +42,7 @@ import numpy as np
 from . import __version__, checks
 from .collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
 from .normal import IntegratorOptions, NormalSolverError, solve_normal
-from .scales import CollisionParameters
+from .scales import CollisionParameters, PhysicalCollision
 
 PARAMETERS = (
     "St",
@@ -289,33 +290,77 @@ def critical_stokes(
     if lo >= hi:
         raise checks.InputError(f"bracket = {bracket} must be increasing")
     checks.number("rtol", rtol, lower=1e-8, upper=0.5)
-    evaluations = 0
     values = {name: getattr(params, name) for name in PARAMETERS}
     widest = CollisionParameters(**{**values, "St": 4 * hi})
     compliance = elasticity(widest, film_radii(widest, nodes), model)
 
     def rebounds(St):
-        nonlocal evaluations
-        evaluations += 1
         return solve_normal(
             CollisionParameters(**{**values, "St": St}), compliance, options
         ).rebound
 
-    while rebounds(lo):  # widen until the low end sticks and the high end rebounds
-        lo, hi = lo / 4, lo
-        if lo < 1e-3:
-            raise checks.InputError(
-                "the sphere rebounds even at St = 1e-3: no critical Stokes number"
-            )
-    while not rebounds(hi):
-        lo, hi = hi, hi * 4
-        if hi > 1e7:
-            raise checks.InputError("the sphere sticks up to St = 1e7")
-    while hi / lo - 1 > rtol:
-        mid = math.sqrt(lo * hi)
-        lo, hi = (lo, mid) if rebounds(mid) else (mid, hi)
+    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7))
     return {
         "St_c": math.sqrt(lo * hi),
+        "bracket": [lo, hi],
+        "rtol": rtol,
+        "collisions": evaluations,
+    }
+
+
+def threshold(rebounds, low, high, rtol, name, limits):
+    """The bracket [low, high] (relative width <= rtol) of the value of ``name`` where the
+    outcome ``rebounds(value)`` turns from False to True, by bisection in log after widening
+    the starting bracket by factors of 4 within ``limits``. Returns (low, high, evaluations)."""
+    evaluations = 0
+
+    def outcome(value):
+        nonlocal evaluations
+        evaluations += 1
+        return rebounds(value)
+
+    while outcome(low):  # widen until the low end sticks and the high end rebounds
+        low, high = low / 4, low
+        if low < limits[0]:
+            raise checks.InputError(
+                f"the sphere rebounds even at {name} = {limits[0]:g}: no critical {name}"
+            )
+    while not outcome(high):
+        low, high = high, high * 4
+        if high > limits[1]:
+            raise checks.InputError(f"the sphere sticks up to {name} = {limits[1]:g}")
+    while high / low - 1 > rtol:
+        mid = math.sqrt(low * high)
+        low, high = (low, mid) if outcome(mid) else (mid, high)
+    return low, high, evaluations
+
+
+def critical_speed(
+    physical: PhysicalCollision,
+    bracket=(0.01, 10.0),
+    rtol: float = 0.01,
+    model: str = "halfspace",
+    rebounds=None,
+) -> dict:
+    """The critical impact speed [m/s] of a physical collision (its other inputs fixed; eps,
+    P_cav and alpha change with the speed) and St_c, the Stokes number there, by bisection in
+    log speed on the rebound outcome. ``rebounds(speed)``: the outcome (default: a collision
+    with ``model``; pass a cached one to resume a study)."""
+    checks.number("rtol", rtol, lower=1e-8, upper=0.5)
+    lo, hi = (
+        checks.positive("bracket low", bracket[0]),
+        checks.positive("bracket high", bracket[1]),
+    )
+    if rebounds is None:
+
+        def rebounds(speed):
+            return collide(replace(physical, speed=speed), model=model).normal.rebound
+
+    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "speed [m/s]", (1e-4, 1e3))
+    speed = math.sqrt(lo * hi)
+    return {
+        "speed": speed,
+        "St_c": replace(physical, speed=speed).dimensionless().St,
         "bracket": [lo, hi],
         "rtol": rtol,
         "collisions": evaluations,

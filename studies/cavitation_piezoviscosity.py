@@ -13,7 +13,6 @@ Run: .venv/bin/python studies/cavitation_piezoviscosity.py [--plot-only]
 """
 
 import csv
-import math
 import sys
 import time
 from pathlib import Path
@@ -28,7 +27,7 @@ from ehdfem.cli import EXAMPLE  # noqa: E402
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
 from ehdfem.scales import from_presets  # noqa: E402
-from ehdfem.study import write_csv  # noqa: E402
+from ehdfem.study import critical_speed, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies/results/cavitation_piezoviscosity.csv"
@@ -98,13 +97,18 @@ def collision(table, sphere, cavitation, viscosity, speed, kind):
 
 def critical(table, sphere, cavitation, viscosity):
     """(critical speed, St there) by bisection in log speed on the rebound outcome."""
-    low, high = SPEEDS[0], SPEEDS[-1]
-    while high / low - 1 > CRITICAL_RTOL:
-        mid = float(f"{math.sqrt(low * high):.6g}")
-        row = collision(table, sphere, cavitation, viscosity, mid, "critical")
-        low, high = (low, mid) if row["rebound"] == "True" else (mid, high)
-    speed = math.sqrt(low * high)
-    return speed, inputs(sphere, speed, cavitation, viscosity).dimensionless().St
+
+    def rebounds(speed):
+        row = collision(table, sphere, cavitation, viscosity, speed, "critical")
+        return row["rebound"] == "True"
+
+    found = critical_speed(
+        inputs(sphere, SPEEDS[0], cavitation, viscosity),
+        (SPEEDS[0], SPEEDS[-1]),
+        CRITICAL_RTOL,
+        rebounds=rebounds,
+    )
+    return found["speed"], found["St_c"]
 
 
 def run(table):

@@ -6,6 +6,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -14,8 +15,8 @@ from mpi4py import MPI
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters
-from ehdfem.study import Study, critical_stokes, run_study
+from ehdfem.scales import CollisionParameters, from_presets
+from ehdfem.study import Study, critical_speed, critical_stokes, run_study
 
 SMALL = """
 name = "small"
@@ -109,6 +110,27 @@ def test_critical_stokes_number_agrees_with_a_scan():
     first = scan[outcome.index(True)]
     assert not any(outcome[: outcome.index(True)]) and all(outcome[outcome.index(True) :])
     assert lo / 1.0101 <= first <= hi * 1.0101
+
+
+@pytest.mark.serial
+def test_critical_speed_agrees_with_the_critical_stokes_number():
+    """A physical collision's critical speed (eps, P_cav changing with the speed): St there
+    equals St_c of the dimensionless search at that speed's eps and P_cav, to the two
+    tolerances (1 % in speed, 0.2 % in St)."""
+    physical = from_presets(
+        sphere="glass",
+        wall="glass",
+        liquid="silicone_oil_100cst",
+        radius=3e-3,
+        speed=1.0,
+        layer_thickness=2e-4,
+    )
+    found = critical_speed(physical, bracket=(0.05, 2.0), rtol=0.01)
+    at = replace(physical, speed=found["speed"]).dimensionless()
+    reference = critical_stokes(at, bracket=(1.0, 50.0), rtol=2e-3)
+    assert found["St_c"] == pytest.approx(reference["St_c"], rel=0.012)
+    assert collide(replace(physical, speed=found["bracket"][1])).normal.rebound
+    assert not collide(replace(physical, speed=found["bracket"][0])).normal.rebound
 
 
 @pytest.mark.serial

@@ -258,6 +258,28 @@ def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
     return path
 
 
+class ResultTable:
+    """A study script's rows in a CSV, keyed by ``keys`` (column names): ``get`` finds a
+    finished row, ``add`` appends one and rewrites the CSV atomically, so a script that is
+    stopped and started again computes only what is missing. Values are kept as strings."""
+
+    def __init__(self, path, keys):
+        self.path, self.keys = Path(path), tuple(keys)
+        self.rows = list(csv.DictReader(self.path.open())) if self.path.exists() else []
+
+    def _key(self, row):
+        return tuple(str(row[k]) for k in self.keys)
+
+    def get(self, **key):
+        wanted = self._key(key)
+        return next((r for r in self.rows if self._key(r) == wanted), None)
+
+    def add(self, row):
+        self.rows.append({k: str(v) for k, v in row.items()})
+        write_csv(self.path, self.rows)
+        return self.rows[-1]
+
+
 def computed_or_loaded(path: Path, compute, load: bool) -> list[dict]:
     """The rows of a study script: read from the CSV ``path`` when ``load`` (to redraw figures),
     otherwise ``compute()`` them and write them there atomically."""

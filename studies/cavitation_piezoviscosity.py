@@ -12,7 +12,6 @@ studies/results/cavitation_piezoviscosity.csv and docs/figures/cavitation_piezov
 Run: .venv/bin/python studies/cavitation_piezoviscosity.py [--plot-only]
 """
 
-import csv
 import sys
 import time
 from pathlib import Path
@@ -27,7 +26,7 @@ from ehdfem.cli import EXAMPLE  # noqa: E402
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
 from ehdfem.scales import from_presets  # noqa: E402
-from ehdfem.study import critical_speed, write_csv  # noqa: E402
+from ehdfem.study import ResultTable, critical_speed  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies/results/cavitation_piezoviscosity.csv"
@@ -46,25 +45,6 @@ def inputs(sphere, speed, cavitation, viscosity):
         cavitation=cavitation,
         viscosity=viscosity,
     )
-
-
-class Table:
-    """The study's rows, keyed by (sphere, cavitation, viscosity, kind, speed); resumable."""
-
-    def __init__(self, path):
-        self.path = path
-        self.rows = list(csv.DictReader(path.open())) if path.exists() else []
-
-    def key(self, row):
-        return tuple(str(row[k]) for k in ("sphere", "cavitation", "viscosity", "kind", "speed"))
-
-    def get(self, **key):
-        wanted = self.key(key)
-        return next((r for r in self.rows if self.key(r) == wanted), None)
-
-    def add(self, row):
-        self.rows.append({k: str(v) for k, v in row.items()})
-        write_csv(self.path, self.rows)
 
 
 def collision(table, sphere, cavitation, viscosity, speed, kind):
@@ -90,9 +70,8 @@ def collision(table, sphere, cavitation, viscosity, speed, kind):
         **result,
         "seconds": round(time.perf_counter() - start, 2),
     }
-    table.add(row)
     print(", ".join(f"{k}={v}" for k, v in row.items()), flush=True)
-    return table.get(**key)
+    return table.add(row)
 
 
 def critical(table, sphere, cavitation, viscosity):
@@ -163,7 +142,7 @@ def plot(table):
 
 
 if __name__ == "__main__":
-    table = Table(TABLE)
+    table = ResultTable(TABLE, ("sphere", "cavitation", "viscosity", "kind", "speed"))
     if "--plot-only" not in sys.argv:
         run(table)
     plot(table)

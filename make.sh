@@ -9,6 +9,7 @@
 #   lint     ruff check and ruff format --check
 #   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
+#   validate the validation report docs/validation.md (both models against published results)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -86,5 +87,6 @@ case "$job" in
         "$PY" benchmarks/film_options.py
         mpirun -n 2 "$PY" benchmarks/fem_collision.py "$@" ;;
     study) setup; run_study ;;
-    *) echo "usage: bash make.sh setup|example|test|lint|bench|study [args]" >&2; exit 2 ;;
+    validate) setup; "$PY" studies/validation.py ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|validate [args]" >&2; exit 2 ;;
 esac

@@ -17,7 +17,8 @@ from ehdfem.collision import DEFAULT_NODES, film_radii
 from ehdfem.compliance.fem import FESolids
 from ehdfem.compliance.halfspace import HalfSpaceCompliance
 from ehdfem.normal import solve_normal
-from ehdfem.scales import PhysicalCollision, liquid, material
+from ehdfem.presets import liquid, material
+from ehdfem.scales import PhysicalCollision
 
 
 def main():

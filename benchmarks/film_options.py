@@ -12,8 +12,8 @@ import json
 import time
 from pathlib import Path
 
-from ehdfem.cli import EXAMPLE
 from ehdfem.collision import collide
+from ehdfem.presets import EXAMPLE
 from ehdfem.scales import CollisionParameters, from_presets
 
 OUT = Path(__file__).resolve().parent / "results" / "film_options.json"

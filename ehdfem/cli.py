@@ -16,24 +16,18 @@ from pathlib import Path
 
 import numpy as np
 
-from . import checks, viz
+from . import cavitation, checks, viz
 from .closedform import GROUPED, fit_table
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
-from .film import CAVITATION
-from .normal import IntegratorOptions, NormalSolverError
+from .film import LAYERS
+from .normal import NormalSolverError
+from .presets import EXAMPLE
 from .scales import CollisionParameters, PhysicalCollision, from_presets
 from .study import Study, critical_stokes, run_study
+from .timestepping import IntegratorOptions
 from .viscosity import LAWS as VISCOSITY_LAWS
+from .viscosity import ROELANDS_INDEX
 
-EXAMPLE = dict(
-    sphere="steel",
-    wall="glass",
-    liquid="silicone_oil_100cst",
-    radius=6.35e-3,
-    speed=1.0,
-    angle=30.0,
-    layer_thickness=3e-4,
-)
 PHYSICAL = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 
 
@@ -76,7 +70,7 @@ def _collision_arguments(c) -> None:
     common.add_argument(
         "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
     )
-    common.add_argument("--layer", choices=("thin", "immersed"), default="thin")
+    common.add_argument("--layer", choices=LAYERS, default="thin")
     _film_arguments(common, dim)
     common.add_argument(
         "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
@@ -133,7 +127,7 @@ def _film_arguments(group, scaled) -> None:
     viscosity constants go into the ``scaled`` argument group."""
     group.add_argument(
         "--cavitation",
-        choices=CAVITATION,
+        choices=cavitation.MODELS,
         default="truncate",
         help="truncate at P_cav (the source's), mass-conserving (JFO), or none",
     )
@@ -155,7 +149,7 @@ def _film_arguments(group, scaled) -> None:
         help="Roelands p_r = 1.96e8 Pa scaled by mu V0 a / x0^2, > 0 (--viscosity roelands)",
     )
     scaled.add_argument(
-        "--roelands-index", type=float, default=0.6, help="Roelands index Z, (0, 2]"
+        "--roelands-index", type=float, default=ROELANDS_INDEX, help="Roelands index Z, (0, 2]"
     )
 
 
@@ -187,7 +181,7 @@ def _parser() -> argparse.ArgumentParser:
     k = sub.add_parser("critical", help="critical Stokes number St_c by bisection on rebound")
     k.add_argument("--eps", type=float, required=True, help="elasticity parameter, > 0")
     k.add_argument("--delta", type=float, default=0.01, help="x0/a, (0, 1)")
-    k.add_argument("--layer", choices=("thin", "immersed"), default="thin")
+    k.add_argument("--layer", choices=LAYERS, default="thin")
     k.add_argument("--p-cav", type=float, default=None, help="cavitation pressure (scaled), <= 0")
     _film_arguments(k, k)
     k.add_argument("--bracket", type=float, nargs=2, default=(1.0, 1000.0), metavar=("LOW", "HIGH"))
@@ -250,7 +244,7 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
         St=args.St,
         eps=args.eps,
         delta=args.delta,
-        p_cav=-np.inf if args.p_cav is None else args.p_cav,
+        p_cav=cavitation.parse_suction_limit(args.p_cav),
         e_dry=args.e_dry,
         layer=args.layer,
         angle=0.0 if args.angle is None else args.angle,
@@ -380,7 +374,7 @@ def critical_command(args) -> int:
         eps=args.eps,
         delta=args.delta,
         layer=args.layer,
-        p_cav=-np.inf if args.p_cav is None else args.p_cav,
+        p_cav=cavitation.parse_suction_limit(args.p_cav),
         **_film_parameters(args),
     )
     found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes, model=args.model)

@@ -1,8 +1,9 @@
 """One collision, end to end: the public entry point used by the CLI and by studies.
 
-``collide(params)`` picks the film grid for the parameters, builds the elasticity model
-(half-space kernel here; finite-element solids plug into the same place) and integrates the
-normal motion. Inputs and outputs are dimensionless (see :mod:`ehdfem.scales`).
+``collide(params)`` picks the film grid for the parameters, builds the elasticity (the
+half-space kernel or the FE solids, unless a compliance is passed in), integrates the normal
+motion (:mod:`ehdfem.normal`) and, for an oblique impact, the tangential motion
+(:mod:`ehdfem.tangential`). Inputs and outputs are dimensionless (see :mod:`ehdfem.scales`).
 """
 
 from __future__ import annotations
@@ -11,13 +12,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import checks
+from . import cavitation, checks
+from .compliance import Compliance
 from .compliance.halfspace import HalfSpaceCompliance
 from .film import radial_grid
-from .normal import FilmClosedError, IntegratorOptions, NormalResult, solve_normal
+from .normal import FilmClosedError, NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .tangential import MODELS as TANGENTIAL_MODELS
 from .tangential import TangentialResult, solve_tangential
+from .timestepping import IntegratorOptions
 
 MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
@@ -41,8 +44,11 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     return radial_grid(nodes, min(fine, 0.5 * outer), outer)
 
 
-def elasticity(params: CollisionParameters, radii, model="halfspace", physical=None, solids=None):
-    """The compliance at the film nodes: elastic half-spaces, or FE solids
+def elasticity(
+    params: CollisionParameters, radii, model="halfspace", physical=None, solids=None
+) -> Compliance:
+    """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
+    half-spaces, or FE solids
     (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta with the materials of the
     physical inputs, or, for dimensionless inputs, identical materials with Poisson ratio 0.3
     (the half-space only sees theta; the solids also see the moduli ratio and the nu's).
@@ -65,14 +71,15 @@ class CollisionResult:
     """A collision's outcome: the normal motion (:class:`ehdfem.normal.NormalResult`), the
     tangential motion (:class:`ehdfem.tangential.TangentialResult`, None for a head-on impact),
     the elasticity model used, for physical inputs the inputs (to convert back to SI), and the
-    compliance object (FE solids keep their mesh for writing fields)."""
+    compliance used (:class:`ehdfem.compliance.Compliance`; an FE compliance keeps its solids,
+    for the fields of :mod:`ehdfem.exports` and the pictures of :mod:`ehdfem.render`)."""
 
     params: CollisionParameters
     model: str
     normal: NormalResult
     tangential: TangentialResult | None = None
     physical: PhysicalCollision | None = None
-    compliance: object = None
+    compliance: Compliance | None = None
 
     def summary(self) -> dict:
         """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"."""
@@ -84,7 +91,7 @@ class CollisionResult:
             "St": p.St,
             "eps": p.eps,
             "delta": p.delta,
-            "p_cav": None if p.p_cav == -np.inf else p.p_cav,
+            "p_cav": cavitation.suction_limit_output(p.p_cav),
             "cavitation": p.cavitation,
             "viscosity": p.viscosity,
             "alpha": p.alpha,
@@ -135,6 +142,7 @@ def collide(
     refinements: int = 2,
     tangential: str = "couette",
     solids: dict | None = None,
+    compliance: Compliance | None = None,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
 
@@ -145,7 +153,10 @@ def collide(
     tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential`); it is solved
     when the impact is oblique (angle > 0). ``solids``: for the FE model, arguments of
     :class:`ehdfem.compliance.fem.FESolids` (e.g. ``lower="coated"``, ``coating=(E, nu)``,
-    ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``).
+    ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``). ``compliance``: an
+    elasticity built before (e.g. by :func:`elasticity` for the widest collision of a sweep,
+    whose grid then serves every point), used at params.eps on its own grid, without
+    refinement; ``model``, ``nodes`` and ``solids`` are then not used.
     """
     physical = params if isinstance(params, PhysicalCollision) else None
     if physical is not None:
@@ -158,15 +169,23 @@ def collide(
     checks.choice("tangential", tangential, TANGENTIAL_MODELS)
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
+    if compliance is not None:
+        return _collide_on(params, compliance.with_eps(params.eps), options, tangential, physical)
     for attempt in range(refinements + 1):
         radii = film_radii(params, nodes * 2**attempt)
-        compliance = elasticity(params, radii, model, physical, solids)
         try:
-            normal = solve_normal(params, compliance, options)
+            compliance = elasticity(params, radii, model, physical, solids)
+            return _collide_on(params, compliance, options, tangential, physical)
         except FilmClosedError:
             if attempt == refinements:
                 raise
-            continue
-        oblique = params.tangential_speed > 0
-        tangential_result = solve_tangential(normal, tangential) if oblique else None
-        return CollisionResult(params, model, normal, tangential_result, physical, compliance)
+
+
+def _collide_on(params, compliance, options, tangential, physical):
+    """The normal and (oblique impacts) tangential motion on a given compliance."""
+    normal = solve_normal(params, compliance, options)
+    oblique = params.tangential_speed > 0
+    tangential_result = solve_tangential(normal, tangential) if oblique else None
+    return CollisionResult(
+        params, compliance.model, normal, tangential_result, physical, compliance
+    )

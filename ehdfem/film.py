@@ -1,4 +1,4 @@
-"""Axisymmetric Reynolds lubrication film: discretisation, wetted edge and cavitation.
+"""Axisymmetric Reynolds lubrication film: discretisation, wetted edge, sliding integrals.
 
 All quantities are scaled (DSH 1986): radius R by sqrt(a x0), film thickness H by x0, pressure P
 by mu V0 a / x0^2, time T by x0 / V0. The film obeys
@@ -9,19 +9,8 @@ by mu V0 a / x0^2, time T by x0 / V0. The film obeys
 with P = 0 at the wetted edge R_edge where H = 1 (thin layer), or, fully immersed, the far-field
 condition P ~ H^-2 (exact for the rigid-sphere solution P = -3 V / H^2) at the last node.
 
-Cavitation models (``cavitation``):
-
-- "truncate" (the source's): P >= P_cav as a complementarity with the Reynolds residual; in the
-  cavitated zone the Reynolds equation is dropped, so liquid is neither tracked nor conserved.
-- "mass-conserving" (Jakobsson-Floberg-Olsson, in the Elrod-Adams p-theta form): the liquid
-  fraction theta in [0, 1] of the gap is an unknown, and everywhere in the film
-
-      d(theta H)/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),
-      P - P_cav >= 0,   1 - theta >= 0,   (P - P_cav)(1 - theta) = 0,
-
-  so a cavity (theta < 1, P = P_cav) holds the liquid it had and refills only with liquid that
-  flows in. The node unknown is P where the film is full and theta where it is cavitated.
-- "none": unlimited suction (P_cav ignored).
+Cavitation (the lower limit P_cav of the pressure and the liquid in a cavity) is a separate
+part, :mod:`ehdfem.cavitation`; the film supplies the pieces it works on.
 
 With a pressure-dependent viscosity mu(P) (:mod:`ehdfem.viscosity`) H^3 becomes H^3 mu0/mu(P).
 
@@ -35,8 +24,8 @@ weak-form pieces
 
     m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
 
-plus the derivatives D = d(K P)/dH and E = d(K P)/dP - K (piezoviscosity), the dry and
-cavitated nodes, and the force.
+plus the derivatives D = d(K P)/dH and E = d(K P)/dP - K (piezoviscosity), the dry nodes and
+the force.
 """
 
 from __future__ import annotations
@@ -50,7 +39,6 @@ from . import checks
 from .viscosity import Viscosity
 
 LAYERS = ("thin", "immersed")
-CAVITATION = ("truncate", "mass-conserving", "none")
 
 # 3-point Gauss-Legendre on [0, 1]: integrates R H^3 exactly for linear R and H.
 _GAUSS_XI = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
@@ -130,36 +118,19 @@ class Film:
     """Reynolds film on the radial nodes ``radii`` (scaled by sqrt(a x0)).
 
     ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
-    P ~ H^-2 at the last node). ``p_cav``: the cavitation pressure (scaled by mu V0 a / x0^2,
-    <= 0; -inf for no limit). ``cavitation``: "truncate", "mass-conserving" or "none" (see the
-    module docstring). ``viscosity``: a :class:`ehdfem.viscosity.Viscosity` (default constant).
+    P ~ H^-2 at the last node). ``viscosity``: a :class:`ehdfem.viscosity.Viscosity` (default
+    constant).
     """
 
-    def __init__(
-        self,
-        radii: np.ndarray,
-        layer: str = "thin",
-        p_cav: float = -np.inf,
-        cavitation: str = "truncate",
-        viscosity: Viscosity | None = None,
-    ):
+    def __init__(self, radii: np.ndarray, layer: str = "thin", viscosity: Viscosity | None = None):
         self.radii = np.asarray(radii, dtype=float)
         self.layer = checks.choice("layer", layer, LAYERS)
-        self.cavitation = checks.choice("cavitation", cavitation, CAVITATION)
-        if p_cav != -np.inf:
-            p_cav = checks.number("p_cav", p_cav, upper=0.0)
-        self.p_cav = -np.inf if cavitation == "none" else p_cav
         self.viscosity = viscosity or Viscosity()
         left, right = self.radii[:-1], self.radii[1:]
         self._length = right - left
         self._full_mass = np.zeros_like(self.radii)
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
-
-    @property
-    def mass_conserving(self) -> bool:
-        """True when cavities track their liquid (JFO) and there is a finite P_cav."""
-        return self.cavitation == "mass-conserving" and self.p_cav != -np.inf
 
     @property
     def full_mass(self) -> np.ndarray:
@@ -250,36 +221,6 @@ class Film:
         diagonal[-1] += r**2 * hn**2 / 6.0
         d_diagonal[-1] += r**2 * hn / 3.0 * pressure[-1]
         force_weights[-1] += hn / 3.0
-
-    def cavitated(self, pressure, residual, scale, dry):
-        """Truncation: the nodes held at P_cav, the semismooth-Newton active set of
-        min(P - P_cav, r / s) = 0.
-
-        ``residual`` r is the Reynolds residual (m dH/dT + K P) and ``scale`` s > 0 its
-        diagonal sensitivity; in the cavitated zone the film would need P < P_cav and r >= 0.
-        """
-        if self.p_cav == -np.inf:
-            return np.zeros_like(dry)
-        return (pressure - self.p_cav < residual / scale) & ~dry
-
-    def switch(self, pressure, fill, cavitated, dry, stiffness):
-        """Mass-conserving cavitation: the Elrod-Adams switch after a Newton update.
-
-        The node unknown is read as one universal variable u, P = P_cav + u (full film, u >= 0)
-        or theta = 1 + u / s (cavity, u < 0), with ``stiffness`` s = (m H a0/dt) / K_ii > 0 (at
-        wet nodes) the pressure that balances a unit change of theta in the node's equation
-        (scaled by mu V0 a / x0^2). A full node whose
-        pressure fell below P_cav ruptures and a cavity whose theta passed 1 refills, the
-        overshoot carried over to the other variable: this is the semismooth Newton for
-        min(P - P_cav, s (1 - theta)) = 0 and it does not cycle at nodes where both vanish.
-        Returns (pressure, fill, cavitated).
-        """
-        u = np.where(cavitated, (fill - 1.0) * stiffness, pressure - self.p_cav)
-        cavitated = (u < 0.0) & ~dry
-        pressure = np.where(cavitated, self.p_cav, np.where(dry, pressure, self.p_cav + u))
-        fill = np.ones_like(fill)
-        fill[cavitated] = np.maximum(1.0 + u[cavitated] / stiffness[cavitated], 0.0)
-        return pressure, fill, cavitated
 
     def sliding_integrals(
         self, film_thickness: np.ndarray, outer_radius: float = np.inf, pressure=None, fill=None

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .scales import Liquid, Material, PhysicalCollision, from_presets, material
+from .presets import Liquid, Material, material
+from .scales import PhysicalCollision, from_presets
 
 JOSEPH_2001 = (
     "Joseph, Zenit, Hunt & Rosenwinkel 2001, Particle-wall collisions in a viscous fluid, "

@@ -9,9 +9,8 @@ The groups are
     P_cav = (p_cav - p_ambient) x0^2 / (mu V0 a),
     theta = (1 - nu1^2)/(pi E1) + (1 - nu2^2)/(pi E2).
 
-For two spheres, a and m are the reduced radius and mass. Material and liquid presets give
-room-temperature values with their sources; "approx." marks typical values of a class of
-materials rather than a measured sample.
+For two spheres, a and m are the reduced radius and mass. Material and liquid presets with
+their sources live in :mod:`ehdfem.presets`.
 """
 
 from __future__ import annotations
@@ -19,89 +18,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from . import checks
-from .film import CAVITATION
+from . import cavitation, checks
+from .film import LAYERS
+from .presets import Liquid, Material, liquid, material
 from .viscosity import LAWS as VISCOSITY_LAWS
-from .viscosity import ROELANDS_LOG_VISCOSITY, ROELANDS_PRESSURE, Viscosity, roelands_index
+from .viscosity import (
+    ROELANDS_INDEX,
+    ROELANDS_LOG_VISCOSITY,
+    ROELANDS_PRESSURE,
+    Viscosity,
+    roelands_index,
+)
 
 ATMOSPHERE = 101325.0  # Pa
-
-
-@dataclass(frozen=True)
-class Material:
-    """An elastic solid: Young's modulus [Pa], Poisson's ratio, density [kg/m^3], source."""
-
-    name: str
-    young_modulus: float
-    poisson_ratio: float
-    density: float
-    source: str
-
-
-@dataclass(frozen=True)
-class Liquid:
-    """A Newtonian liquid at about 20 C: viscosity [Pa s], density [kg/m^3], vapour pressure
-    [Pa, absolute], Barus pressure-viscosity coefficient [1/Pa] (0 where negligible), source."""
-
-    name: str
-    viscosity: float
-    density: float
-    vapour_pressure: float
-    pressure_viscosity: float
-    source: str
-
-
-_NIJSSEN = "Nijssen, Ottens & Padding 2022 (sphere sets of Joseph & Hunt 2004)"
-_HANDBOOK = "engineering handbook value, approx."
-MATERIALS = {
-    m.name: m
-    for m in [
-        Material("steel", 190e9, 0.27, 7780.0, f"chrome steel ball bearing, {_NIJSSEN}"),
-        Material("glass", 60e9, 0.23, 2540.0, f"glass sphere, {_NIJSSEN}"),
-        Material("acetal", 2.8e9, 0.35, 1400.0, f"Delrin sphere, {_NIJSSEN}"),
-        Material("nylon", 2.7e9, 0.39, 1140.0, f"nylon 6/6, {_HANDBOOK}"),
-        Material("ptfe", 0.5e9, 0.46, 2200.0, f"PTFE, {_HANDBOOK}"),
-        Material("polyurethane", 30e6, 0.49, 1200.0, f"soft polyurethane elastomer, {_HANDBOOK}"),
-        Material("aluminium", 70e9, 0.33, 2700.0, f"aluminium alloy, {_HANDBOOK}"),
-        Material("brass", 100e9, 0.34, 8500.0, f"brass, {_HANDBOOK}"),
-        Material("tungsten_carbide", 600e9, 0.22, 15000.0, f"cemented WC, {_HANDBOOK}"),
-        Material("quartz", 72e9, 0.17, 2200.0, f"fused quartz, {_HANDBOOK}"),
-        Material("zerodur", 90.3e9, 0.24, 2530.0, "Schott Zerodur data sheet"),
-    ]
-}
-_GLYCEROL = "glycerol-water at 20 C, standard tables (Segur & Oberstar 1951; Cheng 2008), approx."
-_SILICONE = "polydimethylsiloxane oil, kinematic viscosity grade x 965-970 kg/m^3, approx."
-LIQUIDS = {
-    liq.name: liq
-    for liq in [
-        Liquid("water", 1.0e-3, 998.0, 2.34e3, 0.0, f"water at 20 C, {_HANDBOOK}"),
-        Liquid("glycerol_50", 6.0e-3, 1126.0, 2.0e3, 0.0, f"50 wt% {_GLYCEROL}"),
-        Liquid("glycerol_80", 60.1e-3, 1208.0, 1.0e3, 0.0, f"80 wt% {_GLYCEROL}"),
-        Liquid("glycerol_90", 219e-3, 1235.0, 0.5e3, 0.0, f"90 wt% {_GLYCEROL}"),
-        Liquid("glycerol", 1.41, 1261.0, 0.0, 5.9e-9, f"pure {_GLYCEROL}"),
-        Liquid("silicone_oil_10cst", 9.35e-3, 935.0, 0.0, 1.5e-8, f"10 cSt {_SILICONE}"),
-        Liquid("silicone_oil_100cst", 96.5e-3, 965.0, 0.0, 1.5e-8, f"100 cSt {_SILICONE}"),
-        Liquid("silicone_oil_1000cst", 0.970, 970.0, 0.0, 1.5e-8, f"1000 cSt {_SILICONE}"),
-        Liquid("silicone_oil_10000cst", 9.70, 970.0, 0.0, 1.5e-8, f"10000 cSt {_SILICONE}"),
-        Liquid("mineral_oil", 0.03, 870.0, 0.0, 2.0e-8, f"light mineral oil, {_HANDBOOK}"),
-    ]
-}
-
-
-def material(name: str) -> Material:
-    """The material preset ``name`` (see MATERIALS)."""
-    return _preset("material", name, MATERIALS)
-
-
-def liquid(name: str) -> Liquid:
-    """The liquid preset ``name`` (see LIQUIDS)."""
-    return _preset("liquid", name, LIQUIDS)
-
-
-def _preset(kind, name, table):
-    if name not in table:
-        raise checks.InputError(f"unknown {kind} preset {name!r}; known: {', '.join(table)}")
-    return table[name]
 
 
 def stokes_number(mass: float, speed: float, viscosity: float, radius: float) -> float:
@@ -133,9 +62,6 @@ def reduced_mass(m1: float, m2: float) -> float:
     return m1 if math.isinf(m2) else m1 * m2 / (m1 + m2)
 
 
-LAYERS = ("thin", "immersed")
-
-
 @dataclass(frozen=True)
 class CollisionParameters:
     """Dimensionless inputs of one collision (DSH scales; see the module docstring).
@@ -145,7 +71,7 @@ class CollisionParameters:
     impact velocity from the wall normal, in [0, 90); spin = a Omega0 / V0 (positive in the
     rolling sense, see ehdfem.tangential); inertia_factor k = I/(m a^2) in (0, 2/3] (2/5 solid,
     2/3 thin shell); cavitation "truncate" (the source's), "mass-conserving" (JFO) or "none"
-    (:mod:`ehdfem.film`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
+    (:mod:`ehdfem.cavitation`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
     pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
     roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
     (:mod:`ehdfem.viscosity`).
@@ -154,7 +80,7 @@ class CollisionParameters:
     St: float
     eps: float
     delta: float = 0.01
-    p_cav: float = -math.inf
+    p_cav: float = cavitation.NO_LIMIT
     e_dry: float = 1.0
     layer: str = "thin"
     angle: float = 0.0
@@ -164,14 +90,13 @@ class CollisionParameters:
     viscosity: str = "constant"
     alpha: float = 0.0
     roelands_pressure: float | None = None
-    roelands_index: float = 0.6
+    roelands_index: float = ROELANDS_INDEX
 
     def __post_init__(self):
         checks.positive("St", self.St)
         checks.positive("eps", self.eps)
         checks.number("delta", self.delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
-        if self.p_cav != -math.inf:
-            checks.number("p_cav", self.p_cav, upper=0.0)
+        cavitation.suction_limit(self.p_cav)
         checks.number("e_dry", self.e_dry, lower=0.0, upper=1.0, lower_open=True)
         checks.choice("layer", self.layer, LAYERS)
         checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
@@ -179,8 +104,12 @@ class CollisionParameters:
         checks.number(
             "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
         )
-        checks.choice("cavitation", self.cavitation, CAVITATION)
+        checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
+
+    def cavitation_model(self):
+        """The film's cavitation model with its limit P_cav (:mod:`ehdfem.cavitation`)."""
+        return cavitation.cavitation_model(self.cavitation, self.p_cav)
 
     def viscosity_law(self) -> Viscosity:
         """The film's viscosity law mu(P)/mu0 (scaled, :class:`ehdfem.viscosity.Viscosity`)."""
@@ -321,7 +250,9 @@ class PhysicalCollision:
             viscosity=self.viscosity,
             alpha=0.0 if self.viscosity == "constant" else self.alpha * pressure_scale,
             roelands_pressure=ROELANDS_PRESSURE / pressure_scale if roelands else None,
-            roelands_index=roelands_index(self.alpha, mu) if roelands and self.alpha > 0 else 0.6,
+            roelands_index=roelands_index(self.alpha, mu)
+            if roelands and self.alpha > 0
+            else ROELANDS_INDEX,
         )
 
     def scales(self) -> Scales:

@@ -34,32 +34,18 @@ import os
 import socket
 import time
 import tomllib
-from dataclasses import replace
+from dataclasses import fields, replace
 from pathlib import Path
 
 import numpy as np
 
-from . import __version__, checks
+from . import __version__, cavitation, checks
 from .collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
-from .normal import IntegratorOptions, NormalSolverError, solve_normal
+from .normal import NormalSolverError
 from .scales import CollisionParameters, PhysicalCollision
+from .timestepping import IntegratorOptions
 
-PARAMETERS = (
-    "St",
-    "eps",
-    "delta",
-    "p_cav",
-    "e_dry",
-    "layer",
-    "angle",
-    "spin",
-    "inertia_factor",
-    "cavitation",
-    "viscosity",
-    "alpha",
-    "roelands_pressure",
-    "roelands_index",
-)
+PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
 GRID_KEYS = (*PARAMETERS, "tangential")
 NUMERICS = ("nodes", "rtol")
 OUTPUTS = (
@@ -144,8 +130,8 @@ def _values(name, value):
 
 def _parameters(point) -> CollisionParameters:
     values = {k: v for k, v in point.items() if k in PARAMETERS}
-    if "p_cav" in values and values["p_cav"] in ("none", "-inf"):
-        values["p_cav"] = -math.inf
+    if "p_cav" in values:
+        values["p_cav"] = cavitation.parse_suction_limit(values["p_cav"])
     return CollisionParameters(**values)
 
 
@@ -317,9 +303,8 @@ def critical_stokes(
     compliance = elasticity(widest, film_radii(widest, nodes), model)
 
     def rebounds(St):
-        return solve_normal(
-            CollisionParameters(**{**values, "St": St}), compliance, options
-        ).rebound
+        params = CollisionParameters(**{**values, "St": St})
+        return collide(params, options=options, compliance=compliance).normal.rebound
 
     lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7))
     return {

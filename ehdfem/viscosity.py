@@ -30,6 +30,7 @@ from . import checks
 LAWS = ("constant", "barus", "roelands")
 ROELANDS_PRESSURE = 1.96e8  # Pa, the reference pressure p_r of the Roelands law
 ROELANDS_LOG_VISCOSITY = 9.67  # -ln(6.31e-5), mu in Pa s: the Roelands asymptote
+ROELANDS_INDEX = 0.6  # Z of typical mineral oils, used when alpha does not give one
 
 
 def roelands_index(pressure_viscosity: float, viscosity: float) -> float:
@@ -50,7 +51,7 @@ class Viscosity:
     law: str = "constant"
     alpha: float = 0.0
     roelands_pressure: float | None = None
-    roelands_index: float = 0.6
+    roelands_index: float = ROELANDS_INDEX
 
     def __post_init__(self):
         checks.choice("viscosity", self.law, LAWS)

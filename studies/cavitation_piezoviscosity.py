@@ -22,9 +22,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem.cli import EXAMPLE  # noqa: E402
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
+from ehdfem.presets import EXAMPLE  # noqa: E402
 from ehdfem.scales import from_presets  # noqa: E402
 from ehdfem.study import ResultTable, critical_speed  # noqa: E402
 

@@ -141,7 +141,7 @@ def cases():
 def run(inputs, keywords):
     """The regression outputs of one case (a dict of floats, None where not defined)."""
     from ehdfem.collision import collide
-    from ehdfem.normal import IntegratorOptions
+    from ehdfem.timestepping import IntegratorOptions
 
     keywords = dict(keywords)
     if "options" in keywords:

@@ -5,10 +5,13 @@ through a whole collision, and the reduction to truncation where no cavity forms
 import numpy as np
 import pytest
 
+from ehdfem.cavitation import MassConserving
 from ehdfem.collision import collide
 from ehdfem.film import Film, radial_grid
-from ehdfem.normal import IntegratorOptions, _Newton, solve_normal
+from ehdfem.implicit_step import ImplicitStep
+from ehdfem.normal import solve_normal
 from ehdfem.scales import CollisionParameters
+from ehdfem.timestepping import IntegratorOptions
 
 pytestmark = pytest.mark.serial
 
@@ -43,17 +46,13 @@ def solve_step(n):
     """One implicit-Euler step of the integrator's own Newton on a rigid film held at X = GAP
     (St = 1e30 keeps the sphere still): the complementarity film solver alone."""
     radii = radial_grid(n, 0.5, 1.1)
-    film = Film(radii, "thin", P_CAV, "mass-conserving")
-    newton = _Newton(
-        film, np.zeros((n, n)), 1e30, IntegratorOptions(newton_tol=1e-10, max_newton=100)
-    )
+    options = IntegratorOptions(newton_tol=1e-10, max_newton=100)
+    step = ImplicitStep(Film(radii, "thin"), np.zeros((n, n)), MassConserving(P_CAV), 1e30, options)
     _, theta, before = manufactured(radii)
     guess = (np.zeros(n), GAP, 0.0, np.ones(n), np.zeros(n, bool))
-    pressure, gap, _, fill, cavitated, state, _ = newton.solve(
-        guess, STEP, 1.0, (-before, -GAP, 0.0)
-    )
-    assert gap == pytest.approx(GAP, abs=1e-12)
-    return radii, pressure, fill, cavitated, state
+    s = step.solve(guess, STEP, 1.0, (-before, -GAP, 0.0))
+    assert s.gap == pytest.approx(GAP, abs=1e-12)
+    return radii, s.pressure, s.fill, s.cavitated, s.state
 
 
 def test_manufactured_step_converges_at_second_order():

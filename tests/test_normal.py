@@ -7,8 +7,9 @@ from scipy.optimize import brentq
 from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.compliance import RigidSolids
 from ehdfem.film import radial_grid
-from ehdfem.normal import IntegratorOptions, solve_normal
+from ehdfem.normal import solve_normal
 from ehdfem.scales import CollisionParameters, hertz_max_compression
+from ehdfem.timestepping import IntegratorOptions
 
 pytestmark = pytest.mark.serial
 

@@ -10,8 +10,10 @@ from scipy.integrate import quad
 from ehdfem.collision import collide
 from ehdfem.compliance import RigidSolids
 from ehdfem.film import Film, FilmError, radial_grid
-from ehdfem.normal import IntegratorOptions, solve_normal
-from ehdfem.scales import CollisionParameters, PhysicalCollision, liquid, material
+from ehdfem.normal import solve_normal
+from ehdfem.presets import liquid, material
+from ehdfem.scales import CollisionParameters, PhysicalCollision
+from ehdfem.timestepping import IntegratorOptions
 from ehdfem.viscosity import Viscosity
 
 pytestmark = pytest.mark.serial

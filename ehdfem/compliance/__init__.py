@@ -1,14 +1,20 @@
 """Elastic compliance of the two solids at the film nodes.
 
-A compliance object maps the film pressure to the gap opening by elastic deformation,
+A compliance maps the film pressure to the gap opening by elastic deformation,
 
     W_i = sum_j C_ij P_j,
 
 with P in units of mu V0 a / x0^2 at the film nodes ``radii`` (in units of sqrt(a x0)) and W in
 units of x0. The time integrator only uses ``radii`` and ``matrix``; it does not know whether the
-solids are elastic half-spaces (:mod:`ehdfem.compliance.halfspace`) or finite-element meshes.
+solids are elastic half-spaces (:mod:`ehdfem.compliance.halfspace`) or finite-element meshes
+(:mod:`ehdfem.compliance.fem`). C is proportional to eps, so a compliance built once serves
+every St, and every eps through ``with_eps``: a study at fixed geometry and materials builds
+one and passes it to :func:`ehdfem.collision.collide`.
 """
 
+from __future__ import annotations
+
+import copy
 from typing import Protocol
 
 import numpy as np
@@ -19,11 +25,55 @@ class Compliance(Protocol):
 
     radii: np.ndarray  # (N,) film nodes, scaled by sqrt(a x0), increasing, radii[0] = 0
     matrix: np.ndarray  # (N, N) gap opening W (scaled by x0) per unit nodal pressure
+    eps: float | None  # the elasticity parameter the matrix is built for (None: rigid)
+    model: str  # the name of the elasticity model ("halfspace", "fem", "rigid")
+
+    def deflection(self, pressure: np.ndarray) -> np.ndarray:
+        """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
+
+    def with_eps(self, eps: float) -> Compliance:
+        """The same solids at another eps (the matrix scaled by eps / self.eps)."""
 
 
-class RigidSolids:
-    """The rigid limit eps -> 0: no deformation, W = 0 (for checks against exact solutions)."""
+class LinearCompliance:
+    """A compliance C = factor(eps) * unit_matrix: ``unit_matrix`` comes from the solids
+    (half-space kernel, FE condensation) and ``factor`` turns it into the units of the module
+    docstring at a given eps. Subclasses define ``factor``."""
+
+    def __init__(self, radii: np.ndarray, unit_matrix: np.ndarray, eps: float | None):
+        self.radii = np.asarray(radii, dtype=float)
+        self.unit_matrix, self.eps = unit_matrix, eps
+        self.matrix = self.factor(eps) * unit_matrix
+
+    def factor(self, eps: float | None) -> float:
+        """Gap unit x0 per unit of ``unit_matrix`` at ``eps``."""
+        raise NotImplementedError
+
+    def deflection(self, pressure: np.ndarray) -> np.ndarray:
+        """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
+        return self.matrix @ np.asarray(pressure, dtype=float)
+
+    def with_eps(self, eps: float):
+        """The same solids at ``eps`` (self if eps is unchanged)."""
+        if eps == self.eps:
+            return self
+        other = copy.copy(self)
+        other.eps, other.matrix = eps, self.factor(eps) * self.unit_matrix
+        return other
+
+
+class RigidSolids(LinearCompliance):
+    """The rigid limit eps -> 0: no deformation, W = 0 (for checks against exact solutions);
+    rigid whatever eps it is asked for."""
+
+    model = "rigid"
 
     def __init__(self, radii: np.ndarray):
-        self.radii = np.asarray(radii, dtype=float)
-        self.matrix = np.zeros((len(self.radii), len(self.radii)))
+        n = len(radii)
+        super().__init__(radii, np.zeros((n, n)), None)
+
+    def factor(self, eps):
+        return 0.0
+
+    def with_eps(self, eps):
+        return self

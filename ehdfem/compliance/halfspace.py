@@ -23,6 +23,7 @@ import numpy as np
 from scipy.special import ellipkm1
 
 from ..checks import InputError, number
+from . import LinearCompliance
 
 _GAUSS = np.polynomial.legendre.leggauss(8)
 _REGULAR_X = 0.5 * (_GAUSS[0] + 1.0)
@@ -84,12 +85,14 @@ def _accumulate(matrix, r, node, cell, u, w, from_right):
     np.add.at(matrix, (node, cell + 1), (values * to_right).sum(axis=1))
 
 
-class HalfSpaceCompliance:
+class HalfSpaceCompliance(LinearCompliance):
     """Elastic half-spaces at the film nodes: W = matrix @ P (see the module docstring).
 
     ``radii``: film nodes (by sqrt(a x0)), starting at 0 and strictly increasing. ``eps``: the
     elasticity parameter 4 theta mu V0 a^(3/2) / x0^(5/2) (> 0; 0 gives rigid solids).
     """
+
+    model = "halfspace"
 
     def __init__(self, radii: np.ndarray, eps: float):
         radii = np.asarray(radii, dtype=float)
@@ -97,10 +100,8 @@ class HalfSpaceCompliance:
             raise InputError("radii must be a 1-D array of at least 3 film nodes")
         if radii[0] != 0.0 or np.any(np.diff(radii) <= 0) or not np.all(np.isfinite(radii)):
             raise InputError("radii must start at 0 and increase strictly")
-        self.radii = radii
-        self.eps = number("eps", eps, lower=0.0)
-        self.matrix = self.eps * influence_matrix(radii)
+        super().__init__(radii, influence_matrix(radii), number("eps", eps, lower=0.0))
 
-    def deflection(self, pressure: np.ndarray) -> np.ndarray:
-        """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
-        return self.matrix @ np.asarray(pressure, dtype=float)
+    def factor(self, eps: float) -> float:
+        """The kernel is per unit eps: C = eps * kernel."""
+        return number("eps", eps, lower=0.0)

@@ -1,0 +1,148 @@
+"""Variable-step BDF time stepping: the formulas, the predictor and the step-size control.
+
+Time T is scaled by x0/V0. For accepted times t_n > t_{n-1} > ... the BDF formula of order q
+approximates dy/dT at a new time t from the polynomial through (t, y) and the q latest accepted
+values; the same polynomial through q + 1 past values, extrapolated, predicts y(t), and the
+difference between corrector and predictor, weighted by Milne's device, estimates the local
+error. The stepper knows nothing of what y is: the problem (:mod:`ehdfem.normal`) gives the
+values and the scale of each error.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import checks
+
+
+@dataclass(frozen=True)
+class IntegratorOptions:
+    """Accuracy and limits of the time integration (all scaled).
+
+    ``rtol``: local error per step in X relative to the thinnest film and in V (relative to V0).
+    ``order``: the highest BDF order. ``max_growth``: the largest step growth per step.
+    ``newton_tol``: Newton increments relative to the solution size. ``first_step``: initial
+    time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
+    """
+
+    rtol: float = 5e-5
+    order: int = 3
+    max_growth: float = 1.5
+    newton_tol: float = 1e-7
+    max_newton: int = 30
+    first_step: float = 1e-3
+    max_steps: int = 50000
+    max_time: float = 1e4
+
+    def __post_init__(self):
+        checks.number("rtol", self.rtol, lower=1e-10, upper=0.1)
+        checks.integer("order", self.order, lower=1, upper=3)
+        checks.number("max_growth", self.max_growth, lower=1.1, upper=3.0)
+        checks.number("newton_tol", self.newton_tol, lower=1e-14, upper=1e-3)
+        checks.integer("max_newton", self.max_newton, lower=2, upper=100)
+        checks.number("first_step", self.first_step, lower=1e-12, upper=0.1)
+        checks.integer("max_steps", self.max_steps, lower=10)
+        checks.positive("max_time", self.max_time)
+
+
+def derivative_weights(nodes):
+    """Weights w_j with dy/dT(nodes[0]) ~ sum_j w_j y(nodes[j]) (derivative of the interpolant).
+
+    This is the variable-step BDF formula of order len(nodes) - 1.
+    """
+    t0 = nodes[0]
+    weights = np.empty(len(nodes))
+    weights[0] = sum(1.0 / (t0 - tk) for tk in nodes[1:])
+    for j in range(1, len(nodes)):
+        others = [tk for k, tk in enumerate(nodes) if k != j]
+        weights[j] = np.prod([t0 - tk for tk in others[1:]]) / np.prod(
+            [nodes[j] - tk for tk in others]
+        )
+    return weights
+
+
+def latest(values, count):
+    """The last ``count`` entries of a history list, newest first."""
+    return values[-1 : -count - 1 : -1]
+
+
+def extrapolate(nodes, values, t):
+    """Value at t of the polynomial through (nodes[j], values[j])."""
+    total = 0.0
+    for j, (tj, yj) in enumerate(zip(nodes, values, strict=True)):
+        others = [tk for k, tk in enumerate(nodes) if k != j]
+        total = total + yj * np.prod([(t - tk) / (tj - tk) for tk in others])
+    return total
+
+
+def error_share(t_new, past):
+    """Share of (corrector - predictor) that is the local error of BDF of order len(past) - 1.
+
+    Both differ from the exact solution by y^(q+1)/(q+1)! times a product of time differences:
+    prod_{j<=q} d_j / sum_{j<=q} 1/d_j for BDF-q and prod_{j<=q+1} d_j for the extrapolation
+    through q+1 past points (d_j = t_new - t_{n+1-j}); Milne's device splits the difference.
+    """
+    d = t_new - np.asarray(past)
+    q = len(past) - 1
+    bdf = np.prod(d[:q]) / np.sum(1.0 / d[:q])
+    predictor = np.prod(d)
+    return bdf / (bdf + predictor)
+
+
+class BDFStepper:
+    """Order, weights, predictor, error estimate and step size of a variable-step BDF
+    integration over the accepted times ``times`` (a list the caller appends to)."""
+
+    def __init__(self, options: IntegratorOptions, times: list):
+        self.options, self.times = options, times
+        self.step = options.first_step
+
+    def order(self) -> int:
+        """BDF order of the next step: order q uses q past values (the predictor q + 1)."""
+        return min(self.options.order, max(len(self.times) - 1, 1))
+
+    def weights(self, t_new: float, order: int) -> np.ndarray:
+        """step * (BDF weights at t_new): weights[0] multiplies y(t_new), the rest the
+        ``order`` latest accepted values, newest first."""
+        return self.step * derivative_weights([t_new, *latest(self.times, order)])
+
+    def past(self, weights, recent) -> list:
+        """The weighted sums of earlier values: ``recent`` holds, per unknown, its ``order``
+        latest accepted values, newest first."""
+        return [weights[1:] @ np.asarray(values) for values in recent]
+
+    def guess(self, t_new, histories) -> list:
+        """Extrapolation of each history from (up to) the three latest accepted values."""
+        known = min(len(self.times), 3)
+        return [
+            extrapolate(latest(self.times, known), latest(values, known), t_new)
+            for values in histories
+        ]
+
+    def error(self, t_new, order, checked) -> float:
+        """Estimated local error over rtol: ``checked`` is a list of (history, new value,
+        scale); 0 while there are too few accepted values for the predictor."""
+        if len(self.times) <= order:
+            return 0.0
+        nodes = latest(self.times, order + 1)
+        share = error_share(t_new, nodes)
+        worst = max(
+            abs(new - extrapolate(nodes, latest(history, order + 1), t_new)) / scale
+            for history, new, scale in checked
+        )
+        return share * worst / self.options.rtol
+
+    def reject(self, error: float, order: int) -> None:
+        """Shrink the step after a rejected one (error > 1)."""
+        self.step *= max(0.2, 0.8 * error ** (-1.0 / (order + 1)))
+
+    def fail(self) -> None:
+        """Shrink the step after a failed nonlinear solve."""
+        self.step *= 0.25
+
+    def accept(self, error: float, order: int) -> None:
+        """The next step after an accepted one, grown by at most ``max_growth``."""
+        growth = self.options.max_growth if error == 0.0 else 0.8 * error ** (-1.0 / (order + 1))
+        self.step *= min(max(growth, 0.2), self.options.max_growth)

@@ -1,4 +1,17 @@
-"""ehdfem: elastohydrodynamic wet collisions of a sphere with a liquid-covered wall."""
+"""ehdfem: elastohydrodynamic wet collisions of a sphere with a liquid-covered wall.
+
+The public API (dimensionless inputs on the scales of Davis, Serayssol & Hinch 1986, physical
+inputs in SI; see :mod:`ehdfem.scales`):
+
+- :func:`collide`: one collision, normal and tangential, with the half-space or FE solids;
+- :class:`CollisionParameters` (St, eps, delta, P_cav, ...) and :class:`PhysicalCollision`
+  (materials, liquid, speed, layer in SI; :func:`from_presets` builds one from preset names);
+- :func:`elasticity` and :func:`film_radii`: a compliance built once and passed to
+  :func:`collide` for a whole sweep at fixed geometry and materials;
+- :func:`solve_normal`, :func:`solve_tangential`: the two motions on their own;
+- :func:`critical_stokes`, :func:`critical_speed`: the rebound threshold;
+- :class:`IntegratorOptions`: time-step tolerance and limits.
+"""
 
 from importlib.metadata import PackageNotFoundError, version
 
@@ -6,3 +19,28 @@ try:
     __version__ = version("ehdfem")
 except PackageNotFoundError:  # running from a source tree that was not installed
     __version__ = "0+unknown"
+
+from .collision import CollisionResult, collide, elasticity, film_radii  # noqa: E402
+from .normal import NormalResult, solve_normal  # noqa: E402
+from .scales import CollisionParameters, PhysicalCollision, from_presets  # noqa: E402
+from .study import critical_speed, critical_stokes  # noqa: E402
+from .tangential import TangentialResult, solve_tangential  # noqa: E402
+from .timestepping import IntegratorOptions  # noqa: E402
+
+__all__ = [
+    "CollisionParameters",
+    "CollisionResult",
+    "IntegratorOptions",
+    "NormalResult",
+    "PhysicalCollision",
+    "TangentialResult",
+    "__version__",
+    "collide",
+    "critical_speed",
+    "critical_stokes",
+    "elasticity",
+    "film_radii",
+    "from_presets",
+    "solve_normal",
+    "solve_tangential",
+]

@@ -48,7 +48,22 @@ def _collision_arguments(c) -> None:
         help="cavitation pressure (p_cav - p_ambient) x0^2/(mu V0 a), <= 0; default: none",
     )
     dim.add_argument("--spin", type=float, default=0.0, help="initial spin a Omega0 / V0")
-    phys = c.add_argument_group("physical inputs (SI)")
+    _physical_arguments(c.add_argument_group("physical inputs (SI)"))
+    common = c.add_argument_group("both")
+    common.add_argument(
+        "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
+    )
+    common.add_argument("--layer", choices=LAYERS, default="thin")
+    _film_arguments(common, dim)
+    common.add_argument(
+        "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
+    )
+    _numerics_arguments(c.add_argument_group("numerics and output"))
+    _solids_arguments(c.add_argument_group("FE solids (--model fem)"))
+
+
+def _physical_arguments(phys) -> None:
+    """The physical (SI) inputs of one collision."""
     phys.add_argument("--sphere", help="sphere material preset (e.g. steel, glass)")
     phys.add_argument("--wall", help="wall material preset")
     phys.add_argument("--liquid", help="liquid preset (e.g. water, silicone_oil_100cst)")
@@ -66,16 +81,10 @@ def _collision_arguments(c) -> None:
         help="steel sphere (a = 6.35 mm) on glass through 0.3 mm of 100 cSt silicone oil, "
         "1 m/s at 30 deg",
     )
-    common = c.add_argument_group("both")
-    common.add_argument(
-        "--angle", type=float, default=None, help="impact angle from the wall normal [deg], [0, 90)"
-    )
-    common.add_argument("--layer", choices=LAYERS, default="thin")
-    _film_arguments(common, dim)
-    common.add_argument(
-        "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
-    )
-    num = c.add_argument_group("numerics and output")
+
+
+def _numerics_arguments(num) -> None:
+    """Model choice, grid, tolerance and outputs of one collision."""
     num.add_argument("--model", choices=MODELS, default="halfspace")
     num.add_argument(
         "--tangential",
@@ -96,7 +105,16 @@ def _collision_arguments(c) -> None:
         metavar="T",
         help="with --fields: further instants T (by x0/V0) to write",
     )
-    fe = c.add_argument_group("FE solids (--model fem)")
+    num.add_argument(
+        "--fields",
+        metavar="FILE.xdmf",
+        help="FE model: displacement and stresses of both solids at maximum compression, "
+        "maximum force and the end (and --field-times), as XDMF for ParaView",
+    )
+
+
+def _solids_arguments(fe) -> None:
+    """The FE model's lower body: wall block, coated wall, or a second sphere."""
     fe.add_argument(
         "--lower",
         choices=("wall", "coated", "sphere"),
@@ -113,12 +131,6 @@ def _collision_arguments(c) -> None:
         type=float,
         default=1.0,
         help="two spheres: upper radius / lower radius (a is the reduced radius)",
-    )
-    num.add_argument(
-        "--fields",
-        metavar="FILE.xdmf",
-        help="FE model: displacement and stresses of both solids at maximum compression, "
-        "maximum force and the end (and --field-times), as XDMF for ParaView",
     )
 
 

@@ -5,8 +5,9 @@ Every number says how it was obtained:
 
 - "abstract": stated in the abstract of the paper (the full texts were not reachable);
 - "secondary": the paper's experimental parameters as re-typed by a third party (named);
-- "introduction": stated in the introduction of the source paper of this project
-  (shared/reference), which quotes the earlier work.
+- "introduction": stated in the introduction of the source paper of this project (Kantak &
+  Davis 2006, "Elastohydrodynamic theory for wet oblique collisions"), which quotes the
+  earlier work.
 
 No value here was read off a figure; no published e-against-St data point was reachable, and
 the sources whose numbers could not be obtained are listed in NOT_FOUND. All quantities SI.

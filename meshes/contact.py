@@ -1,11 +1,11 @@
 """gmsh generators for the FE solids: axisymmetric (r, z) meshes graded at the contact.
 
 Lengths are in units of the (reduced) radius a. The upper sphere's lowest point is at z = gap;
-below it is one of
+below it, chosen by ``build(lower=...)``, is one of
 
-- ``sphere_wall``: a wall block [0, size] x [-size, 0], clamped at its bottom;
-- ``coated_wall``: the same block with a bonded coating of thickness t on top (own material);
-- ``two_spheres``: a second, free sphere whose highest point is at z = 0.
+- "wall": a wall block [0, size] x [-size, 0], clamped at its bottom;
+- "coated": the same block with a bonded coating of thickness t on top (own material);
+- "sphere": a second, free sphere whose highest point is at z = 0.
 
 The film radii (by a) are vertices of both contact faces, with elements as small as the local
 film spacing there (so a pressure linear between film nodes is represented exactly), growing

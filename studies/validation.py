@@ -21,10 +21,8 @@ import numpy as np  # noqa: E402
 from ehdfem import literature as lit  # noqa: E402
 from ehdfem.closedform import davis_rager_good, fit_normal, fit_power_law, legendre  # noqa: E402
 from ehdfem.collision import collide, elasticity, film_radii  # noqa: E402
-from ehdfem.normal import solve_normal  # noqa: E402
 from ehdfem.scales import CollisionParameters  # noqa: E402
 from ehdfem.study import ResultTable, critical_speed, critical_stokes  # noqa: E402
-from ehdfem.tangential import solve_tangential  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies/results/validation.csv"
@@ -104,11 +102,9 @@ def thin_cases(table):
         compliance = elasticity(widest, film_radii(widest), model)
         out = []
         for St in STOKES:
-            normal = solve_normal(
-                CollisionParameters(St=St, eps=1e-3, angle=45.0, **THIN), compliance
-            )
-            tangential = solve_tangential(normal)
-            out.append({"St": St, "e_n": normal.e_n, "e_t": tangential.e_t})
+            params = CollisionParameters(St=St, eps=1e-3, angle=45.0, **THIN)
+            result = collide(params, compliance=compliance)
+            out.append({"St": St, "e_n": result.normal.e_n, "e_t": result.tangential.e_t})
         return out
 
     e_n = {model: cached(table, f"e_n {model}", lambda m=model: restitution(m)) for model in MODELS}

@@ -5,7 +5,7 @@ through a whole collision, and the reduction to truncation where no cavity forms
 import numpy as np
 import pytest
 
-from ehdfem.cavitation import MassConserving
+from ehdfem.cavitation import NO_LIMIT, MassConserving, NoCavitation, cavitation_model
 from ehdfem.collision import collide
 from ehdfem.film import Film, radial_grid
 from ehdfem.implicit_step import ImplicitStep
@@ -126,3 +126,25 @@ def test_mass_conserving_reduces_to_truncation_without_cavity():
     assert np.array_equal(results[1].history.fill, np.ones_like(results[1].history.fill))
     assert results[0].e_n == pytest.approx(results[1].e_n, rel=1e-12)
     assert results[0].history.gap == pytest.approx(results[1].history.gap, rel=0, abs=1e-10)
+
+
+def test_truncation_holds_nodes_where_suction_would_exceed_the_limit():
+    """Truncation's active set: wet nodes whose pressure would fall below P_cav with a
+    non-negative residual are held at P_cav (their residual rows become P - P_cav); without a
+    limit, or with the "none" model, no node is held."""
+    pressure, dry = np.full(40, -3.0), np.zeros(40, bool)
+    dry[30:] = True
+    for name, p_cav, held in (
+        ("truncate", -2.0, True),
+        ("truncate", NO_LIMIT, False),
+        ("none", -2.0, False),
+        ("mass-conserving", NO_LIMIT, False),
+    ):
+        residual = np.ones(40)
+        model = cavitation_model(name, p_cav)
+        cavitated = model.limit(residual, pressure, np.zeros(40, bool), dry, lambda: np.ones(40))
+        assert cavitated[:30].all() == held and not cavitated[30:].any()
+        if held:
+            assert residual[:30] == pytest.approx(-1.0) and residual[30:] == pytest.approx(1.0)
+        else:
+            assert type(model) is NoCavitation and (residual == 1.0).all()

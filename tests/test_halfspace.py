@@ -1,4 +1,4 @@
-"""Half-space ring-load kernel against exact elastic contact results (DESIGN.md section 5)."""
+"""Half-space ring-load kernel against exact elastic contact results."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Normal collision: exact limits, energy balance, grid convergence (DESIGN.md section 5)."""
+"""Normal collision: exact limits, energy balance, grid convergence."""
 
 import numpy as np
 import pytest

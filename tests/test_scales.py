@@ -5,15 +5,8 @@ import math
 import pytest
 
 from ehdfem.checks import InputError
-from ehdfem.scales import (
-    LIQUIDS,
-    MATERIALS,
-    CollisionParameters,
-    PhysicalCollision,
-    hertz_max_compression,
-    liquid,
-    material,
-)
+from ehdfem.presets import LIQUIDS, MATERIALS, liquid, material
+from ehdfem.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 
 pytestmark = pytest.mark.serial
 

@@ -34,7 +34,7 @@ def test_rigid_film_shear_is_log_of_gap(rigid_approach):
 
 def test_slip_decays_as_the_exact_exponential(rigid_approach):
     """u_s = exp(-(1 + 1/k) delta/(3 St) int J dT); int J dT along the rigid approach is
-    int_X^1 ln(1/X') / |V(X')| dX' with the exact |V| = 1 - loss(X')/St (DESIGN.md 5)."""
+    int_X^1 ln(1/X') / |V(X')| dX' with the exact |V| = 1 - loss(X')/St."""
     params, normal = rigid_approach
     t = solve_tangential(normal, "couette")
     k = params.inertia_factor

@@ -13,19 +13,13 @@ inputs in SI; see :mod:`ehdfem.scales`):
 - :class:`IntegratorOptions`: time-step tolerance and limits.
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("ehdfem")
-except PackageNotFoundError:  # running from a source tree that was not installed
-    __version__ = "0+unknown"
-
-from .collision import CollisionResult, collide, elasticity, film_radii  # noqa: E402
-from .normal import NormalResult, solve_normal  # noqa: E402
-from .scales import CollisionParameters, PhysicalCollision, from_presets  # noqa: E402
-from .study import critical_speed, critical_stokes  # noqa: E402
-from .tangential import TangentialResult, solve_tangential  # noqa: E402
-from .timestepping import IntegratorOptions  # noqa: E402
+from .collision import CollisionResult, collide, elasticity, film_radii
+from .normal import NormalResult, solve_normal
+from .scales import CollisionParameters, PhysicalCollision, from_presets
+from .study import critical_speed, critical_stokes
+from .tangential import TangentialResult, solve_tangential
+from .timestepping import IntegratorOptions
+from .version import __version__
 
 __all__ = [
     "CollisionParameters",

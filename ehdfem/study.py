@@ -39,11 +39,12 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__, cavitation, checks
+from . import cavitation, checks
 from .collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
 from .normal import NormalSolverError
 from .scales import CollisionParameters, PhysicalCollision
 from .timestepping import IntegratorOptions
+from .version import __version__
 
 PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
 GRID_KEYS = (*PARAMETERS, "tangential")

@@ -13,18 +13,11 @@ from __future__ import annotations
 import json
 import sys
 
+from ehdfem import study
+from ehdfem.presets import EXAMPLE
 from ehdfem.scales import CollisionParameters, from_presets
 
-OUTPUTS = (
-    "e_n",
-    "max_rebound_velocity",
-    "min_film_thickness",
-    "max_force",
-    "contact_time",
-    "max_compression",
-    "e_t",
-    "spin_change",
-)
+OUTPUTS = study.OUTPUTS  # every output of a sweep table row
 
 THIN = dict(St=10.0, eps=1e-3, layer="thin")
 IMMERSED = dict(St=20.0, eps=1e-3, layer="immersed")
@@ -99,15 +92,7 @@ def cases():
         ("thin-rtol", p(**THIN, p_cav=-2.0), {**FAST, "options": {"rtol": 1e-6}}),
         (
             "physical-example",
-            from_presets(
-                sphere="steel",
-                wall="glass",
-                liquid="silicone_oil_100cst",
-                radius=6.35e-3,
-                speed=1.0,
-                angle=30.0,
-                layer_thickness=3e-4,
-            ),
+            from_presets(**EXAMPLE),
             FAST,
         ),
         (

@@ -1,5 +1,9 @@
 """Refactoring guard: the outputs of 23 collisions equal the stored table to 1e-10 relative.
 
+The outputs are those of a sweep table row (ehdfem.study.OUTPUTS): rebound and status, e_n,
+the largest rebound velocity, the thinnest film, the largest force, the contact time, the
+largest compression, e_t, the spin change, the energy error and the film nodes used.
+
 The table (tests/data/regression.json) was computed with the code before the parts of the
 collision problem were separated (film, cavitation models, time stepper, elasticity), and
 every later restructuring must reproduce it: it checks that code moved without changing its
@@ -22,7 +26,7 @@ STORED = json.loads((Path(__file__).parent / "data" / "regression.json").read_te
 def test_outputs_equal_the_stored_table(name, inputs, keywords):
     computed, stored = run(inputs, keywords), STORED[name]
     for output in OUTPUTS:
-        if stored[output] is None:
-            assert computed[output] is None, output
+        if not isinstance(stored[output], float):
+            assert computed[output] == stored[output], output
         else:
             assert computed[output] == pytest.approx(stored[output], rel=1e-10, abs=1e-300), output

@@ -95,6 +95,7 @@ class CollisionResult:
             "cavitation": p.cavitation,
             "viscosity": p.viscosity,
             "alpha": p.alpha,
+            "gap": n.gap.name,
             "e_dry": p.e_dry,
             "angle": p.angle,
             "rebound": n.rebound,

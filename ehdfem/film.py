@@ -36,6 +36,7 @@ import numpy as np
 import scipy.linalg
 
 from . import checks
+from .gap import Paraboloid
 from .viscosity import Viscosity
 
 LAYERS = ("thin", "immersed")
@@ -119,13 +120,26 @@ class Film:
 
     ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
     P ~ H^-2 at the last node). ``viscosity``: a :class:`ehdfem.viscosity.Viscosity` (default
-    constant).
+    constant). ``gap``: the undeformed gap S(R) of :mod:`ehdfem.gap` (default the paraboloid
+    R^2/2), kept exactly between the nodes; the immersed far field assumes the paraboloid.
     """
 
-    def __init__(self, radii: np.ndarray, layer: str = "thin", viscosity: Viscosity | None = None):
+    def __init__(
+        self,
+        radii: np.ndarray,
+        layer: str = "thin",
+        viscosity: Viscosity | None = None,
+        gap: Paraboloid | None = None,
+    ):
         self.radii = np.asarray(radii, dtype=float)
         self.layer = checks.choice("layer", layer, LAYERS)
         self.viscosity = viscosity or Viscosity()
+        self.gap = gap or Paraboloid()
+        if self.layer == "immersed" and self.gap.name != "paraboloid":
+            raise checks.InputError(
+                f"gap = {self.gap.name!r} needs the thin layer: the immersed film reaches "
+                "beyond the sphere and its far-field closure assumes the paraboloid"
+            )
         left, right = self.radii[:-1], self.radii[1:]
         self._length = right - left
         self._full_mass = np.zeros_like(self.radii)
@@ -187,7 +201,7 @@ class Film:
         regular = el.right >= 0
         p_left, p_right = pressure[el.left], np.where(regular, pressure[el.right], 0.0)
         k, dk_dh, dk_dp = _conductance(
-            el.gauss_r, el.length, el.h_left, el.h_right, p_left, p_right, self.viscosity
+            el.gauss_r, el.length, self._gauss_thickness(el), p_left, p_right, self.viscosity
         )
         diagonal[el.left] += k
         r_left = self.radii[el.left]
@@ -247,7 +261,7 @@ class Film:
         _, _, el = self._elements(h)
         inside = self.radii[el.left] < outer_radius
         el = _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
-        thickness = _gauss_thickness(el.length, el.h_left, el.h_right)
+        thickness = self._gauss_thickness(el)
         regular = el.right >= 0
         right = np.where(regular, el.right, 0)
 
@@ -258,9 +272,9 @@ class Film:
 
         viscosity = self.viscosity.ratio(gauss(pressure, 0.0))[0]
         liquid = gauss(fill, 1.0)
-        slope = ((el.h_right - el.h_left) / el.length)[:, None] - (1 - 2 * _GAUSS_XI) * el.length[
-            :, None
-        ] / 2
+        slope = ((el.h_right - el.h_left) / el.length)[:, None] + self.gap.slope_between_nodes(
+            self.radii[el.left], el.length, _GAUSS_XI
+        )
         weight = el.length[:, None] * _GAUSS_W
         phi_left, phi_right = 1.0 - _GAUSS_XI, _GAUSS_XI
         cube = thickness**3 / viscosity
@@ -297,17 +311,17 @@ class Film:
             shear, force, torque = shear + tail, force + 0.6 * tail, torque + 0.4 * tail
         return shear, force, torque
 
+    def _gauss_thickness(self, el: _Elements):
+        """H at the Gauss points of the elements: the undeformed gap S is kept exactly between
+        the nodes, H = X + S + W with only W linear (the linear interpolant of H plus S minus
+        its own interpolant)."""
+        between = self.gap.between_nodes(self.radii[el.left], el.length, _GAUSS_XI)
+        return el.h_left[:, None] * (1.0 - _GAUSS_XI) + el.h_right[:, None] * _GAUSS_XI + between
+
     def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
         """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of
         m V0^2 per (x0/V0) divided by St (the same units as St d(V^2/2)/dT)."""
         return float(pressure @ state.flux(pressure)) / 3.0
-
-
-def _gauss_thickness(length, h_left, h_right):
-    """H at the Gauss points of elements: the sphere parabola is kept exactly between the nodes,
-    H = X + R^2/2 + W with only W linear, i.e. the linear interpolant minus xi (1 - xi) L^2 / 2."""
-    parabola = -0.5 * (_GAUSS_XI * (1.0 - _GAUSS_XI)) * length[:, None] ** 2
-    return h_left[:, None] * (1.0 - _GAUSS_XI) + h_right[:, None] * _GAUSS_XI + parabola
 
 
 def _solve_tridiagonal(lower, diagonal, upper, rhs):
@@ -324,10 +338,10 @@ def _gauss_values(left, right):
     return left[:, None] * (1.0 - _GAUSS_XI) + right[:, None] * _GAUSS_XI
 
 
-def _conductance(gauss_r, length, h_left, h_right, p_left, p_right, viscosity: Viscosity):
-    """Element conductance k = (1/(12 L^2)) int R H^3 mu0/mu(P) dR (P linear on the element)
-    and its derivatives ((dk/dH_left, dk/dH_right), (dk/dP_left, dk/dP_right))."""
-    h = _gauss_thickness(length, h_left, h_right)
+def _conductance(gauss_r, length, h, p_left, p_right, viscosity: Viscosity):
+    """Element conductance k = (1/(12 L^2)) int R H^3 mu0/mu(P) dR (H at the Gauss points, P
+    linear on the element) and its derivatives ((dk/dH_left, dk/dH_right), (dk/dP_left,
+    dk/dP_right)) by the nodal values."""
     scale = 1.0 / (12.0 * length)
     weight = _GAUSS_W * gauss_r * scale[:, None]
     if viscosity.constant:

@@ -6,7 +6,7 @@ dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.timestepping`) the step solves
 
     m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
     a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt f.P = 0,
-    H = X + R^2/2 + C P,
+    H = X + S(R) + C P,     S the undeformed gap (:mod:`ehdfem.gap`; R^2/2 for the paraboloid),
 
 with P = 0 at dry nodes and the rows and unknowns of the cavitation model
 (:mod:`ehdfem.cavitation`). The Jacobian is dense (the compliance couples all nodes). It is
@@ -76,13 +76,13 @@ class ImplicitStep:
         self.cavitation = cavitation
         self.St = St
         self.options = options or IntegratorOptions()
-        self.half_r2 = 0.5 * film.radii**2
+        self.undeformed = film.gap.height(film.radii)
         self.factor = None
         self.factorisations = 0
 
     def thickness(self, pressure, gap):
-        """H = X + R^2/2 + C P at the film nodes (by x0)."""
-        return gap + self.half_r2 + self.compliance @ pressure
+        """H = X + S(R) + C P at the film nodes (by x0)."""
+        return gap + self.undeformed + self.compliance @ pressure
 
     def solve(self, guess, step, a0, past) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted

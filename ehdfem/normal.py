@@ -2,9 +2,11 @@
 
 Scaled unknowns (DSH 1986): pressure P(R, T) (by mu V0 a / x0^2) at the film nodes, the gap X(T)
 between the undeformed surfaces on the axis (by x0) and the normal velocity V(T) (by V0, < 0
-while approaching). With the compliance C of the solids (W = C P, by x0),
+while approaching). With the compliance C of the solids (W = C P, by x0) and the undeformed
+gap S(R) (R^2/2 in the asymptotic theory, the true spheres with ``gap = "exact"``:
+:mod:`ehdfem.gap`),
 
-    H = X + R^2/2 + C P,     m dH/dT + K(H) P = 0  (film),
+    H = X + S(R) + C P,     m dH/dT + K(H) P = 0  (film),
     St dV/dT = F = (1/3) int P R dR,     dX/dT = V,     X(0) = 1, V(0) = -1, P(0) = 0.
 
 The parts: the film (:mod:`ehdfem.film`), the cavitation model (:mod:`ehdfem.cavitation`), the
@@ -28,6 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .film import Film, FilmError
+from .gap import Paraboloid, default_gap, gap_geometry
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed
 from .timestepping import BDFStepper, IntegratorOptions, latest
@@ -62,6 +65,7 @@ class NormalResult:
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
     at the end (meaningful without cavitation). ``status``: "rebound", "stick" or "stalled".
     ``rtol``: the local time-step tolerance used (with ``energy_error``, the achieved accuracy).
+    ``gap``: the undeformed gap used (:mod:`ehdfem.gap`; ``gap.name`` says which).
     """
 
     params: CollisionParameters
@@ -81,6 +85,7 @@ class NormalResult:
     rejected_steps: int
     newton_iterations: int
     rtol: float
+    gap: Paraboloid
 
 
 def solve_normal(
@@ -102,7 +107,9 @@ class _NormalIntegration:
     def __init__(self, params, compliance, options):
         self.params, self.options = params, options
         self.radii = np.asarray(compliance.radii, dtype=float)
-        self.film = Film(self.radii, params.layer, params.viscosity_law())
+        gap = params.gap or default_gap(compliance.model, params.layer)
+        self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
+        self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
         self.cavitation = params.cavitation_model()
         self.step_solver = ImplicitStep(
             self.film, compliance.matrix, self.cavitation, params.St, options
@@ -235,4 +242,5 @@ class _NormalIntegration:
             rejected_steps=self.rejected,
             newton_iterations=self.iterations,
             rtol=self.options.rtol,
+            gap=self.shape,
         )

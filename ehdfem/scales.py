@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 from . import cavitation, checks
 from .film import LAYERS
+from .gap import GAPS
 from .presets import Liquid, Material, liquid, material
 from .viscosity import LAWS as VISCOSITY_LAWS
 from .viscosity import (
@@ -74,7 +75,8 @@ class CollisionParameters:
     (:mod:`ehdfem.cavitation`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
     pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
     roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
-    (:mod:`ehdfem.viscosity`).
+    (:mod:`ehdfem.viscosity`); gap "paraboloid" (the asymptotic theory), "exact" (the true
+    spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.gap`).
     """
 
     St: float
@@ -91,6 +93,7 @@ class CollisionParameters:
     alpha: float = 0.0
     roelands_pressure: float | None = None
     roelands_index: float = ROELANDS_INDEX
+    gap: str | None = None
 
     def __post_init__(self):
         checks.positive("St", self.St)
@@ -106,6 +109,13 @@ class CollisionParameters:
         )
         checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
+        if self.gap is not None:
+            checks.choice("gap", self.gap, GAPS)
+            if self.gap == "exact" and self.layer == "immersed":
+                raise checks.InputError(
+                    "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
+                    "sphere and its far-field closure assumes the paraboloid"
+                )
 
     def cavitation_model(self):
         """The film's cavitation model with its limit P_cav (:mod:`ehdfem.cavitation`)."""

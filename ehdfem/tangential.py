@@ -70,7 +70,7 @@ def film_integrals(normal: NormalResult, model: str = "couette") -> np.ndarray:
     with the film's viscosity at each step's pressure and its liquid fraction."""
     checks.choice("tangential model", model, MODELS)
     params = normal.params
-    film = Film(normal.radii, params.layer, params.viscosity_law())
+    film = Film(normal.radii, params.layer, params.viscosity_law(), normal.gap)
     outer = 1.0 / np.sqrt(params.delta)
     hist = normal.history
     values = np.array(

@@ -112,12 +112,28 @@ def cases():
         ),
         (
             "fem-thin-truncate",
-            p(St=10.0, eps=1e-3, delta=0.01, layer="thin", p_cav=-2.0, angle=30.0),
+            p(
+                St=10.0,
+                eps=1e-3,
+                delta=0.01,
+                layer="thin",
+                p_cav=-2.0,
+                angle=30.0,
+                gap="paraboloid",
+            ),
             {"nodes": 60, "model": "fem"},
         ),
         (
             "fem-thin-lubrication",
-            p(St=10.0, eps=1e-3, delta=0.01, layer="thin", p_cav=-2.0, angle=30.0),
+            p(
+                St=10.0,
+                eps=1e-3,
+                delta=0.01,
+                layer="thin",
+                p_cav=-2.0,
+                angle=30.0,
+                gap="paraboloid",
+            ),
             {"nodes": 60, "model": "fem", "tangential": "lubrication"},
         ),
     ]

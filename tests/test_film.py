@@ -15,7 +15,7 @@ pytestmark = pytest.mark.serial
 
 def quasi_steady(film, gap, velocity):
     """Solve m V + K(H) P = 0 for P (dry nodes P = 0) on a rigid film at gap X."""
-    h = gap + 0.5 * film.radii**2
+    h = gap + film.gap.height(film.radii)
     state = film.assemble(h, np.zeros_like(h))
     lower, diag, upper = state.conductance
     matrix = np.diag(diag) + np.diag(lower[1:], -1) + np.diag(upper[:-1], 1)

@@ -15,6 +15,7 @@ one and passes it to :func:`ehdfem.collision.collide`.
 from __future__ import annotations
 
 import copy
+import math
 from typing import Protocol
 
 import numpy as np
@@ -27,6 +28,7 @@ class Compliance(Protocol):
     matrix: np.ndarray  # (N, N) gap opening W (scaled by x0) per unit nodal pressure
     eps: float | None  # the elasticity parameter the matrix is built for (None: rigid)
     model: str  # the name of the elasticity model ("halfspace", "fem", "rigid")
+    surface_radii: tuple  # radii of the sphere and the lower body by a (math.inf: a wall)
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
@@ -38,7 +40,10 @@ class Compliance(Protocol):
 class LinearCompliance:
     """A compliance C = factor(eps) * unit_matrix: ``unit_matrix`` comes from the solids
     (half-space kernel, FE condensation) and ``factor`` turns it into the units of the module
-    docstring at a given eps. Subclasses define ``factor``."""
+    docstring at a given eps. Subclasses define ``factor``. The surfaces are a sphere of
+    radius a on a wall unless a subclass says otherwise."""
+
+    surface_radii = (1.0, math.inf)
 
     def __init__(self, radii: np.ndarray, unit_matrix: np.ndarray, eps: float | None):
         self.radii = np.asarray(radii, dtype=float)

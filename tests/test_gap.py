@@ -1,0 +1,127 @@
+"""The exact sphere gap against closed forms and exact rigid-sphere solutions.
+
+For a rigid sphere the quasi-steady film needs no paraboloid: R H^3 dP/dR = 6 V R^2 whatever
+the undeformed gap S(R), so with H = X + S(R) and P = 0 at the wetted edge S(R_e) = 1 - X the
+force is F = -V G(X), G(X) = int_0^R_e R^3 / H^3 dR, and the sphere slows as
+St dV/dX = -G(X). Both are evaluated here by adaptive quadrature.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from ehdfem.checks import InputError
+from ehdfem.compliance import RigidSolids
+from ehdfem.film import Film, radial_grid
+from ehdfem.gap import ExactSpheres, Paraboloid, gap_geometry
+from ehdfem.normal import solve_normal
+from ehdfem.scales import CollisionParameters
+from ehdfem.timestepping import IntegratorOptions
+
+pytestmark = pytest.mark.serial
+DELTA = 0.1
+
+
+def sphere_height(radius, rho=1.0, delta=DELTA):
+    """(rho - sqrt(rho^2 - delta R^2)) / delta, the plain form."""
+    return (rho - np.sqrt(rho**2 - delta * radius**2)) / delta
+
+
+def edge(gap, shape):
+    return brentq(lambda r: gap + shape.height(r) - 1.0, 0.0, 2.0)
+
+
+def resistance(gap, shape):
+    """G(X) = int_0^R_e R^3 / (X + S(R))^3 dR."""
+    return quad(lambda r: r**3 / (gap + shape.height(r)) ** 3, 0.0, edge(gap, shape), limit=200)[0]
+
+
+def test_exact_heights_and_their_series():
+    """Sphere on a wall and two spheres against the plain formula (1e-13) and the series
+    R^2/2 + delta R^4 (sum rho^-3)/8 + delta^2 R^6 (sum rho^-5)/16 (to O(delta^3 R^8))."""
+    r = np.linspace(0.0, 2.0, 9)
+    for radii in ((1.0, math.inf), (2.0, 2.0), (1.25, 5.0)):
+        shape = ExactSpheres(DELTA, radii)
+        finite = [rho for rho in radii if not math.isinf(rho)]
+        plain = sum(sphere_height(r, rho) for rho in finite)
+        assert shape.height(r) == pytest.approx(plain, rel=1e-13, abs=1e-15)
+        series = (
+            r**2 / 2
+            + DELTA * r**4 * sum(rho**-3 for rho in finite) / 8
+            + DELTA**2 * r**6 * sum(rho**-5 for rho in finite) / 16
+        )
+        assert np.abs(shape.height(r) - series).max() < 0.1 * DELTA**3 * r.max() ** 8
+
+
+def test_between_nodes_is_the_height_minus_its_interpolant():
+    """between_nodes and slope_between_nodes against the plain height and a central
+    difference of it (1e-12 and 1e-7), and equal to the paraboloid's at delta -> 0."""
+    shape = ExactSpheres(DELTA)
+    left, length = np.array([0.0, 0.5, 1.3]), np.array([0.1, 0.2, 0.35])
+    xi = np.array([0.1, 0.5, 0.9])
+    points = left[:, None] + length[:, None] * xi
+    chord = (1 - xi) * sphere_height(left)[:, None] + xi * sphere_height(left + length)[:, None]
+    assert shape.between_nodes(left, length, xi) == pytest.approx(
+        sphere_height(points) - chord, abs=1e-12
+    )
+    step = 1e-5
+    slope = (sphere_height(points + step) - sphere_height(points - step)) / (2 * step)
+    chord_slope = ((sphere_height(left + length) - sphere_height(left)) / length)[:, None]
+    assert shape.slope_between_nodes(left, length, xi) == pytest.approx(
+        slope - chord_slope, abs=1e-7
+    )
+    flat = ExactSpheres(1e-12)
+    assert flat.between_nodes(left, length, xi) == pytest.approx(
+        Paraboloid().between_nodes(left, length, xi), abs=1e-12
+    )
+
+
+def test_rigid_film_force_with_the_exact_gap_converges_at_second_order():
+    """The film's quasi-steady force on a rigid true sphere (delta = 0.1, X = 0.01, thin layer)
+    against the quadrature of -V G(X): error 3.0e-4 at 200 nodes (bound 5e-4), order 2.0. The
+    paraboloid's force differs from the true sphere's by 1 %, thirty times that error."""
+    from test_film import quasi_steady
+
+    gap, velocity, shape = 0.01, -1.0, ExactSpheres(DELTA)
+    exact = -velocity * resistance(gap, shape)
+    errors = []
+    for n in (50, 100, 200):
+        film = Film(radial_grid(n, np.sqrt(gap), 1.5), "thin", gap=shape)
+        errors.append(abs(quasi_steady(film, gap, velocity)[1] / exact - 1))
+    orders = np.log2(np.array(errors[:-1]) / errors[1:])
+    assert errors[-1] < 5e-4 and np.all(orders > 1.9), (errors, orders)
+    paraboloid = -velocity * resistance(gap, Paraboloid())
+    assert abs(paraboloid / exact - 1) > 5 * errors[-1]
+
+
+def test_rigid_true_sphere_slows_as_the_exact_quadrature():
+    """A rigid true sphere (delta = 0.1) in a thin layer: |V| = 1 - int_X^1 G / St along the
+    approach, within 0.005/St (the tolerance of the paraboloid's rigid test); 200 nodes."""
+    St, shape = 3.0, ExactSpheres(DELTA)
+
+    def loss(gap):
+        return quad(lambda x: resistance(x, shape), gap, 1.0, limit=200)[0]
+
+    stop = brentq(lambda x: loss(x) - St, 1e-6, 0.999)
+    params = CollisionParameters(St=St, eps=1.0, delta=DELTA, gap="exact")
+    radii = radial_grid(200, np.sqrt(stop), 1.05 * np.sqrt(2))
+    result = solve_normal(params, RigidSolids(radii), IntegratorOptions(rtol=1e-5))
+    hist = result.history
+    assert result.gap.name == "exact" and result.status == "stick"
+    approaching = np.flatnonzero(hist.velocity < 0)[::10]
+    exact_speed = np.array([1 - loss(x) / St for x in hist.gap[approaching]])
+    assert np.abs(-hist.velocity[approaching] - exact_speed).max() < 0.005 / St
+    assert hist.gap[-1] == pytest.approx(stop, rel=5e-3)
+
+
+def test_exact_gap_refusals():
+    """The exact gap needs a thin layer, and a film inside the sphere's equator."""
+    with pytest.raises(InputError, match="gap"):
+        CollisionParameters(St=10.0, eps=1e-3, layer="immersed", gap="exact")
+    with pytest.raises(InputError, match="gap"):
+        CollisionParameters(St=10.0, eps=1e-3, gap="spherical")
+    with pytest.raises(InputError, match="equator"):
+        gap_geometry("exact", 0.5).height(np.array([0.0, 1.5]))

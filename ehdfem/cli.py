@@ -19,7 +19,10 @@ import numpy as np
 from . import cavitation, checks, viz
 from .closedform import GROUPED, fit_table
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
+from .compliance.fem import LOWER_BODIES
+from .exports import field_snapshots, write_fields
 from .film import LAYERS
+from .gap import GAPS
 from .normal import NormalSolverError
 from .presets import EXAMPLE
 from .scales import CollisionParameters, PhysicalCollision, from_presets
@@ -117,7 +120,7 @@ def _solids_arguments(fe) -> None:
     """The FE model's lower body: wall block, coated wall, or a second sphere."""
     fe.add_argument(
         "--lower",
-        choices=("wall", "coated", "sphere"),
+        choices=LOWER_BODIES,
         default="wall",
         help="body below the sphere: wall block, coated wall block, or a second sphere",
     )
@@ -135,8 +138,15 @@ def _solids_arguments(fe) -> None:
 
 
 def _film_arguments(group, scaled) -> None:
-    """The film's cavitation model and viscosity law (collide, render, critical); the scaled
-    viscosity constants go into the ``scaled`` argument group."""
+    """The film's undeformed gap, cavitation model and viscosity law (collide, render,
+    critical); the scaled viscosity constants go into the ``scaled`` argument group."""
+    group.add_argument(
+        "--gap",
+        choices=GAPS,
+        default=None,
+        help="undeformed gap: the theory's paraboloid or the true spheres (thin layer only); "
+        "default: exact for --model fem with a thin layer, paraboloid otherwise",
+    )
     group.add_argument(
         "--cavitation",
         choices=cavitation.MODELS,
@@ -243,6 +253,7 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
             cavitation=args.cavitation,
             viscosity=args.viscosity,
             pressure_viscosity=args.pressure_viscosity,
+            gap=args.gap,
         )
     if args.pressure_viscosity is not None:
         raise checks.InputError(
@@ -268,6 +279,7 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
 def _film_parameters(args) -> dict:
     """CollisionParameters fields of the film models from the dimensionless arguments."""
     return {
+        "gap": args.gap,
         "cavitation": args.cavitation,
         "viscosity": args.viscosity,
         "alpha": args.alpha,
@@ -282,27 +294,6 @@ def _print_table(summary: dict) -> None:
     for key, value in rows:
         text = f"{value:.6g}" if isinstance(value, float) else str(value)
         print(f"  {key:<{width}}  {text}")
-
-
-def field_snapshots(normal, times=None) -> list:
-    """(T, nodal pressure) at maximum compression, maximum force, the end (exit or stop) and
-    any requested times T (by x0/V0; the pressure is interpolated linearly between steps)."""
-    hist = normal.history
-    chosen = {
-        hist.time[int(np.argmin(hist.gap))],
-        hist.time[int(np.argmax(hist.force))],
-        hist.time[-1],
-    }
-    for t in times or []:
-        checks.number("field time", t, lower=0.0, upper=float(hist.time[-1]))
-        chosen.add(t)
-    snapshots = []
-    for t in sorted(chosen):
-        i = min(int(np.searchsorted(hist.time, t)), len(hist.time) - 1)
-        j = max(i - 1, 0)
-        w = 0.0 if i == j else (t - hist.time[j]) / (hist.time[i] - hist.time[j])
-        snapshots.append((float(t), (1 - w) * hist.pressure[j] + w * hist.pressure[i]))
-    return snapshots
 
 
 def _solids(args, inputs) -> dict | None:
@@ -345,11 +336,10 @@ def collide_command(args) -> int:
         if args.model != "fem":
             raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
         snapshots = field_snapshots(result.normal, args.field_times)
-        Path(args.fields).parent.mkdir(parents=True, exist_ok=True)
-        result.compliance.solids.write_fields(
+        write_fields(
+            result.compliance,
             args.fields,
             snapshots,
-            result.params.eps,
             units=result.physical.scales() if result.physical else None,
         )
         print(f"  wrote {args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
@@ -473,7 +463,7 @@ def render_command(args) -> int:
         f"e_n = {result.normal.e_n:.4f}"
     )
     magnification = render_solids(
-        result.compliance.solids, pressure, p.eps, args.out, args.field, args.magnification, title
+        result.compliance, pressure, args.out, args.field, args.magnification, title
     )
     print(f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})")
     if args.animation:

@@ -1,12 +1,13 @@
 """Pictures of a collision: deformed solids (pyvista, off-screen) and a film animation (GIF).
 
-`render_solids` revolves the axisymmetric (r, z) FE solution about the axis into a 3-D
-cut-away (270 degrees: the surfaces of revolution of the solids' boundaries plus the two flat
-cuts that show the field inside), with the displacement magnified by a stated factor and
-coloured by von Mises stress, hydrostatic stress or displacement magnitude (range from the
-1st to the 99.5th percentile, stated on the picture; logarithmic over at most 4 decades for
-the positive fields); a second view is a close-up of the contact with the film pressure
-profile drawn above the contact. Lengths are by the sphere
+`render_solids` takes the solids' deformation under one film pressure
+(:meth:`ehdfem.compliance.fem.FESolids.deformation`) and revolves the axisymmetric (r, z)
+section about the axis into a 3-D cut-away (270 degrees: the surfaces of revolution of the
+solids' boundaries plus the two flat cuts that show the field inside), with the displacement
+magnified by a stated factor and coloured by von Mises stress, hydrostatic stress or
+displacement magnitude (range from the 1st to the 99.5th percentile, stated on the picture;
+logarithmic over at most 4 decades for the positive fields); a second view is a close-up of
+the contact with the film pressure profile drawn above the contact. Lengths are by the sphere
 radius a, stresses by mu V0 a / x0^2, displacements by x0 (magnified for display only).
 
 `animate_film` writes a GIF of the film thickness H(R) and pressure P(R) next to the sphere's
@@ -20,55 +21,32 @@ from pathlib import Path
 import numpy as np
 
 from . import checks
+from .compliance.fem import solids_of
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
 BAR_WIDTH = 160  # pixels kept for the colour bar
 
 
-def _section(solids, nodal_pressure, eps, field, magnification):
-    """The (r, z) triangles deformed by the magnified displacement, with the field at points."""
+def _section(solids, shape, nodal_pressure, field, magnification):
+    """The (r, z) triangles of ``shape`` (a :class:`ehdfem.compliance.fem.Deformation` of
+    ``solids``) moved by the magnified displacement, with ``field`` at the points."""
     import pyvista
-    import ufl
-    from dolfinx import fem, plot
 
-    solids.displacement(solids._film_pressure(nodal_pressure))
-    upper, lower = solids._centres()
-    scale = solids.scale(eps)
-    vertices = fem.VectorFunctionSpace(solids.mesh, ("CG", 1))
-    u = fem.Function(vertices)
-    u.interpolate(solids.u)
-    cells, types, x = plot.create_vtk_mesh(solids.mesh, 2)
-    grid = pyvista.UnstructuredGrid(cells, types, x)
-    displacement = u.x.array.reshape(-1, 2).copy()
-    in_sphere = np.zeros(len(x), bool)
-    in_sphere[
-        fem.locate_dofs_topological(vertices, 2, solids.cell_tags.find(solids.geometry.SPHERE))
-    ] = True
-    displacement[in_sphere, 1] -= upper
-    if solids.lower == "sphere":
-        displacement[~in_sphere, 1] -= lower
-    displacement *= scale  # by x0
+    triangles = np.asarray(shape.triangles)
+    cells = np.column_stack([np.full(len(triangles), 3), triangles]).ravel()
+    types = np.full(len(triangles), pyvista.CellType.TRIANGLE, dtype=np.uint8)
+    points = np.column_stack([shape.points, np.zeros(len(shape.points))])
+    grid = pyvista.UnstructuredGrid(cells, types, points)
     if field == "displacement":
-        grid.point_data[field] = np.linalg.norm(displacement, axis=1)
+        grid.point_data[field] = np.linalg.norm(shape.displacement, axis=1)
     elif field == "pressure":
-        grid.point_data[field] = solids._film_pressure(nodal_pressure)(x[:, 0]) * (
-            np.abs(x[:, 1]) < 1e-9
-        )
+        r, z = shape.points.T
+        grid.point_data[field] = solids.film_pressure(nodal_pressure)(r) * (np.abs(z) < 1e-9)
     else:
-        sigma = solids.stress(solids.u)
-        deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
-        value = (
-            ufl.sqrt(1.5 * ufl.inner(deviator, deviator))
-            if field == "von_mises"
-            else ufl.tr(sigma) / 3
-        )
-        cell_space = fem.FunctionSpace(solids.mesh, ("DG", 0))
-        f = fem.Function(cell_space)
-        f.interpolate(fem.Expression(value, cell_space.element.interpolation_points()))
-        grid.cell_data[field] = f.x.array[: grid.n_cells]
+        grid.cell_data[field] = getattr(shape, field)
         grid = grid.cell_data_to_point_data()
     # displacement by x0, geometry by a: x0 = delta a
-    grid.points[:, :2] += magnification * solids.delta * displacement
+    grid.points[:, :2] += magnification * solids.delta * shape.displacement
     return grid
 
 
@@ -105,28 +83,31 @@ def _pressure_curve(solids, nodal_pressure):
 
 
 def render_solids(
-    solids,
+    compliance,
     nodal_pressure,
-    eps,
     path,
     field="von_mises",
     magnification=None,
     title="",
     size=(1600, 800),
 ):
-    """PNG of the deformed solids (overview cut-away + contact close-up). ``magnification``:
-    display factor on the displacement (default: so that the largest displacement shows as
-    a tenth of the contact region). Returns the magnification used."""
+    """PNG of the FE solids of ``compliance`` (an :class:`ehdfem.compliance.fem.FECompliance`,
+    at its eps) deformed by the film pressure with values ``nodal_pressure`` at the film nodes
+    (by mu V0 a / x0^2): overview cut-away + contact close-up, ``size`` pixels. ``field``: one
+    of FIELDS. ``magnification``: display factor on the displacement (default: so that the
+    largest displacement shows as a tenth of the contact region). Returns the magnification
+    used."""
     import pyvista
 
     checks.choice("field", field, FIELDS)
+    solids = solids_of(compliance, "rendering the solids")
     pyvista.OFF_SCREEN = True
+    shape = solids.deformation(nodal_pressure, compliance.eps)
     if magnification is None:
-        probe = _section(solids, nodal_pressure, eps, "displacement", 0.0)
-        largest = float(probe.point_data["displacement"].max()) * solids.delta
+        largest = float(np.linalg.norm(shape.displacement, axis=1).max()) * solids.delta
         magnification = 0.1 * solids.radii_a[-1] / max(largest, 1e-300)
     magnification = checks.positive("magnification", magnification)
-    section = _section(solids, nodal_pressure, eps, field, magnification)
+    section = _section(solids, shape, nodal_pressure, field, magnification)
     values = section.point_data[field]
     limits = (float(np.percentile(values, 1)), float(np.percentile(values, 99.5)))
     upper = solids.radius_upper

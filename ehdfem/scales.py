@@ -152,8 +152,9 @@ class PhysicalCollision:
     from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
     inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
-    the viscosity law and the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
-    preset]. Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
+    the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
+    preset] and the undeformed gap (as in :class:`CollisionParameters`). Roelands takes
+    Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float
     sphere: Material
@@ -172,6 +173,7 @@ class PhysicalCollision:
     cavitation: str = "truncate"
     viscosity: str = "constant"
     pressure_viscosity: float | None = None
+    gap: str | None = None
 
     def __post_init__(self):
         checks.positive("radius", self.radius)
@@ -263,6 +265,7 @@ class PhysicalCollision:
             roelands_index=roelands_index(self.alpha, mu)
             if roelands and self.alpha > 0
             else ROELANDS_INDEX,
+            gap=self.gap,
         )
 
     def scales(self) -> Scales:

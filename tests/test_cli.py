@@ -111,8 +111,8 @@ def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
 def test_field_instants_include_requested_times():
     """Maximum compression, maximum force, the end, and requested times (pressure linear in T
     between steps); a time outside the collision is refused."""
-    from ehdfem.cli import field_snapshots
     from ehdfem.collision import collide
+    from ehdfem.exports import field_snapshots
     from ehdfem.scales import CollisionParameters
 
     normal = collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), nodes=60).normal

@@ -10,6 +10,7 @@ from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.compliance.fem import FESolids
 from ehdfem.compliance.halfspace import HalfSpaceCompliance
+from ehdfem.exports import write_fields
 from ehdfem.film import radial_grid
 from ehdfem.scales import CollisionParameters
 
@@ -110,7 +111,6 @@ def test_fields_are_written_for_paraview(tmp_path):
     comm = MPI.COMM_WORLD
     folder = Path(comm.bcast(str(tmp_path) if comm.rank == 0 else None))
     radii = radial_grid(20, 0.5, 2.0)
-    solids = FESolids(1e-3, radii, comm=comm)
     snapshots = [(0.5, hertz_like(radii)), (1.0, 0.5 * hertz_like(radii))]
     units = Scales(
         gap=1e-4,
@@ -122,8 +122,9 @@ def test_fields_are_written_for_paraview(tmp_path):
         energy=0.0,
         sphere_radius=0.1,
     )
-    solids.write_fields(folder / "scaled.xdmf", snapshots, eps=1e-3)
-    solids.write_fields(folder / "si.xdmf", snapshots, eps=1e-3, units=units)
+    compliance = FESolids(1e-3, radii, comm=comm).compliance(1e-3)
+    write_fields(compliance, folder / "scaled.xdmf", snapshots)
+    write_fields(compliance, folder / "si.xdmf", snapshots, units=units)
     comm.Barrier()
     if comm.rank != 0:
         return
@@ -171,3 +172,64 @@ def test_coated_wall_and_two_spheres(small_delta, options, expected, tolerance):
         reference = expected * small_delta.deflection(pressure)
     near = RADII <= 0.5
     assert np.abs(w[near] / reference[near] - 1).max() < tolerance
+
+
+@pytest.mark.parametrize("lower", ["wall", "sphere"])
+def test_deformation_matches_the_compliance_at_the_film_nodes(lower):
+    """Runs on 2 ranks too: the vertex displacements (by x0, free spheres relative to their
+    centre of mass) open the gap at the film nodes by compliance.deflection(P); the stresses
+    are finite, one per owned triangle, and linear in the load; ``upper`` marks the sphere."""
+    comm = MPI.COMM_WORLD
+    radii = radial_grid(20, 0.5, 2.0)
+    solids = FESolids(1e-3, radii, lower=lower, comm=comm)
+    assert len(solids.bodies) == (2 if lower == "sphere" else 1)
+    assert solids.bodies[0].direction == -1.0
+    compliance = solids.compliance(1e-3)
+    assert compliance.surface_radii == ((2.0, 2.0) if lower == "sphere" else (1.0, np.inf))
+    pressure = hertz_like(radii)
+    shape = solids.deformation(pressure, compliance.eps)
+    half = solids.deformation(0.5 * pressure, compliance.eps)
+    n, m = len(shape.points), len(shape.triangles)
+    assert shape.displacement.shape == (n, 2) and shape.upper.shape == (n,)
+    assert shape.triangles.max() < n and shape.von_mises.shape == shape.hydrostatic.shape == (m,)
+    assert np.isfinite(shape.von_mises).all() and (shape.von_mises >= 0).all()
+    assert np.allclose(half.hydrostatic, 0.5 * shape.hydrostatic, rtol=1e-8, atol=1e-12)
+    above = shape.points[:, 1] > solids.delta / 2  # the film is between z = 0 and z = delta
+    assert (shape.upper == above).all()
+    points, displacement, upper = (
+        np.concatenate(comm.allgather(a)) for a in (shape.points, shape.displacement, shape.upper)
+    )
+    opening = []
+    for r in solids.radii_a:
+        at = np.isclose(points[:, 0], r, rtol=0, atol=1e-12)
+        top = np.flatnonzero(at & upper)[np.argmin(points[at & upper, 1])]
+        bottom = np.flatnonzero(at & ~upper)[np.argmax(points[at & ~upper, 1])]
+        opening.append(displacement[top, 1] - displacement[bottom, 1])
+    expected = compliance.deflection(pressure)
+    assert np.allclose(opening, expected, rtol=0, atol=1e-9 * np.abs(expected).max())
+
+
+def test_pressure_on_the_solids_is_linear_between_film_nodes_and_zero_beyond():
+    radii = radial_grid(20, 0.5, 2.0)
+    solids = FESolids(1e-3, radii, comm=MPI.COMM_WORLD)
+    nodal = hertz_like(radii) + 0.1
+    pressure = solids.film_pressure(nodal)
+    middle = 0.5 * (solids.radii_a[3] + solids.radii_a[4])
+    assert np.allclose(pressure(solids.radii_a), nodal)
+    assert pressure(middle) == pytest.approx(0.5 * (nodal[3] + nodal[4]))
+    assert pressure(1.01 * solids.radii_a[-1]) == 0.0
+
+
+def test_fe_compliance_at_another_eps():
+    """The FE compliance is linear in eps and keeps its solids."""
+    compliance = FESolids(1e-3, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_WORLD).compliance(1e-3)
+    other = compliance.with_eps(3e-3)
+    assert compliance.model == other.model == "fem" and other.solids is compliance.solids
+    assert other.eps == 3e-3 and np.allclose(other.matrix, 3 * compliance.matrix, rtol=1e-14)
+
+
+@pytest.mark.serial
+def test_fields_need_fe_solids(tmp_path):
+    radii = radial_grid(20, 0.5, 2.0)
+    with pytest.raises(InputError, match="--model fem"):
+        write_fields(HalfSpaceCompliance(radii, 1e-3), tmp_path / "f.xdmf", [(0.0, radii)])

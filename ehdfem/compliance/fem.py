@@ -1,17 +1,18 @@
 """Finite-element solids: axisymmetric linear elasticity (DOLFINx) condensed to the film nodes.
 
 The upper sphere and the lower body (a wall block, a coated wall block, or a second sphere)
-are meshed in (r, z) with gmsh (meshes/contact.py, lengths by the (reduced) radius a) and
-solved with P2 Lagrange elements in the r-weighted axisymmetric form (strain with the hoop term
-u_r / r). The stiffness is factorised once (LU); one solve per film node j, with the hat
-pressure phi_j acting normally on both contact faces, gives the gap opening at every film
-node i,
+are meshed in (r, z) with gmsh (meshes/contact.py through :mod:`ehdfem.compliance.fem_mesh`,
+lengths by the (reduced) radius a) and solved with P2 Lagrange elements in the r-weighted
+axisymmetric form (strain with the hoop term u_r / r). The stiffness is factorised once (LU);
+one solve per film node j, with the hat pressure phi_j acting normally on both contact faces,
+gives the gap opening at every film node i,
 
     W_i = (u_z^upper(r_i) - c_upper) - (u_z^lower(r_i) - c_lower),
 
-the column j of the compliance matrix. A sphere is free: its film load is balanced by a
-uniform d'Alembert body force, its far pole is pinned (u_z) to make the problem definite, and
-c is its centre-of-mass displacement. A wall is clamped at its base, 40 radii below (c = 0).
+the column j of the compliance matrix. A sphere is a free :class:`Body`: its film load is
+balanced by a uniform d'Alembert body force, its far pole is pinned (u_z) to make the problem
+definite, and c is its centre-of-mass displacement. A wall is clamped at its base, 40 radii
+below (c = 0).
 
 Scales: stresses in units of E_ref (the upper sphere's modulus) make u come out in units of
 a p / E_ref; the film pressure unit mu V0 a / x0^2 and the gap unit x0 turn this into the
@@ -22,47 +23,90 @@ dimensionless compliance of the half-space kernel,
 over the sphere and the lower body (the substrate, for a coated wall), with film radii R (by
 sqrt(a x0)) at r = R sqrt(delta) a. C scales linearly with eps: one factorisation serves a
 whole (St, eps) sweep at fixed delta and materials.
+
+Besides the compliance, :meth:`FESolids.deformation` gives the whole solids under one film
+pressure (vertex displacements and cell stresses, in the film's scales) for the field exports
+(:mod:`ehdfem.exports`) and the pictures (:mod:`ehdfem.render`). DOLFINx calls whose spelling
+depends on the release go through :mod:`ehdfem.compliance.dolfinx_compat`.
 """
 
 from __future__ import annotations
 
-import contextlib
-import hashlib
 import math
-import os
-from pathlib import Path
+from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from .. import checks
+from . import LinearCompliance, dolfinx_compat
+from .fem_mesh import contact_mesh
 
 LOWER_BODIES = ("wall", "coated", "sphere")
 
 
-MESH_CACHE = Path(os.environ.get("EHDFEM_MESH_CACHE", Path.home() / ".cache" / "ehdfem" / "meshes"))
+@dataclass(frozen=True)
+class Body:
+    """A free solid (a sphere): its film load is balanced by a uniform d'Alembert body force
+    and its far pole is pinned in u_z. ``cell_tag`` and ``contact_tag`` are its gmsh groups
+    (cells, contact face; meshes/contact.py), ``pole_z`` the height of the pinned pole (by a)
+    and ``direction`` the sign of the body force per unit film load (-1 for the upper sphere,
+    which the film pushes up; +1 for a lower sphere, pushed down)."""
+
+    cell_tag: int
+    contact_tag: int
+    pole_z: float
+    direction: float
 
 
-def _cached_mesh(gmsh, build, arguments) -> None:
-    """Load the gmsh mesh for ``arguments`` from the cache, or build it and store it there
-    (``EHDFEM_MESH_CACHE``, default ~/.cache/ehdfem/meshes; keyed by a hash of the arguments
-    and of the generator's source, written atomically)."""
-    import inspect
+@dataclass(frozen=True, eq=False)
+class Deformation:
+    """The solids under one film pressure, on this rank's part of the mesh (read-only arrays).
 
-    key = hashlib.sha1(
-        repr(
-            [np.asarray(a).tolist() if isinstance(a, np.ndarray) else a for a in arguments]
-        ).encode()
-    )
-    key.update(inspect.getsource(build).encode())
-    path = MESH_CACHE / f"{key.hexdigest()[:20]}.msh"
-    if path.exists():
-        gmsh.open(str(path))
-        return
-    build(*arguments)
-    MESH_CACHE.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.msh")
-    gmsh.write(str(tmp))
-    os.replace(tmp, path)
+    ``points``: (n, 2) vertex coordinates (r, z), by a. ``triangles``: (m, 3) the cells owned
+    by this rank, as indices into ``points``. ``displacement``: (n, 2) (u_r, u_z) at the
+    vertices, by x0, each free sphere relative to its centre of mass. ``von_mises`` and
+    ``hydrostatic``: (m,) stress per triangle, by mu V0 a / x0^2 (the film pressure unit; per
+    cell, as the hoop strain u_r / r is 0/0 at vertices on the axis). ``upper``: (n,) True at
+    the vertices of the upper sphere.
+    """
+
+    points: np.ndarray
+    triangles: np.ndarray
+    displacement: np.ndarray
+    von_mises: np.ndarray
+    hydrostatic: np.ndarray
+    upper: np.ndarray
+
+
+@dataclass(frozen=True)
+class _VertexMesh:
+    """The P1 (vertex) mesh of one rank: a P1 displacement to interpolate into, the vertices,
+    the owned triangles and the vertices of each free body (in the order of the bodies)."""
+
+    function: object
+    points: np.ndarray
+    triangles: np.ndarray
+    body_vertices: list
+    upper: np.ndarray
+
+
+def solids_of(compliance, purpose: str) -> FESolids:
+    """The :class:`FESolids` behind ``compliance`` (an :class:`FECompliance`), or an InputError
+    saying that ``purpose`` needs them (a half-space or rigid compliance has no mesh)."""
+    solids = getattr(compliance, "solids", None)
+    if solids is None:
+        model = getattr(compliance, "model", type(compliance).__name__)
+        raise checks.InputError(
+            f"{purpose} needs FE solids (--model fem); the {model} compliance has no mesh"
+        )
+    return solids
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """``array``, no longer writeable (shared between deformations)."""
+    array.setflags(write=False)
+    return array
 
 
 class FESolids:
@@ -71,8 +115,11 @@ class FESolids:
     ``delta`` = x0/a. ``sphere``, ``wall`` (the lower body: wall, substrate or lower sphere) and
     ``coating`` are (Young's modulus, Poisson ratio) pairs; only ratios of moduli matter.
     ``lower``: "wall", "coated" (``coating_thickness`` by a) or "sphere". For two spheres a is
-    the reduced radius and ``radius_ratio`` = a1/a2 (upper over lower). ``comm``: MPI
-    communicator (default COMM_WORLD). ``compliance(eps)`` gives the film compliance.
+    the reduced radius and ``radius_ratio`` = a1/a2 (upper over lower); ``radius_upper`` and
+    ``radius_lower`` (None for a wall) are the sphere radii by a. ``size``: the wall block's
+    width and depth (by a); ``degree``: of the Lagrange elements. ``comm``: MPI communicator
+    (default COMM_WORLD). ``bodies``: the free bodies (:class:`Body`), upper sphere first.
+    ``compliance(eps)`` gives the film compliance, ``deformation`` the whole solids.
     """
 
     def __init__(
@@ -89,8 +136,6 @@ class FESolids:
         degree=2,
         comm=None,
     ):
-        import gmsh
-        from dolfinx.io import gmshio
         from mpi4py import MPI
 
         from meshes import contact as geometry
@@ -117,30 +162,24 @@ class FESolids:
         if self.radii[-1] * math.sqrt(self.delta) >= limit:
             raise checks.InputError(
                 f"the film reaches r = {self.radii[-1] * math.sqrt(self.delta):.3g} a; the FE "
-                f"solids need it within half the smaller sphere radius ({limit:.3g} a)"
+                f"solids need it within 0.7 of the smaller sphere radius ({limit:.3g} a)"
             )
-        self.geometry = geometry
-        gmsh.initialize()
-        gmsh.option.setNumber("General.Terminal", 0)
-        try:
-            if self.comm.rank == 0:
-                arguments = (
-                    self.delta,
-                    self.radii_a,
-                    lower,
-                    size,
-                    self.radius_upper,
-                    self.radius_lower or 1.0,
-                    coating_thickness,
-                )
-                _cached_mesh(gmsh, geometry.build, arguments)
-            self.mesh, self.cell_tags, self.facet_tags = gmshio.model_to_mesh(
-                gmsh.model, self.comm, 0, gdim=2
-            )
-        finally:
-            gmsh.finalize()
+        self._geometry = geometry
+        arguments = (
+            self.delta,
+            self.radii_a,
+            lower,
+            size,
+            self.radius_upper,
+            self.radius_lower or 1.0,
+            coating_thickness,
+        )
+        self.mesh, self._cell_tags, self._facet_tags = contact_mesh(
+            self.comm, geometry.build, arguments
+        )
+        self.bodies = self._free_bodies()
         e_ref = sphere[0]
-        self.theta_e_ref = sum((1 - nu**2) * e_ref / (math.pi * e) for e, nu in (sphere, wall))
+        self._theta_e_ref = sum((1 - nu**2) * e_ref / (math.pi * e) for e, nu in (sphere, wall))
         materials = {geometry.SPHERE: sphere, geometry.LOWER: wall, geometry.COATING: coating}
         self._assemble({tag: (e / e_ref, nu) for tag, (e, nu) in materials.items()}, degree)
 
@@ -149,21 +188,56 @@ class FESolids:
         """The film nodes in units of a."""
         return self.radii * math.sqrt(self.delta)
 
+    @property
+    def dofs(self) -> int:
+        """Number of displacement unknowns (both components, all ranks)."""
+        return 2 * self._space.dofmap.index_map.size_global
+
+    def _free_bodies(self) -> tuple[Body, ...]:
+        """The upper sphere, and the lower one when there are two spheres."""
+        geometry = self._geometry
+        top = 2 * self.radius_upper + self.delta
+        bodies = (Body(geometry.SPHERE, geometry.SPHERE_CONTACT, top, -1.0),)
+        if self.lower == "sphere":
+            bottom = -2 * self.radius_lower
+            bodies += (Body(geometry.LOWER, geometry.LOWER_CONTACT, bottom, 1.0),)
+        return bodies
+
     def _assemble(self, materials, degree):
+        """Assemble and factorise the stiffness; set up the film load and the body forces."""
         import ufl
         from dolfinx import fem
         from petsc4py import PETSc
 
-        geometry, msh = self.geometry, self.mesh
-        V = self.V = fem.VectorFunctionSpace(msh, ("CG", degree))
-        Q = fem.FunctionSpace(msh, ("DG", 0))
-        young, poisson = fem.Function(Q), fem.Function(Q)
+        V = self._space = dolfinx_compat.lagrange_space(self.mesh, degree, vector=True)
+        strain, stress = self._constitutive_law(materials)
+        u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
+        self._bcs = self._constraints()
+        stiffness = dolfinx_compat.assemble_matrix(
+            fem.form(ufl.inner(stress(u), strain(v)) * self._r * ufl.dx), self._bcs
+        )
+        self._ksp = PETSc.KSP().create(self.comm)
+        self._ksp.setOperators(stiffness)
+        self._ksp.setType("preonly")
+        self._ksp.getPC().setType("lu")
+        self._ksp.getPC().setFactorSolverType("mumps")
+        self._load_forms(v)
+
+    def _constitutive_law(self, materials):
+        """(strain, stress) of a displacement in the r-weighted axisymmetric form, as 3x3 (r,
+        theta, z) tensors; stress by E_ref, with the moduli ``materials`` (per cell tag: Young's
+        modulus by E_ref, Poisson ratio)."""
+        import ufl
+        from dolfinx import fem
+
+        cells = dolfinx_compat.cell_space(self.mesh)
+        young, poisson = fem.Function(cells), fem.Function(cells)
         for tag, (e, nu) in materials.items():
-            cells = self.cell_tags.find(tag)
-            young.x.array[cells], poisson.x.array[cells] = e, nu
+            tagged = self._cell_tags.find(tag)
+            young.x.array[tagged], poisson.x.array[tagged] = e, nu
         lmbda = young * poisson / ((1 + poisson) * (1 - 2 * poisson))
         mu = young / (2 * (1 + poisson))
-        r = self.r = ufl.SpatialCoordinate(msh)[0]
+        r = self._r = ufl.SpatialCoordinate(self.mesh)[0]
 
         def strain(v):
             grad = [[v[0].dx(0), 0, v[0].dx(1)], [0, v[0] / r, 0], [v[1].dx(0), 0, v[1].dx(1)]]
@@ -172,211 +246,209 @@ class FESolids:
         def stress(v):
             return lmbda * ufl.tr(strain(v)) * ufl.Identity(3) + 2 * mu * strain(v)
 
-        self.stress = stress
-        u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
+        self._stress = stress
+        return strain, stress
+
+    def _constraints(self):
+        """Dirichlet conditions: u_r = 0 on the axis, a clamped wall base (no free lower body)
+        and u_z = 0 at the far pole of each free body."""
+        from dolfinx import fem
+        from petsc4py import PETSc
+
+        V, geometry, facets = self._space, self._geometry, self._facet_tags
         V0, _ = V.sub(0).collapse()
         V1, _ = V.sub(1).collapse()
-        axis = np.concatenate(
-            [self.facet_tags.find(t) for t in (geometry.SPHERE_AXIS, geometry.LOWER_AXIS)]
-        )
+        axis = np.concatenate([facets.find(t) for t in (geometry.SPHERE_AXIS, geometry.LOWER_AXIS)])
         bcs = [
             fem.dirichletbc(
                 fem.Function(V0), fem.locate_dofs_topological((V.sub(0), V0), 1, axis), V.sub(0)
             )
         ]
-        self.bodies = [
-            (geometry.SPHERE, geometry.SPHERE_CONTACT, 2 * self.radius_upper + self.delta, -1.0)
-        ]
-        if self.lower == "sphere":
-            self.bodies.append(
-                (geometry.LOWER, geometry.LOWER_CONTACT, -2 * self.radius_lower, 1.0)
-            )
-        else:
-            base = fem.locate_dofs_topological(V, 1, self.facet_tags.find(geometry.LOWER_BOTTOM))
+        if self.lower != "sphere":
+            base = fem.locate_dofs_topological(V, 1, facets.find(geometry.LOWER_BOTTOM))
             bcs.append(fem.dirichletbc(np.zeros(2, dtype=PETSc.ScalarType), base, V))
-        for _, _, pole_z, _ in self.bodies:
+        for body in self.bodies:
             pole = fem.locate_dofs_geometrical(
-                (V.sub(1), V1), lambda p, z=pole_z: np.isclose(p[0], 0) & np.isclose(p[1], z)
+                (V.sub(1), V1), lambda p, z=body.pole_z: np.isclose(p[0], 0) & np.isclose(p[1], z)
             )
             bcs.append(fem.dirichletbc(fem.Function(V1), pole, V.sub(1)))
-        self.bcs = bcs
-        A = fem.petsc.assemble_matrix(
-            fem.form(ufl.inner(stress(u), strain(v)) * r * ufl.dx), bcs=bcs
-        )
-        A.assemble()
-        self.ksp = PETSc.KSP().create(self.comm)
-        self.ksp.setOperators(A)
-        self.ksp.setType("preonly")
-        self.ksp.getPC().setType("lu")
-        self.ksp.getPC().setFactorSolverType("mumps")
-        dx = ufl.Measure("dx", domain=msh, subdomain_data=self.cell_tags)
-        ds = ufl.Measure("ds", domain=msh, subdomain_data=self.facet_tags)
+        return bcs
+
+    def _load_forms(self, v):
+        """The load of a film pressure (normal on both contact faces, balanced on each free body
+        by a uniform body force), its resultant, and each free body's volume and u_z moment."""
+        import ufl
+        from dolfinx import fem
+
+        msh, geometry, r = self.mesh, self._geometry, self._r
+        dx = ufl.Measure("dx", domain=msh, subdomain_data=self._cell_tags)
+        ds = ufl.Measure("ds", domain=msh, subdomain_data=self._facet_tags)
         n = ufl.FacetNormal(msh)
-        self.pressure = fem.Function(fem.FunctionSpace(msh, ("CG", 2)))
-        self.u = fem.Function(V)
-        p = self.pressure
-        self.resultant = fem.form(p * r * ds(geometry.LOWER_CONTACT))
+        p = self._pressure = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
+        self._u = fem.Function(self._space)
+        self._resultant = fem.form(p * r * ds(geometry.LOWER_CONTACT))
         load = -p * ufl.dot(n, v) * r * (ds(geometry.SPHERE_CONTACT) + ds(geometry.LOWER_CONTACT))
-        self.body_forces, self.volumes, self.centres = [], [], []
-        for cell_tag, _, _, _ in self.bodies:
+        self._body_forces, self._volumes, self._moments = [], [], []
+        for body in self.bodies:
             force = fem.Constant(msh, np.zeros(2))
-            self.body_forces.append(force)
-            self.volumes.append(
-                self.comm.allreduce(fem.assemble_scalar(fem.form(r * dx(cell_tag))))
+            self._body_forces.append(force)
+            self._volumes.append(
+                self.comm.allreduce(fem.assemble_scalar(fem.form(r * dx(body.cell_tag))))
             )
-            self.centres.append(fem.form(self.u[1] * r * dx(cell_tag)))
-            load = load + ufl.dot(force, v) * r * dx(cell_tag)
-        self.load = fem.form(load)
+            self._moments.append(fem.form(self._u[1] * r * dx(body.cell_tag)))
+            load = load + ufl.dot(force, v) * r * dx(body.cell_tag)
+        self._load = fem.form(load)
 
     def displacement(self, pressure):
-        """Displacement (in units of a p/E_ref) for a film pressure given as a callable of r
-        (by a): normal pressure on both contact faces, d'Alembert body forces on free spheres."""
+        """Solve for a film pressure given as a callable of r (by a), in the film pressure unit:
+        normal pressure on both contact faces, d'Alembert body forces on free spheres. Returns
+        the displacement (a DOLFINx function, in units of a p/E_ref), also kept for
+        :meth:`gap_opening`."""
         from dolfinx import fem
-        from petsc4py import PETSc
 
-        self.pressure.interpolate(lambda x: pressure(x[0]))
-        load = self.comm.allreduce(fem.assemble_scalar(self.resultant))
-        for force, volume, (_, _, _, direction) in zip(
-            self.body_forces, self.volumes, self.bodies, strict=True
-        ):
-            force.value[:] = (0.0, direction * load / volume)
-        b = fem.petsc.assemble_vector(self.load)
-        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        fem.petsc.set_bc(b, self.bcs)
-        self.ksp.solve(b, self.u.vector)
-        self.u.x.scatter_forward()
-        return self.u
+        self._pressure.interpolate(lambda x: pressure(x[0]))
+        load = self.comm.allreduce(fem.assemble_scalar(self._resultant))
+        for force, volume, body in zip(self._body_forces, self._volumes, self.bodies, strict=True):
+            force.value[:] = (0.0, body.direction * load / volume)
+        b = dolfinx_compat.assemble_vector(self._load, self._bcs)
+        self._ksp.solve(b, dolfinx_compat.petsc_vector(self._u))
+        self._u.x.scatter_forward()
+        return self._u
 
     def _centres(self):
-        """Centre-of-mass vertical displacement of each free sphere (0 for a clamped wall)."""
+        """Centre-of-mass u_z (by a p/E_ref) of each free body, in the order of ``bodies``."""
         from dolfinx import fem
 
-        centres = [
+        return [
             self.comm.allreduce(fem.assemble_scalar(form)) / volume
-            for form, volume in zip(self.centres, self.volumes, strict=True)
+            for form, volume in zip(self._moments, self._volumes, strict=True)
         ]
-        return centres + [0.0] * (2 - len(centres))
 
     def _surface(self, tag):
         """(r, u_z) at the dofs of a contact face, gathered from all ranks and sorted by r."""
         from dolfinx import fem
 
-        V1, _ = self.V.sub(1).collapse()
+        V1, _ = self._space.sub(1).collapse()
         parent, child = fem.locate_dofs_topological(
-            (self.V.sub(1), V1), 1, self.facet_tags.find(tag)
+            (self._space.sub(1), V1), 1, self._facet_tags.find(tag)
         )
         r = V1.tabulate_dof_coordinates()[child, 0]
-        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, self.u.x.array[parent]])))
+        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, self._u.x.array[parent]])))
         r, index = np.unique(pairs[:, 0], return_index=True)
         return r, pairs[index, 1]
 
     def gap_opening(self):
         """W (in units of a p/E_ref) at the film nodes for the current displacement."""
-        upper, lower = self._centres()
-        r_up, u_up = self._surface(self.geometry.SPHERE_CONTACT)
-        r_lo, u_lo = self._surface(self.geometry.LOWER_CONTACT)
+        upper, lower = [*self._centres(), 0.0][:2]  # a clamped wall's centre does not move
+        r_up, u_up = self._surface(self._geometry.SPHERE_CONTACT)
+        r_lo, u_lo = self._surface(self._geometry.LOWER_CONTACT)
         return (np.interp(self.radii_a, r_up, u_up) - upper) - (
             np.interp(self.radii_a, r_lo, u_lo) - lower
         )
 
     def scale(self, eps: float) -> float:
         """x0 per (a p / E_ref): FE displacements to the gap unit (module docstring)."""
-        return checks.positive("eps", eps) / (4 * self.theta_e_ref * math.sqrt(self.delta))
+        return checks.positive("eps", eps) / (4 * self._theta_e_ref * math.sqrt(self.delta))
 
-    def _film_pressure(self, nodal):
-        """The film pressure with nodal values ``nodal`` as a function of r (by a)."""
+    def film_pressure(self, nodal):
+        """The film pressure with values ``nodal`` at the film nodes (by mu V0 a / x0^2), linear
+        between them and zero beyond the last, as a callable of r (by a)."""
         return lambda r: np.interp(r / math.sqrt(self.delta), self.radii, nodal, right=0.0)
 
     def compliance(self, eps: float) -> FECompliance:
         """The film compliance in the units of the half-space kernel; one solve per node."""
         unit = np.empty((len(self.radii), len(self.radii)))
         for j in range(len(self.radii)):
-            self.displacement(self._film_pressure(np.eye(len(self.radii))[j]))
+            self.displacement(self.film_pressure(np.eye(len(self.radii))[j]))
             unit[:, j] = self.gap_opening()
-        return FECompliance(self.radii, self.scale(eps) * unit, self, eps)
+        return FECompliance(self, unit, eps)
 
-    def write_fields(self, path, snapshots, eps: float, units=None) -> None:
-        """XDMF time series (ParaView, meshio) of the solids under the film pressure.
+    def deformation(self, nodal_pressure, eps: float) -> Deformation:
+        """The solids under the film pressure with values ``nodal_pressure`` at the film nodes
+        (by mu V0 a / x0^2) at elasticity parameter ``eps``: one solve; see
+        :class:`Deformation` for the fields and their units."""
+        self.displacement(self.film_pressure(nodal_pressure))
+        vertices = self._vertex_mesh
+        vertices.function.interpolate(self._u)
+        values = vertices.function.x.array.reshape(-1, 2).copy()
+        for body_vertices, centre in zip(vertices.body_vertices, self._centres(), strict=True):
+            values[body_vertices, 1] -= centre
+        return Deformation(
+            points=vertices.points,
+            triangles=vertices.triangles,
+            displacement=_read_only(values * self.scale(eps)),
+            upper=vertices.upper,
+            **self._cell_stresses(),
+        )
 
-        ``snapshots``: (time, nodal pressure) pairs, time by x0/V0 and pressure by mu V0 a/x0^2.
-        Per instant: point field ``displacement`` (by x0; free spheres relative to their centre
-        of mass) and cell fields ``von_mises`` and ``hydrostatic`` (by mu V0 a / x0^2; per cell,
-        as the hoop strain u_r/r is 0/0 at vertices on the axis). The (r, z) mesh is by a. With
-        ``units`` (:class:`ehdfem.scales.Scales`) everything is in SI instead: mesh and
-        displacement in m, stresses in Pa, time in s. Gathered and written by rank 0.
-        """
-        import meshio
+    @cached_property
+    def _vertex_mesh(self) -> _VertexMesh:
+        """This rank's P1 mesh (built once); see :class:`_VertexMesh`."""
+        from dolfinx import fem
+
+        space = dolfinx_compat.lagrange_space(self.mesh, 1, vector=True)
+        cells, _, coordinates = dolfinx_compat.vtk_mesh(space)
+        owned = self.mesh.topology.index_map(2).size_local
+        body_vertices = [
+            fem.locate_dofs_topological(space, 2, self._cell_tags.find(body.cell_tag))
+            for body in self.bodies
+        ]
+        upper = np.zeros(len(coordinates), dtype=bool)
+        upper[body_vertices[0]] = True
+        return _VertexMesh(
+            function=fem.Function(space),
+            points=_read_only(coordinates[:, :2]),
+            triangles=_read_only(cells.reshape(-1, 4)[:owned, 1:]),
+            body_vertices=body_vertices,
+            upper=_read_only(upper),
+        )
+
+    @cached_property
+    def _stress_measures(self):
+        """(DG0 function, {name: expression}, dofs of the owned cells) for the von Mises and
+        hydrostatic stress of the current displacement (by the film pressure unit, as the
+        displacement is by a p/E_ref), built once."""
         import ufl
-        from dolfinx import fem, plot
+        from dolfinx import fem
 
-        cells_space = fem.FunctionSpace(self.mesh, ("DG", 0))
-        vertices = fem.VectorFunctionSpace(self.mesh, ("CG", 1))
-        displacement = fem.Function(vertices)
-        sigma = self.stress(self.u)
+        space = dolfinx_compat.cell_space(self.mesh)
+        sigma = self._stress(self._u)
         deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
-        points = cells_space.element.interpolation_points()
+        points = dolfinx_compat.interpolation_points(space)
         expressions = {
             "von_mises": fem.Expression(ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), points),
             "hydrostatic": fem.Expression(ufl.tr(sigma) / 3, points),
         }
-        stress_field = fem.Function(cells_space)
-        body_dofs = [
-            fem.locate_dofs_topological(vertices, 2, self.cell_tags.find(tag))
-            for tag, *_ in self.bodies
-        ]
         owned = self.mesh.topology.index_map(2).size_local
-        topology, _, coordinates = plot.create_vtk_mesh(vertices)
-        triangles = topology.reshape(-1, 4)[:owned, 1:]
-        cell_dofs = cells_space.dofmap.list.array[:owned]
-        length, gap, stress_unit, time_unit = (
-            (units.sphere_radius, units.gap, units.pressure, units.time)
-            if units
-            else (1.0, 1.0, 1.0, 1.0)
-        )
-        local = {"points": coordinates[:, :2] * length, "triangles": triangles, "steps": []}
-        for time, nodal in snapshots:
-            self.displacement(self._film_pressure(nodal))
-            displacement.interpolate(self.u)
-            values = displacement.x.array.reshape(-1, 2).copy()
-            for dofs, centre in zip(body_dofs, self._centres(), strict=False):
-                values[dofs, 1] -= centre
-            step = {"time": time * time_unit, "displacement": values * self.scale(eps) * gap}
-            for name, expression in expressions.items():
-                stress_field.interpolate(expression)
-                step[name] = stress_field.x.array[cell_dofs] * stress_unit
-            local["steps"].append(step)
-        parts = self.comm.gather(local, root=0)
-        if self.comm.rank != 0:
-            return
-        offsets = np.cumsum([0] + [len(p["points"]) for p in parts[:-1]])
-        mesh_points = np.concatenate([p["points"] for p in parts])
-        mesh_cells = np.concatenate(
-            [p["triangles"] + o for p, o in zip(parts, offsets, strict=True)]
-        )
-        path = Path(path).resolve()
-        path.parent.mkdir(parents=True, exist_ok=True)
-        # meshio 5.0 (Debian) writes the .h5 beside the working directory: write from path's folder
-        with contextlib.chdir(path.parent), meshio.xdmf.TimeSeriesWriter(path.name) as writer:
-            writer.write_points_cells(mesh_points, [("triangle", mesh_cells)])
-            for k, step in enumerate(parts[0]["steps"]):
-                merged = {
-                    name: np.concatenate([p["steps"][k][name] for p in parts])
-                    for name in ("displacement", "von_mises", "hydrostatic")
-                }
-                writer.write_data(
-                    step["time"],
-                    point_data={"displacement": merged["displacement"]},
-                    cell_data={name: [merged[name]] for name in expressions},
-                )
+        return fem.Function(space), expressions, dolfinx_compat.cell_dofs(space, owned)
+
+    def _cell_stresses(self) -> dict:
+        """{"von_mises": ..., "hydrostatic": ...} per owned cell for the current displacement."""
+        field, expressions, dofs = self._stress_measures
+        stresses = {}
+        for name, expression in expressions.items():
+            field.interpolate(expression)
+            stresses[name] = _read_only(field.x.array[dofs])
+        return stresses
 
 
-class FECompliance:
-    """Compliance matrix of FE solids at the film nodes (same interface as the half-space);
-    ``solids`` and ``eps`` are kept for writing the full fields."""
+class FECompliance(LinearCompliance):
+    """Compliance of FE solids at the film nodes (the interface of :mod:`ehdfem.compliance`):
+    C = solids.scale(eps) * the condensed matrix of gap openings per unit nodal pressure.
+    ``solids`` (the :class:`FESolids`) and ``eps`` are kept for the full fields
+    (:meth:`FESolids.deformation`)."""
 
-    def __init__(self, radii, matrix, solids=None, eps=None):
-        self.radii, self.matrix, self.solids, self.eps = radii, matrix, solids, eps
+    model = "fem"
 
-    def deflection(self, pressure):
-        """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
-        return self.matrix @ np.asarray(pressure, dtype=float)
+    def __init__(self, solids: FESolids, unit_matrix: np.ndarray, eps: float):
+        self.solids = solids
+        super().__init__(solids.radii, unit_matrix, eps)
+
+    def factor(self, eps: float) -> float:
+        """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""
+        return self.solids.scale(eps)
+
+    @property
+    def surface_radii(self) -> tuple:
+        """Radii of the upper sphere and the lower body, by a (math.inf for a wall)."""
+        return self.solids.radius_upper, self.solids.radius_lower or math.inf

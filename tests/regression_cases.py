@@ -22,6 +22,9 @@ OUTPUTS = study.OUTPUTS  # every output of a sweep table row
 THIN = dict(St=10.0, eps=1e-3, layer="thin")
 IMMERSED = dict(St=20.0, eps=1e-3, layer="immersed")
 FAST = dict(nodes=80)
+FE_CASE = CollisionParameters(
+    St=10.0, eps=1e-3, delta=0.01, layer="thin", p_cav=-2.0, angle=30.0, gap="paraboloid"
+)
 
 
 def cases():
@@ -110,30 +113,10 @@ def cases():
             ),
             FAST,
         ),
-        (
-            "fem-thin-truncate",
-            p(
-                St=10.0,
-                eps=1e-3,
-                delta=0.01,
-                layer="thin",
-                p_cav=-2.0,
-                angle=30.0,
-                gap="paraboloid",
-            ),
-            {"nodes": 60, "model": "fem"},
-        ),
+        ("fem-thin-truncate", FE_CASE, {"nodes": 60, "model": "fem"}),
         (
             "fem-thin-lubrication",
-            p(
-                St=10.0,
-                eps=1e-3,
-                delta=0.01,
-                layer="thin",
-                p_cav=-2.0,
-                angle=30.0,
-                gap="paraboloid",
-            ),
+            FE_CASE,
             {"nodes": 60, "model": "fem", "tangential": "lubrication"},
         ),
     ]

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import cavitation, checks
 from .compliance import Compliance
-from .compliance.halfspace import HalfSpaceCompliance
+from .compliance.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from .film import radial_grid
 from .normal import FilmClosedError, NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
@@ -48,22 +48,26 @@ def elasticity(
     params: CollisionParameters, radii, model="halfspace", physical=None, solids=None
 ) -> Compliance:
     """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
-    half-spaces, or FE solids
-    (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta with the materials of the
-    physical inputs, or, for dimensionless inputs, identical materials with Poisson ratio 0.3
-    (the half-space only sees theta; the solids also see the moduli ratio and the nu's).
+    half-spaces, or FE solids (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta,
+    with the materials of the physical inputs, or, for dimensionless inputs, identical
+    materials with Poisson ratio 0.3 (the half-space's pressure kernel only sees theta; the
+    solids and the shear traction also see the moduli ratio and the nu's). The squeeze-shear
+    traction is applied when params.shear_traction says so (default: FE solids only).
     ``solids``: further FESolids arguments (lower body, coating, radius ratio)."""
+    materials = IDENTICAL_SOLIDS
+    if physical is not None:
+        materials = tuple(
+            (m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall)
+        )
+    shear = params.shear_traction
+    shear = model == "fem" if shear is None else shear
     if model == "halfspace":
-        return HalfSpaceCompliance(radii, params.eps)
+        return HalfSpaceCompliance(radii, params.eps, (params.delta, materials) if shear else None)
     from .compliance.fem import FESolids
 
-    materials = {}
-    if physical is not None:
-        materials = {
-            name: (m.young_modulus, m.poisson_ratio)
-            for name, m in (("sphere", physical.sphere), ("wall", physical.wall))
-        }
-    return FESolids(params.delta, radii, **materials, **(solids or {})).compliance(params.eps)
+    sphere, wall = materials
+    fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **(solids or {}))
+    return fe.compliance(params.eps, shear=shear)
 
 
 @dataclass
@@ -96,6 +100,7 @@ class CollisionResult:
             "viscosity": p.viscosity,
             "alpha": p.alpha,
             "gap": n.gap.name,
+            "shear_traction": getattr(self.compliance, "shear_matrix", None) is not None,
             "e_dry": p.e_dry,
             "angle": p.angle,
             "rebound": n.rebound,

@@ -6,10 +6,16 @@ dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.timestepping`) the step solves
 
     m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
     a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt f.P = 0,
-    H = X + S(R) + C P,     S the undeformed gap (:mod:`ehdfem.gap`; R^2/2 for the paraboloid),
+    H = X + S(R) + C P + C_T T(H0, P),   H0 = X + S(R) + C P,
 
 with P = 0 at dry nodes and the rows and unknowns of the cavitation model
-(:mod:`ehdfem.cavitation`). The Jacobian is dense (the compliance couples all nodes). It is
+(:mod:`ehdfem.cavitation`). S is the undeformed gap (:mod:`ehdfem.gap`; R^2/2 for the
+paraboloid). C_T T is the opening by the squeeze-shear traction T = -(H/2) dP/dR
+(:meth:`ehdfem.film.Film.squeeze_shear`) when the compliance applies it: T is formed with H0,
+the film without its own shear opening (the neglected product is of relative size
+sqrt(delta) kappa (W_shear / H)), and the Newton matrix leaves the shear opening out (it is
+O(sqrt(delta)) of the pressure's), so the simplified Newton still contracts while the residual
+holds it in full. The Jacobian is dense (the compliance couples all nodes). It is
 factorised only when needed (simplified Newton): the LU (:class:`ehdfem.reusable_lu.ReusableLU`)
 is reused across iterations and steps while a0/dt has moved by less than 30 % and the
 iteration contracts fast enough, and rows of nodes that become dry, wet or cavitated are
@@ -66,12 +72,16 @@ class ImplicitStep:
     """Newton for one step of the coupled system (module docstring).
 
     ``film``: :class:`ehdfem.film.Film`; ``compliance_matrix``: C (by x0 per unit pressure);
-    ``cavitation``: a model of :mod:`ehdfem.cavitation`; ``St``: the Stokes number.
+    ``cavitation``: a model of :mod:`ehdfem.cavitation`; ``St``: the Stokes number;
+    ``shear_matrix``: C_T (by x0 per unit T) or None.
     """
 
-    def __init__(self, film: Film, compliance_matrix, cavitation, St: float, options=None):
+    def __init__(
+        self, film: Film, compliance_matrix, cavitation, St: float, options=None, shear_matrix=None
+    ):
         self.film = film
         self.compliance = np.asarray(compliance_matrix, dtype=float)
+        self.shear = shear_matrix
         self.compliance_diagonal = np.diag(self.compliance).copy()
         self.cavitation = cavitation
         self.St = St
@@ -81,8 +91,11 @@ class ImplicitStep:
         self.factorisations = 0
 
     def thickness(self, pressure, gap):
-        """H = X + S(R) + C P at the film nodes (by x0)."""
-        return gap + self.undeformed + self.compliance @ pressure
+        """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
+        h = gap + self.undeformed + self.compliance @ pressure
+        if self.shear is None:
+            return h
+        return h + self.shear @ self.film.squeeze_shear(h, pressure)
 
     def solve(self, guess, step, a0, past) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted

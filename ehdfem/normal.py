@@ -63,7 +63,9 @@ class NormalResult:
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
     stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
-    at the end (meaningful without cavitation). ``status``: "rebound", "stick" or "stalled".
+    at the end (meaningful without cavitation and without the squeeze-shear traction, whose
+    work on the solids' radial displacement it does not count). ``status``: "rebound", "stick"
+    or "stalled".
     ``rtol``: the local time-step tolerance used (with ``energy_error``, the achieved accuracy).
     ``gap``: the undeformed gap used (:mod:`ehdfem.gap`; ``gap.name`` says which).
     """
@@ -112,7 +114,12 @@ class _NormalIntegration:
         self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
         self.cavitation = params.cavitation_model()
         self.step_solver = ImplicitStep(
-            self.film, compliance.matrix, self.cavitation, params.St, options
+            self.film,
+            compliance.matrix,
+            self.cavitation,
+            params.St,
+            options,
+            compliance.shear_matrix,
         )
         self.hist = NormalHistory()
         self.stepper = BDFStepper(options, self.hist.time)

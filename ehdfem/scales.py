@@ -76,7 +76,10 @@ class CollisionParameters:
     pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
     roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
     (:mod:`ehdfem.viscosity`); gap "paraboloid" (the asymptotic theory), "exact" (the true
-    spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.gap`).
+    spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.gap`);
+    shear_traction: load the solids with the squeeze flow's shear traction too (True), only
+    with the pressure (False), or None, the model's default (on for the FE solids, off for the
+    half-space theory; :mod:`ehdfem.compliance.halfspace`).
     """
 
     St: float
@@ -94,6 +97,7 @@ class CollisionParameters:
     roelands_pressure: float | None = None
     roelands_index: float = ROELANDS_INDEX
     gap: str | None = None
+    shear_traction: bool | None = None
 
     def __post_init__(self):
         checks.positive("St", self.St)
@@ -109,6 +113,10 @@ class CollisionParameters:
         )
         checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
+        if self.shear_traction not in (None, True, False):
+            raise checks.InputError(
+                f"shear_traction must be True, False or None, got {self.shear_traction!r}"
+            )
         if self.gap is not None:
             checks.choice("gap", self.gap, GAPS)
             if self.gap == "exact" and self.layer == "immersed":
@@ -153,8 +161,8 @@ class PhysicalCollision:
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
     inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
     the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
-    preset] and the undeformed gap (as in :class:`CollisionParameters`). Roelands takes
-    Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
+    preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`).
+    Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float
     sphere: Material
@@ -174,6 +182,7 @@ class PhysicalCollision:
     viscosity: str = "constant"
     pressure_viscosity: float | None = None
     gap: str | None = None
+    shear_traction: bool | None = None
 
     def __post_init__(self):
         checks.positive("radius", self.radius)
@@ -266,6 +275,7 @@ class PhysicalCollision:
             if roelands and self.alpha > 0
             else ROELANDS_INDEX,
             gap=self.gap,
+            shear_traction=self.shear_traction,
         )
 
     def scales(self) -> Scales:

@@ -23,7 +23,14 @@ THIN = dict(St=10.0, eps=1e-3, layer="thin")
 IMMERSED = dict(St=20.0, eps=1e-3, layer="immersed")
 FAST = dict(nodes=80)
 FE_CASE = CollisionParameters(
-    St=10.0, eps=1e-3, delta=0.01, layer="thin", p_cav=-2.0, angle=30.0, gap="paraboloid"
+    St=10.0,
+    eps=1e-3,
+    delta=0.01,
+    layer="thin",
+    p_cav=-2.0,
+    angle=30.0,
+    gap="paraboloid",
+    shear_traction=False,
 )
 
 

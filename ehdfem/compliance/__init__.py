@@ -29,6 +29,8 @@ class Compliance(Protocol):
     eps: float | None  # the elasticity parameter the matrix is built for (None: rigid)
     model: str  # the name of the elasticity model ("halfspace", "fem", "rigid")
     surface_radii: tuple  # radii of the sphere and the lower body by a (math.inf: a wall)
+    shear_matrix: np.ndarray | None  # (N, N) gap opening per unit nodal squeeze-shear traction
+    # T (by sqrt(delta) mu V0 a / x0^2, :meth:`ehdfem.film.Film.squeeze_shear`); None: not applied
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
@@ -40,15 +42,23 @@ class Compliance(Protocol):
 class LinearCompliance:
     """A compliance C = factor(eps) * unit_matrix: ``unit_matrix`` comes from the solids
     (half-space kernel, FE condensation) and ``factor`` turns it into the units of the module
-    docstring at a given eps. Subclasses define ``factor``. The surfaces are a sphere of
-    radius a on a wall unless a subclass says otherwise."""
+    docstring at a given eps; the same for the squeeze-shear opening ``unit_shear`` (None: the
+    shear traction of the film is not applied). Subclasses define ``factor``. The surfaces are
+    a sphere of radius a on a wall unless a subclass says otherwise."""
 
     surface_radii = (1.0, math.inf)
 
-    def __init__(self, radii: np.ndarray, unit_matrix: np.ndarray, eps: float | None):
+    def __init__(
+        self, radii: np.ndarray, unit_matrix: np.ndarray, eps: float | None, unit_shear=None
+    ):
         self.radii = np.asarray(radii, dtype=float)
-        self.unit_matrix, self.eps = unit_matrix, eps
-        self.matrix = self.factor(eps) * unit_matrix
+        self.unit_matrix, self.unit_shear = unit_matrix, unit_shear
+        self._set_eps(eps)
+
+    def _set_eps(self, eps):
+        self.eps = eps
+        self.matrix = self.factor(eps) * self.unit_matrix
+        self.shear_matrix = None if self.unit_shear is None else self.factor(eps) * self.unit_shear
 
     def factor(self, eps: float | None) -> float:
         """Gap unit x0 per unit of ``unit_matrix`` at ``eps``."""
@@ -63,7 +73,7 @@ class LinearCompliance:
         if eps == self.eps:
             return self
         other = copy.copy(self)
-        other.eps, other.matrix = eps, self.factor(eps) * self.unit_matrix
+        other._set_eps(eps)
         return other
 
 

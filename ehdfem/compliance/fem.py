@@ -276,7 +276,8 @@ class FESolids:
 
     def _load_forms(self, v):
         """The load of a film pressure (normal on both contact faces, balanced on each free body
-        by a uniform body force), its resultant, and each free body's volume and u_z moment."""
+        by a uniform body force) and of a radial shear traction (the same on both faces; no net
+        force), the pressure's resultant, and each free body's volume and u_z moment."""
         import ufl
         from dolfinx import fem
 
@@ -285,9 +286,11 @@ class FESolids:
         ds = ufl.Measure("ds", domain=msh, subdomain_data=self._facet_tags)
         n = ufl.FacetNormal(msh)
         p = self._pressure = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
+        shear = self._shear = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
         self._u = fem.Function(self._space)
         self._resultant = fem.form(p * r * ds(geometry.LOWER_CONTACT))
-        load = -p * ufl.dot(n, v) * r * (ds(geometry.SPHERE_CONTACT) + ds(geometry.LOWER_CONTACT))
+        faces = ds(geometry.SPHERE_CONTACT) + ds(geometry.LOWER_CONTACT)
+        load = (-p * ufl.dot(n, v) + shear * v[0]) * r * faces
         self._body_forces, self._volumes, self._moments = [], [], []
         for body in self.bodies:
             force = fem.Constant(msh, np.zeros(2))
@@ -299,14 +302,16 @@ class FESolids:
             load = load + ufl.dot(force, v) * r * dx(body.cell_tag)
         self._load = fem.form(load)
 
-    def displacement(self, pressure):
+    def displacement(self, pressure, shear=None):
         """Solve for a film pressure given as a callable of r (by a), in the film pressure unit:
-        normal pressure on both contact faces, d'Alembert body forces on free spheres. Returns
-        the displacement (a DOLFINx function, in units of a p/E_ref), also kept for
-        :meth:`gap_opening`."""
+        normal pressure on both contact faces, d'Alembert body forces on free spheres; and a
+        radial shear traction ``shear`` (callable of r, the same unit; outward positive) on
+        both faces. Returns the displacement (a DOLFINx function, in units of a p/E_ref), also
+        kept for :meth:`gap_opening`."""
         from dolfinx import fem
 
         self._pressure.interpolate(lambda x: pressure(x[0]))
+        self._shear.interpolate(lambda x: np.zeros_like(x[0]) if shear is None else shear(x[0]))
         load = self.comm.allreduce(fem.assemble_scalar(self._resultant))
         for force, volume, body in zip(self._body_forces, self._volumes, self.bodies, strict=True):
             force.value[:] = (0.0, body.direction * load / volume)
@@ -355,13 +360,22 @@ class FESolids:
         between them and zero beyond the last, as a callable of r (by a)."""
         return lambda r: np.interp(r / math.sqrt(self.delta), self.radii, nodal, right=0.0)
 
-    def compliance(self, eps: float) -> FECompliance:
-        """The film compliance in the units of the half-space kernel; one solve per node."""
-        unit = np.empty((len(self.radii), len(self.radii)))
-        for j in range(len(self.radii)):
-            self.displacement(self.film_pressure(np.eye(len(self.radii))[j]))
+    def compliance(self, eps: float, shear: bool = False) -> FECompliance:
+        """The film compliance in the units of the half-space kernel, one solve per node; with
+        ``shear`` also the gap opening per unit nodal squeeze-shear traction T (by sqrt(delta)
+        times the film pressure unit, :meth:`ehdfem.film.Film.squeeze_shear`) on both faces."""
+        n = len(self.radii)
+        zero = self.film_pressure(np.zeros(n))
+        unit = np.empty((n, n))
+        unit_shear = np.empty((n, n)) if shear else None
+        for j in range(n):
+            hat = self.film_pressure(np.eye(n)[j])
+            self.displacement(hat)
             unit[:, j] = self.gap_opening()
-        return FECompliance(self, unit, eps)
+            if shear:
+                self.displacement(zero, lambda r, hat=hat: math.sqrt(self.delta) * hat(r))
+                unit_shear[:, j] = self.gap_opening()
+        return FECompliance(self, unit, eps, unit_shear)
 
     def deformation(self, nodal_pressure, eps: float) -> Deformation:
         """The solids under the film pressure with values ``nodal_pressure`` at the film nodes
@@ -440,9 +454,9 @@ class FECompliance(LinearCompliance):
 
     model = "fem"
 
-    def __init__(self, solids: FESolids, unit_matrix: np.ndarray, eps: float):
+    def __init__(self, solids: FESolids, unit_matrix: np.ndarray, eps: float, unit_shear=None):
         self.solids = solids
-        super().__init__(solids.radii, unit_matrix, eps)
+        super().__init__(solids.radii, unit_matrix, eps, unit_shear)
 
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""

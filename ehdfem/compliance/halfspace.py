@@ -15,6 +15,21 @@ cell is integrated by 8-point Gauss-Legendre when it is at least one cell length
 cells that touch R_i or are closer than their length are integrated by a composite Gauss rule
 graded geometrically towards the end nearest R_i, which resolves the logarithm (or its near
 presence on strongly non-uniform grids) to ~1e-12 without adaptive quadrature.
+
+The film's squeeze flow also drags both surfaces radially, by the same traction tau = -(h/2)
+dp/dr in the flow direction on each (:meth:`ehdfem.film.Film.squeeze_shear`). Summing
+Cerruti's point-force solution over rings (Johnson, Contact Mechanics, ch. 3), a radial surface
+traction q(s) on a half-space lifts its surface at r out of the solid by (1 - 2 nu)/(2 G)
+int_r^inf q(s) ds; rings inside r do not move it. (The sign follows from Betti's reciprocity
+with the inward radial displacement (1 - 2 nu) F / (4 pi G r) of a surface indented by a
+normal force F.) The two surfaces are loaded alike and each rises out of its own solid
+towards the film, so an outflow closes the gap by the sum over both solids, also for identical
+materials: the loading is symmetric about the mid-plane. Only equal and opposite tractions,
+such as the Couette shear of sliding, leave the gap of identical solids unchanged. Scaled,
+with T = -(H/2) dP/dR by sqrt(delta) mu V0 a / x0^2,
+
+    W_shear(R) = -eps sqrt(delta) kappa int_R^inf T dS,
+    kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E   (0.449 for nu = 0.3).
 """
 
 from __future__ import annotations
@@ -24,6 +39,11 @@ from scipy.special import ellipkm1
 
 from ..checks import InputError, number
 from . import LinearCompliance
+
+IDENTICAL_SOLIDS = (
+    (1.0, 0.3),
+    (1.0, 0.3),
+)  # (Young's modulus ratio, Poisson) of dimensionless runs
 
 _GAUSS = np.polynomial.legendre.leggauss(8)
 _REGULAR_X = 0.5 * (_GAUSS[0] + 1.0)
@@ -90,18 +110,47 @@ class HalfSpaceCompliance(LinearCompliance):
 
     ``radii``: film nodes (by sqrt(a x0)), starting at 0 and strictly increasing. ``eps``: the
     elasticity parameter 4 theta mu V0 a^(3/2) / x0^(5/2) (> 0; 0 gives rigid solids).
+    ``shear``: None (the squeeze shear is not applied, the asymptotic theory) or (delta,
+    solids) with solids the (Young's modulus, Poisson ratio) pairs of sphere and wall: then
+    ``shear_matrix`` = -eps sqrt(delta) kappa B (module docstring).
     """
 
     model = "halfspace"
 
-    def __init__(self, radii: np.ndarray, eps: float):
+    def __init__(self, radii: np.ndarray, eps: float, shear=None):
         radii = np.asarray(radii, dtype=float)
         if radii.ndim != 1 or len(radii) < 3:
             raise InputError("radii must be a 1-D array of at least 3 film nodes")
         if radii[0] != 0.0 or np.any(np.diff(radii) <= 0) or not np.all(np.isfinite(radii)):
             raise InputError("radii must start at 0 and increase strictly")
-        super().__init__(radii, influence_matrix(radii), number("eps", eps, lower=0.0))
+        unit_shear = None
+        if shear is not None:
+            delta, solids = shear
+            kappa = shear_coefficient(solids)
+            unit_shear = -np.sqrt(delta) * kappa * outer_integral_matrix(radii)
+        super().__init__(radii, influence_matrix(radii), number("eps", eps, lower=0.0), unit_shear)
 
     def factor(self, eps: float) -> float:
         """The kernel is per unit eps: C = eps * kernel."""
         return number("eps", eps, lower=0.0)
+
+
+def outer_integral_matrix(radii: np.ndarray) -> np.ndarray:
+    """B[i, j] = int_{R_i}^{R_N} phi_j dS for hat functions on ``radii``: (B T)_i is the
+    integral of the piecewise linear T from R_i to the last node (by sqrt(a x0))."""
+    r = np.asarray(radii, dtype=float)
+    half = 0.5 * np.diff(r)
+    matrix = np.zeros((len(r), len(r)))
+    for i in range(len(r) - 1):
+        matrix[i, i] += half[i]
+        matrix[i, i + 1 :] += half[i:]
+        matrix[i, i + 1 : -1] += half[i + 1 :]
+    return matrix
+
+
+def shear_coefficient(solids=IDENTICAL_SOLIDS) -> float:
+    """kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E over the two solids, given as
+    (Young's modulus, Poisson ratio) pairs (any common unit of modulus)."""
+    radial = sum((1 - 2 * nu) * (1 + nu) / e for e, nu in solids)
+    normal = sum((1 - nu**2) / e for e, nu in solids)
+    return np.pi / 4 * radial / normal

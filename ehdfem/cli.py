@@ -148,6 +148,13 @@ def _film_arguments(group, scaled) -> None:
         "default: exact for --model fem with a thin layer, paraboloid otherwise",
     )
     group.add_argument(
+        "--shear-traction",
+        choices=("on", "off"),
+        default=None,
+        help="load the solids with the squeeze flow's shear traction too; "
+        "default: on for --model fem, off for the half-space theory",
+    )
+    group.add_argument(
         "--cavitation",
         choices=cavitation.MODELS,
         default="truncate",
@@ -254,6 +261,7 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
             viscosity=args.viscosity,
             pressure_viscosity=args.pressure_viscosity,
             gap=args.gap,
+            shear_traction=_on_off(args.shear_traction),
         )
     if args.pressure_viscosity is not None:
         raise checks.InputError(
@@ -276,10 +284,16 @@ def _inputs(args) -> CollisionParameters | PhysicalCollision:
     )
 
 
+def _on_off(value):
+    """True, False or None (not given) from an "on"/"off" option."""
+    return None if value is None else value == "on"
+
+
 def _film_parameters(args) -> dict:
     """CollisionParameters fields of the film models from the dimensionless arguments."""
     return {
         "gap": args.gap,
+        "shear_traction": _on_off(args.shear_traction),
         "cavitation": args.cavitation,
         "viscosity": args.viscosity,
         "alpha": args.alpha,

@@ -48,25 +48,29 @@ def elasticity(
     params: CollisionParameters, radii, model="halfspace", physical=None, solids=None
 ) -> Compliance:
     """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
-    half-spaces, or FE solids (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta,
-    with the materials of the physical inputs, or, for dimensionless inputs, identical
-    materials with Poisson ratio 0.3 (the half-space's pressure kernel only sees theta; the
-    solids and the shear traction also see the moduli ratio and the nu's). The squeeze-shear
-    traction is applied when params.shear_traction says so (default: FE solids only).
-    ``solids``: further FESolids arguments (lower body, coating, radius ratio)."""
-    materials = IDENTICAL_SOLIDS
+    half-spaces, or FE solids (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta.
+    Materials, as (Young's modulus, Poisson ratio): ``solids["sphere"]`` and ``solids["wall"]``
+    if given, else those of the physical inputs, else identical solids with Poisson ratio 0.3
+    (the half-space's pressure kernel only sees theta; the FE solids and the shear traction
+    also see the moduli ratio and the nu's). The squeeze-shear traction is applied when
+    params.shear_traction says so (default: FE solids only). ``solids``: further FESolids
+    arguments (lower body, coating, radius ratio)."""
+    solids = dict(solids or {})
+    sphere, wall = IDENTICAL_SOLIDS
     if physical is not None:
-        materials = tuple(
+        sphere, wall = (
             (m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall)
         )
+    sphere, wall = solids.pop("sphere", sphere), solids.pop("wall", wall)
     shear = params.shear_traction
     shear = model == "fem" if shear is None else shear
     if model == "halfspace":
-        return HalfSpaceCompliance(radii, params.eps, (params.delta, materials) if shear else None)
+        return HalfSpaceCompliance(
+            radii, params.eps, (params.delta, (sphere, wall)) if shear else None
+        )
     from .compliance.fem import FESolids
 
-    sphere, wall = materials
-    fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **(solids or {}))
+    fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **solids)
     return fe.compliance(params.eps, shear=shear)
 
 

@@ -4,9 +4,10 @@ Scaled (DSH 1986): time by x0/V0, gap X and film thickness H by x0, velocity V b
 P by mu V0 a / x0^2 at the film nodes, force by 6 pi mu V0 a^2 / x0, radius by sqrt(a x0).
 Energies are by m V0^2 / St, so that the kinetic energy is St V^2 / 2 (St / 2 at impact), the
 elastic energy stored in the solids is (1/6) P.M C P (M the film's lumped mass, C the
-compliance) and the dissipation is the time integral of the film's viscous dissipation rate
-(:meth:`ehdfem.film.Film.dissipation_rate`). Without cavitation and with e_dry = 1 the balance
-kinetic + elastic + dissipated = St / 2 holds to discretisation error.
+compliance; with the squeeze-shear traction, plus the pressure's work on the shear opening,
+(1/3) int P.M dW_shear) and the dissipation is the time integral of the film's viscous
+dissipation rate (:meth:`ehdfem.film.Film.dissipation_rate`). Without cavitation and with
+e_dry = 1 the balance kinetic + elastic + dissipated = St / 2 holds to discretisation error.
 """
 
 from __future__ import annotations
@@ -49,8 +50,9 @@ class NormalHistory:
 
     def record(self, time, gap, velocity, pressure, fill, h, state: FilmState, energies):
         """Append one accepted step. ``energies``: (St, compliance matrix, full lumped mass,
-        dissipation so far), from which the kinetic and elastic energies are formed."""
-        St, compliance, mass, dissipated = energies
+        dissipation so far, the pressure's work on the shear opening so far), from which the
+        kinetic and elastic energies are formed."""
+        St, compliance, mass, dissipated, shear_work = energies
         self.time.append(time)
         self.gap.append(gap)
         self.velocity.append(velocity)
@@ -59,7 +61,7 @@ class NormalHistory:
         self.min_film.append(h.min())
         self.edge_radius.append(state.edge_radius)
         self.kinetic.append(0.5 * St * velocity**2)
-        self.elastic.append(float(mass * pressure @ (compliance @ pressure)) / 6.0)
+        self.elastic.append(float(mass * pressure @ (compliance @ pressure)) / 6.0 + shear_work)
         self.dissipated.append(dissipated)
         self.pressure.append(pressure)
         self.fill.append(fill)

@@ -93,9 +93,14 @@ class ImplicitStep:
     def thickness(self, pressure, gap):
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
         h = gap + self.undeformed + self.compliance @ pressure
+        return h if self.shear is None else h + self.shear_opening(h, pressure)
+
+    def shear_opening(self, h0, pressure):
+        """C_T T(H0, P): the gap opening by the squeeze-shear traction (by x0; 0 without it),
+        for the film thickness H0 without that opening."""
         if self.shear is None:
-            return h
-        return h + self.shear @ self.film.squeeze_shear(h, pressure)
+            return np.zeros_like(h0)
+        return self.shear @ self.film.squeeze_shear(h0, pressure)
 
     def solve(self, guess, step, a0, past) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted

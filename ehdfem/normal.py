@@ -63,8 +63,7 @@ class NormalResult:
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
     stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
-    at the end (meaningful without cavitation and without the squeeze-shear traction, whose
-    work on the solids' radial displacement it does not count). ``status``: "rebound", "stick"
+    at the end (meaningful without cavitation). ``status``: "rebound", "stick"
     or "stalled".
     ``rtol``: the local time-step tolerance used (with ``energy_error``, the achieved accuracy).
     ``gap``: the undeformed gap used (:mod:`ehdfem.gap`; ``gap.name`` says which).
@@ -126,7 +125,7 @@ class _NormalIntegration:
         n = len(self.radii)
         self.pressure, self.gap, self.velocity = np.zeros(n), 1.0, -1.0
         self.cavitated = np.zeros(n, bool)
-        self.dissipation_rate = 0.0
+        self.dissipation_rate = self.shear_work = 0.0
         self.rejected = self.iterations = 0
         self.rebounding = False
         self.exit_time = self.exit_velocity = np.nan
@@ -135,7 +134,18 @@ class _NormalIntegration:
         self._record(0.0, np.ones(n), h, state, 0.0)
 
     def _record(self, time, fill, h, state, dissipated):
-        energies = (self.params.St, self.step_solver.compliance, self.film.full_mass, dissipated)
+        """Record the current state; the pressure's work on the shear opening is accumulated
+        by the trapezoidal rule, (1/3) int P.M dW_shear (the elastic energy's shear part)."""
+        solver, mass = self.step_solver, self.film.full_mass
+        opening = np.zeros_like(h)
+        if solver.shear is not None:
+            h0 = self.gap + solver.undeformed + solver.compliance @ self.pressure
+            opening = solver.shear_opening(h0, self.pressure)
+        if self.hist.time:
+            mean = 0.5 * (self.hist.pressure[-1] + self.pressure)
+            self.shear_work += float(mass * mean @ (opening - self.opening)) / 3.0
+        self.opening = opening
+        energies = (self.params.St, solver.compliance, mass, dissipated, self.shear_work)
         self.hist.record(time, self.gap, self.velocity, self.pressure, fill, h, state, energies)
 
     def run(self) -> NormalResult:

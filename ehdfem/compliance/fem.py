@@ -39,8 +39,13 @@ from functools import cached_property
 import numpy as np
 
 from .. import checks
+from ..progress import progress
 from . import LinearCompliance, dolfinx_compat
 from .fem_mesh import contact_mesh
+
+BLOCK = (
+    48  # right-hand sides per multiple-RHS solve of the condensation (memory: 8 B x dofs x BLOCK)
+)
 
 LOWER_BODIES = ("wall", "coated", "sphere")
 
@@ -282,7 +287,8 @@ class FESolids:
         from dolfinx import fem
 
         msh, geometry, r = self.mesh, self._geometry, self._r
-        dx = ufl.Measure("dx", domain=msh, subdomain_data=self._cell_tags)
+        dx = self._dx = ufl.Measure("dx", domain=msh, subdomain_data=self._cell_tags)
+        self._test = v
         ds = ufl.Measure("ds", domain=msh, subdomain_data=self._facet_tags)
         n = ufl.FacetNormal(msh)
         p = self._pressure = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
@@ -302,12 +308,11 @@ class FESolids:
             load = load + ufl.dot(force, v) * r * dx(body.cell_tag)
         self._load = fem.form(load)
 
-    def displacement(self, pressure, shear=None):
-        """Solve for a film pressure given as a callable of r (by a), in the film pressure unit:
-        normal pressure on both contact faces, d'Alembert body forces on free spheres; and a
-        radial shear traction ``shear`` (callable of r, the same unit; outward positive) on
-        both faces. Returns the displacement (a DOLFINx function, in units of a p/E_ref), also
-        kept for :meth:`gap_opening`."""
+    def _load_vector(self, pressure, shear=None):
+        """The assembled load (PETSc vector) of a film pressure and a radial shear traction,
+        each a callable of r (by a) in the film pressure unit (shear outward positive, on both
+        faces; None: none), with the d'Alembert body forces that balance the pressure on the
+        free spheres."""
         from dolfinx import fem
 
         self._pressure.interpolate(lambda x: pressure(x[0]))
@@ -315,8 +320,15 @@ class FESolids:
         load = self.comm.allreduce(fem.assemble_scalar(self._resultant))
         for force, volume, body in zip(self._body_forces, self._volumes, self.bodies, strict=True):
             force.value[:] = (0.0, body.direction * load / volume)
-        b = dolfinx_compat.assemble_vector(self._load, self._bcs)
-        self._ksp.solve(b, dolfinx_compat.petsc_vector(self._u))
+        return dolfinx_compat.assemble_vector(self._load, self._bcs)
+
+    def displacement(self, pressure, shear=None):
+        """Solve for a film pressure given as a callable of r (by a), in the film pressure unit:
+        normal pressure on both contact faces, d'Alembert body forces on free spheres; and a
+        radial shear traction ``shear`` (callable of r, the same unit; outward positive) on
+        both faces. Returns the displacement (a DOLFINx function, in units of a p/E_ref), also
+        kept for :meth:`gap_opening`."""
+        self._ksp.solve(self._load_vector(pressure, shear), dolfinx_compat.petsc_vector(self._u))
         self._u.x.scatter_forward()
         return self._u
 
@@ -361,21 +373,91 @@ class FESolids:
         return lambda r: np.interp(r / math.sqrt(self.delta), self.radii, nodal, right=0.0)
 
     def compliance(self, eps: float, shear: bool = False) -> FECompliance:
-        """The film compliance in the units of the half-space kernel, one solve per node; with
-        ``shear`` also the gap opening per unit nodal squeeze-shear traction T (by sqrt(delta)
-        times the film pressure unit, :meth:`ehdfem.film.Film.squeeze_shear`) on both faces."""
+        """The film compliance in the units of the half-space kernel; with ``shear`` also the
+        gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
+        pressure unit, :meth:`ehdfem.film.Film.squeeze_shear`) on both faces. The unit loads
+        (hat pressures, then hat shear tractions) are solved in blocks of BLOCK right-hand
+        sides on the one factorisation."""
         n = len(self.radii)
-        zero = self.film_pressure(np.zeros(n))
-        unit = np.empty((n, n))
-        unit_shear = np.empty((n, n)) if shear else None
-        for j in range(n):
-            hat = self.film_pressure(np.eye(n)[j])
-            self.displacement(hat)
-            unit[:, j] = self.gap_opening()
-            if shear:
-                self.displacement(zero, lambda r, hat=hat: math.sqrt(self.delta) * hat(r))
-                unit_shear[:, j] = self.gap_opening()
-        return FECompliance(self, unit, eps, unit_shear)
+        hats = [self.film_pressure(np.eye(n)[j]) for j in range(n)]
+        loads = [(hat, None) for hat in hats]
+        if shear:
+            zero, root = self.film_pressure(np.zeros(n)), math.sqrt(self.delta)
+            loads += [(zero, lambda r, hat=hat: root * hat(r)) for hat in hats]
+        blocks = range(0, len(loads), BLOCK)
+        openings = np.hstack(
+            [
+                self._gap_openings(loads[start : start + BLOCK])
+                for start in progress(blocks, desc="FE compliance")
+            ]
+        )
+        return FECompliance(self, openings[:, :n], eps, openings[:, n:] if shear else None)
+
+    def _gap_openings(self, loads) -> np.ndarray:
+        """W (in units of a p/E_ref) at the film nodes, one column per (pressure, shear) load,
+        from one multiple-right-hand-side solve."""
+        from petsc4py import PETSc
+
+        vectors = [self._load_vector(*load) for load in loads]
+        size = (vectors[0].getLocalSize(), vectors[0].getSize())
+        rhs = PETSc.Mat().createDense([size, (PETSc.DECIDE, len(loads))], comm=self.comm)
+        rhs.setUp()
+        columns = rhs.getDenseArray()
+        for k, vector in enumerate(vectors):
+            columns[:, k] = vector.getArray()
+        rhs.assemble()
+        solution = rhs.duplicate()
+        self._ksp.setUp()
+        self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
+        values = solution.getDenseArray()
+        centres = [self.comm.allreduce(weights @ values) for weights in self._centre_weights]
+        upper, lower = [*centres, np.zeros(len(loads))][:2]
+        r_up, u_up = self._owned_surface(self._geometry.SPHERE_CONTACT, values)
+        r_lo, u_lo = self._owned_surface(self._geometry.LOWER_CONTACT, values)
+        return np.column_stack(
+            [
+                (np.interp(self.radii_a, r_up, u_up[:, k]) - upper[k])
+                - (np.interp(self.radii_a, r_lo, u_lo[:, k]) - lower[k])
+                for k in range(len(loads))
+            ]
+        )
+
+    @cached_property
+    def _centre_weights(self):
+        """Per free body, the owned entries of the vector w with w.u = its centre-of-mass u_z."""
+        from dolfinx import fem
+
+        weights = []
+        for body, volume in zip(self.bodies, self._volumes, strict=True):
+            form = fem.form(self._test[1] * self._r * self._dx(body.cell_tag))
+            vector = dolfinx_compat.assemble_vector(form, [])
+            weights.append(vector.getArray() / volume)
+        return weights
+
+    def _owned_surface(self, tag, values):
+        """(r, u_z rows) on a contact face from the owned rows ``values`` of a dense block of
+        solutions, gathered from all ranks and sorted by r."""
+        rows, r = self._surface_rows[tag]
+        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, values[rows]])))
+        r, index = np.unique(pairs[:, 0], return_index=True)
+        return r, pairs[index, 1:]
+
+    @cached_property
+    def _surface_rows(self):
+        """Per contact face tag: the owned u_z rows of the solution vector and their r."""
+        from dolfinx import fem
+
+        space = self._space
+        V1, _ = space.sub(1).collapse()
+        owned = space.dofmap.index_map.size_local * space.dofmap.index_map_bs
+        out = {}
+        for tag in (self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT):
+            parent, child = fem.locate_dofs_topological(
+                (space.sub(1), V1), 1, self._facet_tags.find(tag)
+            )
+            keep = parent < owned
+            out[tag] = (parent[keep], V1.tabulate_dof_coordinates()[child[keep], 0])
+        return out
 
     def deformation(self, nodal_pressure, eps: float) -> Deformation:
         """The solids under the film pressure with values ``nodal_pressure`` at the film nodes

@@ -65,7 +65,8 @@ class NormalResult:
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
     at the end (meaningful without cavitation). ``status``: "rebound", "stick"
     or "stalled".
-    ``rtol``: the local time-step tolerance used (with ``energy_error``, the achieved accuracy).
+    ``rtol`` and ``film_control``: the time-step control used (docs/model.md says what the
+    default guarantees; ``energy_error`` is the achieved accuracy of the balance).
     ``gap``: the undeformed gap used (:mod:`ehdfem.gap`; ``gap.name`` says which).
     """
 
@@ -86,6 +87,7 @@ class NormalResult:
     rejected_steps: int
     newton_iterations: int
     rtol: float
+    film_control: bool
     gap: Paraboloid
 
 
@@ -181,11 +183,10 @@ class _NormalIntegration:
         self.iterations += solution.iterations
         new_h = self.step_solver.thickness(solution.pressure, solution.gap)
         h_min = max(min(hist.min_film[-1], new_h.min()), 1e-12)
-        error = stepper.error(
-            t_new,
-            order,
-            [(hist.gap, solution.gap, h_min), (hist.velocity, solution.velocity, 1.0)],
-        )
+        checked = [(hist.gap, solution.gap, h_min), (hist.velocity, solution.velocity, 1.0)]
+        if self.options.film_control:
+            checked.append((hist.film_thickness, new_h, new_h))
+        error = stepper.error(t_new, order, checked)
         if error > 1.0:
             self.rejected += 1
             stepper.reject(error, order)
@@ -259,5 +260,6 @@ class _NormalIntegration:
             rejected_steps=self.rejected,
             newton_iterations=self.iterations,
             rtol=self.options.rtol,
+            film_control=self.options.film_control,
             gap=self.shape,
         )

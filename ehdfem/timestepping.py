@@ -21,13 +21,18 @@ from . import checks
 class IntegratorOptions:
     """Accuracy and limits of the time integration (all scaled).
 
-    ``rtol``: local error per step in X relative to the thinnest film and in V (relative to V0).
-    ``order``: the highest BDF order. ``max_growth``: the largest step growth per step.
+    ``rtol``: local error per step in X relative to the thinnest film, in V (relative to V0)
+    and, with ``film_control``, in the film thickness H at every node relative to itself (so
+    the thinnest film and the fast suction phase of the rebound are resolved; without it only
+    X and V are controlled, which leaves the minimum film thickness up to 17 % off at the old
+    default rtol 5e-5). ``order``: the highest BDF order. ``max_growth``: the largest step
+    growth per step.
     ``newton_tol``: Newton increments relative to the solution size. ``first_step``: initial
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
     """
 
-    rtol: float = 5e-5
+    rtol: float = 2e-4
+    film_control: bool = True
     order: int = 3
     max_growth: float = 1.5
     newton_tol: float = 1e-7
@@ -38,6 +43,10 @@ class IntegratorOptions:
 
     def __post_init__(self):
         checks.number("rtol", self.rtol, lower=1e-10, upper=0.1)
+        if not isinstance(self.film_control, bool):
+            raise checks.InputError(
+                f"film_control must be True or False, got {self.film_control!r}"
+            )
         checks.integer("order", self.order, lower=1, upper=3)
         checks.number("max_growth", self.max_growth, lower=1.1, upper=3.0)
         checks.number("newton_tol", self.newton_tol, lower=1e-14, upper=1e-3)
@@ -123,13 +132,14 @@ class BDFStepper:
 
     def error(self, t_new, order, checked) -> float:
         """Estimated local error over rtol: ``checked`` is a list of (history, new value,
-        scale); 0 while there are too few accepted values for the predictor."""
+        scale), values and scales scalars or arrays (the largest entry counts); 0 while there
+        are too few accepted values for the predictor."""
         if len(self.times) <= order:
             return 0.0
         nodes = latest(self.times, order + 1)
         share = error_share(t_new, nodes)
         worst = max(
-            abs(new - extrapolate(nodes, latest(history, order + 1), t_new)) / scale
+            np.max(np.abs(new - extrapolate(nodes, latest(history, order + 1), t_new)) / scale)
             for history, new, scale in checked
         )
         return share * worst / self.options.rtol

@@ -22,6 +22,7 @@ OUTPUTS = study.OUTPUTS  # every output of a sweep table row
 THIN = dict(St=10.0, eps=1e-3, layer="thin")
 IMMERSED = dict(St=20.0, eps=1e-3, layer="immersed")
 FAST = dict(nodes=80)
+BEFORE = dict(rtol=5e-5, film_control=False)  # the time-step control the table was made with
 FE_CASE = CollisionParameters(
     St=10.0,
     eps=1e-3,
@@ -135,8 +136,7 @@ def run(inputs, keywords):
     from ehdfem.timestepping import IntegratorOptions
 
     keywords = dict(keywords)
-    if "options" in keywords:
-        keywords["options"] = IntegratorOptions(**keywords["options"])
+    keywords["options"] = IntegratorOptions(**{**BEFORE, **keywords.get("options", {})})
     summary = collide(inputs, **keywords).summary()
     return {name: summary[name] for name in OUTPUTS}
 

@@ -57,6 +57,11 @@ def choice(name: str, value, allowed):
     return value
 
 
+def range_text(lower=None, upper=None, lower_open=False, upper_open=False) -> str:
+    """The range of :func:`number`'s keyword arguments as text, e.g. "(0, 2e+12]"."""
+    return _range(lower, upper, lower_open, upper_open)
+
+
 def _range(lower, upper, lower_open, upper_open) -> str:
     left = "(" if lower_open or lower is None else "["
     right = ")" if upper_open or upper is None else "]"

@@ -1,9 +1,16 @@
-"""Command line: ``ehdfem collide`` (one collision), ``ehdfem sweep`` (a study file over MPI
-ranks), ``ehdfem critical`` (the critical Stokes number), ``ehdfem fit`` (closed-form fits).
+"""Command line: ``ehdfem collide`` (one collision), ``ehdfem render`` (pictures of the FE
+solids), ``ehdfem sweep`` (a study file over MPI ranks), ``ehdfem critical`` (the critical
+Stokes number), ``ehdfem fit`` (closed-form fits), ``ehdfem presets`` (materials and liquids).
 
-Inputs are either dimensionless (``--St --eps --delta ...``, DSH scales) or physical
-(``--sphere --wall --liquid --radius --speed --layer-thickness ...``, SI units); ``--example``
-runs a steel sphere hitting a glass plate through a 0.3 mm silicone-oil layer at 30 degrees.
+Inputs are either dimensionless (``--St --eps --delta ...``, DSH scales) or physical (SI
+units): presets (``--sphere --wall --liquid``) and/or their values (``--sphere-modulus``,
+``--liquid-viscosity``, ...), with ``--radius --speed --layer-thickness``; ``--example`` runs a
+steel sphere hitting a glass plate through a 0.3 mm silicone-oil layer at 30 degrees.
+
+Output: the results table on standard output, or on standard error when ``--json -`` puts the
+JSON alone on standard output. The form compiler's build log and VTK's warnings are hidden
+unless ``--verbose`` (:mod:`ehdfem.quiet`); progress bars show on a terminal only
+(:mod:`ehdfem.progress`).
 """
 
 from __future__ import annotations
@@ -12,6 +19,7 @@ import argparse
 import csv
 import json
 import sys
+from dataclasses import asdict, fields
 from pathlib import Path
 
 import numpy as np
@@ -24,14 +32,41 @@ from .exports import field_snapshots, write_fields
 from .film import LAYERS
 from .gap import GAPS
 from .normal import NormalSolverError
-from .presets import EXAMPLE
+from .presets import (
+    EXAMPLE,
+    LIQUID_RANGES,
+    LIQUIDS,
+    MATERIAL_RANGES,
+    MATERIALS,
+    custom_liquid,
+    custom_material,
+)
+from .quiet import is_quiet, set_quiet
 from .scales import CollisionParameters, PhysicalCollision, from_presets
 from .study import Study, critical_stokes, run_study
 from .timestepping import IntegratorOptions
+from .version import __version__
 from .viscosity import LAWS as VISCOSITY_LAWS
 from .viscosity import ROELANDS_INDEX
 
-PHYSICAL = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
+DESCRIPTION = (
+    "Elastohydrodynamic wet collisions: a sphere hits a wall through a liquid layer; ehdfem "
+    "predicts rebound or sticking, the restitution coefficients, the film's pressure and "
+    "thickness, and the critical Stokes number."
+)
+BODIES = ("sphere", "wall", "liquid")
+SCALAR_PHYSICAL = ("radius", "speed", "layer_thickness")
+PHYSICAL = (*BODIES, *SCALAR_PHYSICAL)
+MATERIAL_OPTIONS = {  # option suffix: (Material field, metavar, help)
+    "modulus": ("young_modulus", "E", "Young's modulus [Pa]"),
+    "poisson": ("poisson_ratio", "NU", "Poisson's ratio"),
+    "density": ("density", "RHO", "density [kg/m^3]"),
+}
+LIQUID_OPTIONS = {  # option: (Liquid field, metavar, help)
+    "liquid_viscosity": ("viscosity", "MU", "liquid viscosity [Pa s] at ambient pressure"),
+    "liquid_density": ("density", "RHO", "liquid density [kg/m^3]"),
+    "vapour_pressure": ("vapour_pressure", "P", "vapour pressure [Pa, absolute], below ambient"),
+}
 
 
 def _collision_arguments(c) -> None:
@@ -67,9 +102,30 @@ def _collision_arguments(c) -> None:
 
 def _physical_arguments(phys) -> None:
     """The physical (SI) inputs of one collision."""
-    phys.add_argument("--sphere", help="sphere material preset (e.g. steel, glass)")
+    phys.add_argument(
+        "--sphere", help="sphere material preset (e.g. steel, glass; see ehdfem presets)"
+    )
     phys.add_argument("--wall", help="wall material preset")
-    phys.add_argument("--liquid", help="liquid preset (e.g. water, silicone_oil_100cst)")
+    phys.add_argument(
+        "--liquid", help="liquid preset (e.g. water, silicone_oil_100cst; see ehdfem presets)"
+    )
+    for body in ("sphere", "wall"):
+        for suffix, (field, metavar, text) in MATERIAL_OPTIONS.items():
+            phys.add_argument(
+                f"--{body}-{suffix}",
+                type=float,
+                metavar=metavar,
+                help=f"{body} {text}, {checks.range_text(**MATERIAL_RANGES[field])}; changes "
+                f"--{body}'s value, or with no preset give all three",
+            )
+    for option, (field, metavar, text) in LIQUID_OPTIONS.items():
+        phys.add_argument(
+            _option(option),
+            type=float,
+            metavar=metavar,
+            help=f"{text}, {checks.range_text(**LIQUID_RANGES[field])}; changes --liquid's "
+            "value, or with no preset give all three",
+        )
     phys.add_argument("--radius", type=float, help="sphere radius a [m]")
     phys.add_argument("--speed", type=float, help="impact speed |v| [m/s]")
     phys.add_argument("--layer-thickness", type=float, help="liquid layer thickness x0 [m]")
@@ -182,15 +238,24 @@ def _film_arguments(group, scaled) -> None:
     )
 
 
+VERBOSE_HELP = "show the form compiler's build log and VTK's warnings (hidden by default)"
+
+
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="ehdfem", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="ehdfem", description=DESCRIPTION)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    parser.add_argument("--verbose", action="store_true", help=VERBOSE_HELP)
+    every = argparse.ArgumentParser(add_help=False)  # options of every subcommand
+    every.add_argument(
+        "--verbose", action="store_true", default=argparse.SUPPRESS, help=VERBOSE_HELP
+    )
     sub = parser.add_subparsers(dest="command", required=True)
-    _collision_arguments(
-        sub.add_parser("collide", help="simulate one collision and print its results")
-    )
-    r = sub.add_parser(
-        "render", help="FE collision: picture of the deformed solids (and a film GIF)"
-    )
+
+    def command(name, text):
+        return sub.add_parser(name, help=text, description=text, parents=[every])
+
+    _collision_arguments(command("collide", "simulate one collision and print its results"))
+    r = command("render", "FE collision: picture of the deformed solids (and a film GIF)")
     _collision_arguments(r)
     r.add_argument("--out", default="render.png", help="PNG file (default render.png)")
     r.add_argument("--time", type=float, help="instant T (by x0/V0); default: maximum compression")
@@ -204,10 +269,10 @@ def _parser() -> argparse.ArgumentParser:
     )
     r.add_argument("--animation", metavar="FILE.gif", help="also write the film animation")
 
-    s = sub.add_parser("sweep", help="run a study file (TOML) over the MPI ranks; resumable")
+    s = command("sweep", "run a study file (TOML) over the MPI ranks; resumable")
     s.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
 
-    k = sub.add_parser("critical", help="critical Stokes number St_c by bisection on rebound")
+    k = command("critical", "critical Stokes number St_c by bisection on rebound")
     k.add_argument("--eps", type=float, required=True, help="elasticity parameter, > 0")
     k.add_argument("--delta", type=float, default=0.01, help="x0/a, (0, 1)")
     k.add_argument("--layer", choices=LAYERS, default="thin")
@@ -221,48 +286,100 @@ def _parser() -> argparse.ArgumentParser:
         "--json", metavar="FILE", help="write {St_c, bracket, ...} as JSON ('-': stdout)"
     )
 
-    f = sub.add_parser("fit", help="closed-form fits (and DEM formulas) against a sweep table")
+    f = command("fit", "closed-form fits (and DEM formulas) against a sweep table")
     f.add_argument("table", help="CSV table written by ehdfem sweep")
     f.add_argument("--json", metavar="FILE", help="write the fits as JSON ('-': stdout)")
+
+    p = command("presets", "list the material and liquid presets: values (SI) and sources")
+    p.add_argument("--json", metavar="FILE", help="write the presets as JSON ('-': stdout)")
     return parser
 
 
 def _inputs(args) -> CollisionParameters | PhysicalCollision:
     """Build the collision inputs from the arguments, refusing mixed or incomplete sets."""
-    given = [name for name in PHYSICAL if getattr(args, name) is not None]
-    if args.example:
-        values = {**EXAMPLE, **{name: getattr(args, name) for name in given}}
-        if args.angle is not None:
-            values["angle"] = args.angle
-        given = PHYSICAL
-    elif given:
-        values = {name: getattr(args, name) for name in given}
-        values["angle"] = 0.0 if args.angle is None else args.angle
-    if given:
-        missing = [name for name in PHYSICAL if name not in values]
-        if missing:
-            raise checks.InputError(
-                f"physical inputs need --{', --'.join(m.replace('_', '-') for m in missing)}"
-            )
-        if args.St is not None or args.eps is not None:
-            raise checks.InputError(
-                "give either dimensionless (--St, --eps) or physical inputs, not both"
-            )
-        if args.alpha or args.roelands_pressure is not None:
-            raise checks.InputError(
-                "physical inputs take --pressure-viscosity [1/Pa], not the scaled --alpha or "
-                "--roelands-pressure"
-            )
-        return from_presets(
-            **values,
-            layer=args.layer,
-            e_dry=args.e_dry,
-            cavitation=args.cavitation,
-            viscosity=args.viscosity,
-            pressure_viscosity=args.pressure_viscosity,
-            gap=args.gap,
-            shear_traction=_on_off(args.shear_traction),
+    values = _physical_values(args)
+    if values is None:
+        return _dimensionless_inputs(args)
+    missing = [_body_hint(name) for name in PHYSICAL if name not in values]
+    if missing:
+        raise checks.InputError(f"physical inputs need {', '.join(missing)}")
+    if args.St is not None or args.eps is not None:
+        raise checks.InputError(
+            "give either dimensionless (--St, --eps) or physical inputs, not both"
         )
+    if args.alpha or args.roelands_pressure is not None:
+        raise checks.InputError(
+            "physical inputs take --pressure-viscosity [1/Pa], not the scaled --alpha or "
+            "--roelands-pressure"
+        )
+    own_liquid = args.liquid is None and not args.example
+    if own_liquid and args.viscosity != "constant" and args.pressure_viscosity is None:
+        raise checks.InputError(
+            f"--viscosity {args.viscosity} with a liquid of your own needs its "
+            "--pressure-viscosity [1/Pa], [0, 1e-6]"
+        )
+    return from_presets(
+        **values,
+        layer=args.layer,
+        e_dry=args.e_dry,
+        cavitation=args.cavitation,
+        viscosity=args.viscosity,
+        pressure_viscosity=args.pressure_viscosity,
+        gap=args.gap,
+        shear_traction=_on_off(args.shear_traction),
+    )
+
+
+def _option(dest: str) -> str:
+    """The command-line spelling of an argument's name: layer_thickness -> --layer-thickness."""
+    return "--" + dest.replace("_", "-")
+
+
+def _body_hint(name: str) -> str:
+    """How to give the physical input ``name`` (for the message listing what is missing)."""
+    if name == "liquid":
+        return f"--liquid (or {', '.join(map(_option, LIQUID_OPTIONS))})"
+    if name in BODIES:
+        values = ", ".join(_option(f"{name}_{suffix}") for suffix in MATERIAL_OPTIONS)
+        return f"--{name} (or {values})"
+    return _option(name)
+
+
+def _physical_values(args) -> dict | None:
+    """The physical inputs given (SI; with --example, its values where not given), the
+    sphere, wall and liquid as Material and Liquid; None when there are none."""
+    values = dict(EXAMPLE) if args.example else {}
+    values.update({n: getattr(args, n) for n in SCALAR_PHYSICAL if getattr(args, n) is not None})
+    for name in BODIES:
+        body = _body(args, name, getattr(args, name) or values.get(name))
+        values.pop(name, None)
+        if body is not None:
+            values[name] = body
+    if not values:
+        return None
+    if args.angle is not None or "angle" not in values:
+        values["angle"] = 0.0 if args.angle is None else args.angle
+    return values
+
+
+def _body(args, name: str, preset: str | None):
+    """The sphere's or wall's Material, or the liquid's Liquid, from its preset and the values
+    given on the command line (which change the preset's); None when neither is given."""
+    if name == "liquid":
+        options, build = LIQUID_OPTIONS, custom_liquid
+    else:
+        options = {f"{name}_{suffix}": spec for suffix, spec in MATERIAL_OPTIONS.items()}
+        build = custom_material
+    given = {dest: getattr(args, dest) for dest in options if getattr(args, dest) is not None}
+    if preset is None and not given:
+        return None
+    field = {dest: spec[0] for dest, spec in options.items()}
+    labels = {field[dest]: _option(dest) for dest in options}
+    return build(preset, labels=labels.get, **{field[dest]: v for dest, v in given.items()})
+
+
+def _dimensionless_inputs(args) -> CollisionParameters:
+    """The dimensionless inputs (DSH scales) of the arguments."""
     if args.pressure_viscosity is not None:
         raise checks.InputError(
             "--pressure-viscosity [1/Pa] needs physical inputs; give the scaled --alpha instead"
@@ -302,12 +419,21 @@ def _film_parameters(args) -> dict:
     }
 
 
-def _print_table(summary: dict) -> None:
-    rows = [(k, v) for k, v in summary.items() if k != "si"] + list(summary.get("si", {}).items())
+def _print_table(summary: dict, stream) -> None:
+    """The results of a summary, one per line (the SI ones after the scaled ones; the inputs
+    are in the JSON only)."""
+    rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict)]
+    rows += list(summary.get("si", {}).items())
     width = max(len(k) for k, _ in rows)
     for key, value in rows:
         text = f"{value:.6g}" if isinstance(value, float) else str(value)
-        print(f"  {key:<{width}}  {text}")
+        print(f"  {key:<{width}}  {text}", file=stream)
+
+
+def _report_stream(args):
+    """Where the human-readable report goes: standard error when ``--json -`` takes standard
+    output for the JSON alone, else standard output."""
+    return sys.stderr if getattr(args, "json", None) == "-" else sys.stdout
 
 
 def _solids(args, inputs) -> dict | None:
@@ -331,24 +457,40 @@ def _solids(args, inputs) -> dict | None:
     }
 
 
-def collide_command(args) -> int:
+def _run_collision(args, model: str):
+    """The collision of the arguments with ``model``; returns (result, run options), the
+    options being those :meth:`ehdfem.collision.CollisionResult.summary` records."""
     inputs = _inputs(args)
-    options = IntegratorOptions(rtol=args.rtol)
+    solids = _solids(args, inputs)
     result = collide(
         inputs,
-        model=args.model,
+        model=model,
         nodes=args.nodes,
-        options=options,
+        options=IntegratorOptions(rtol=args.rtol),
         tangential=args.tangential,
-        solids=_solids(args, inputs),
+        solids=solids,
     )
-    summary = result.summary()
-    print("ehdfem collide: results (dimensionless, DSH scales; SI under si)")
-    _print_table(summary)
+    run = {
+        "model": model,
+        "nodes": args.nodes,
+        "rtol": args.rtol,
+        "tangential": args.tangential,
+        "solids": solids,
+    }
+    return result, run
+
+
+def collide_command(args) -> int:
+    if args.fields and args.model != "fem":
+        raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
+    result, run = _run_collision(args, args.model)
+    summary = result.summary(run)
+    report = _report_stream(args)
+    print("ehdfem collide: results (dimensionless, DSH scales; SI under si)", file=report)
+    _print_table(summary, report)
     _write_json(summary, args.json)
+    wrote = []
     if args.fields:
-        if args.model != "fem":
-            raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
         snapshots = field_snapshots(result.normal, args.field_times)
         write_fields(
             result.compliance,
@@ -356,17 +498,15 @@ def collide_command(args) -> int:
             snapshots,
             units=result.physical.scales() if result.physical else None,
         )
-        print(f"  wrote {args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
+        wrote.append(f"{args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
     if args.plots:
         out = Path(args.plots)
-        paths = [
-            viz.plot_histories(result.normal, out / "histories.png"),
-            viz.plot_profiles(result.normal, out / "profiles.png"),
-        ]
+        wrote.append(viz.plot_histories(result.normal, out / "histories.png"))
+        wrote.append(viz.plot_profiles(result.normal, out / "profiles.png"))
         if result.tangential is not None:
-            paths.append(viz.plot_tangential(result, out / "tangential.png"))
-        for path in paths:
-            print(f"  wrote {path}")
+            wrote.append(viz.plot_tangential(result, out / "tangential.png"))
+    for path in wrote:
+        print(f"  wrote {path}", file=report)
     return 0
 
 
@@ -393,9 +533,17 @@ def critical_command(args) -> int:
         p_cav=cavitation.parse_suction_limit(args.p_cav),
         **_film_parameters(args),
     )
-    found = critical_stokes(params, tuple(args.bracket), args.rtol, args.nodes, model=args.model)
+    found = critical_stokes(
+        params,
+        tuple(args.bracket),
+        args.rtol,
+        args.nodes,
+        model=args.model,
+        progress_label="St_c bisection",
+    )
     out = {
         **found,
+        "ehdfem_version": __version__,
         "eps": args.eps,
         "delta": args.delta,
         "layer": args.layer,
@@ -406,18 +554,34 @@ def critical_command(args) -> int:
     }
     print(
         f"St_c = {found['St_c']:.6g} (bracket {found['bracket'][0]:.6g} .. "
-        f"{found['bracket'][1]:.6g}, rtol {args.rtol:g}, {found['collisions']} collisions)"
+        f"{found['bracket'][1]:.6g}, rtol {args.rtol:g}, {found['collisions']} collisions)",
+        file=_report_stream(args),
     )
     _write_json(out, args.json)
     return 0
 
 
+def _json_ready(value):
+    """``value`` with every non-finite float (NaN, +-inf) as None and tuples as lists, so that
+    the text is strict JSON (jq, JSON.parse and json.load all read it)."""
+    if isinstance(value, dict):
+        return {key: _json_ready(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_json_ready(item) for item in value]
+    if isinstance(value, float | np.floating) and not np.isfinite(value):
+        return None
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def _write_json(data: dict, target: str | None) -> None:
+    """Write ``data`` as strict JSON to the file ``target``, or alone to standard output when
+    ``target`` is "-"; nothing when it is None."""
     if not target:
         return
-    text = json.dumps(data, indent=2)
+    text = json.dumps(_json_ready(data), indent=2, allow_nan=False)
     if target == "-":
-        print(text)
+        sys.stdout.write(text + "\n")
+        sys.stdout.flush()
     else:
         Path(target).parent.mkdir(parents=True, exist_ok=True)
         Path(target).write_text(text + "\n")
@@ -429,11 +593,13 @@ def fit_command(args) -> int:
         raise checks.InputError(f"table {args.table!r} does not exist")
     with path.open() as f:
         fits = fit_table(list(csv.DictReader(f)))
+    report = _report_stream(args)
     for group in fits["normal"]:
         print(
             f"{_labels(group)}, eps = {group['eps']:g}: "
             f"e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
-            f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}"
+            f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}",
+            file=report,
         )
     laws = [(f"St_c ({_labels(law['model'])})", law) for law in fits["critical_stokes_laws"]]
     laws += [(name, fits[name]) for name in ("tangential_loss", "spin_change") if name in fits]
@@ -441,11 +607,12 @@ def fit_command(args) -> int:
         terms = " ".join(f"{k}^{v:.4g}" for k, v in law.items() if k in ("St", "eps"))
         print(
             f"{name}: {law['coefficient']:.4g} {terms}"
-            f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}"
+            f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}",
+            file=report,
         )
     for name, errors in fits["dem_formulas"].items():
         error, rms = errors["max_error"], errors["rms_error"]
-        print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}")
+        print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
     _write_json(fits, args.json)
     return 0
 
@@ -459,15 +626,9 @@ def render_command(args) -> int:
     from .render import animate_film, render_solids
 
     args.model = "fem"
-    inputs = _inputs(args)
-    result = collide(
-        inputs,
-        model="fem",
-        nodes=args.nodes,
-        options=IntegratorOptions(rtol=args.rtol),
-        tangential=args.tangential,
-        solids=_solids(args, inputs),
-    )
+    result, run = _run_collision(args, "fem")
+    report = _report_stream(args)
+    _write_json(result.summary(run), args.json)
     hist = result.normal.history
     time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
     pressure = dict(field_snapshots(result.normal, [time]))[time]
@@ -479,11 +640,50 @@ def render_command(args) -> int:
     magnification = render_solids(
         result.compliance, pressure, args.out, args.field, args.magnification, title
     )
-    print(f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})")
+    print(
+        f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})",
+        file=report,
+    )
     if args.animation:
         frames = animate_film(result.normal, args.animation)
-        print(f"  wrote {args.animation} ({frames} frames)")
+        print(f"  wrote {args.animation} ({frames} frames)", file=report)
     return 0
+
+
+def presets_command(args) -> int:
+    """The material and liquid presets: a table each (SI units in the header), with sources."""
+    report = _report_stream(args)
+    tables = [
+        ("materials", MATERIALS, ("E [Pa]", "nu", "density [kg/m^3]")),
+        ("liquids", LIQUIDS, ("mu [Pa s]", "density [kg/m^3]", "p_vap [Pa]", "alpha [1/Pa]")),
+    ]
+    for title, presets, header in tables:
+        print(f"{title} (sphere/wall presets)" if title == "materials" else title, file=report)
+        rows = [
+            (p.name, *(f"{v:.6g}" for v in _preset_values(p)), p.source) for p in presets.values()
+        ]
+        rows.insert(0, ("name", *header, "source"))
+        widths = [max(len(row[i]) for row in rows) for i in range(len(header) + 1)]
+        for row in rows:
+            cells = [cell.ljust(width) for cell, width in zip(row, widths, strict=False)]
+            print("  " + "  ".join([*cells, row[-1]]), file=report)
+        print(file=report)
+    print(
+        "Give your own values with --sphere-modulus, --sphere-poisson, --sphere-density (and "
+        "--wall-*), --liquid-viscosity, --liquid-density, --vapour-pressure, "
+        "--pressure-viscosity; with a preset they change its values.",
+        file=report,
+    )
+    _write_json(
+        {kind: {n: asdict(p) for n, p in presets.items()} for kind, presets, _ in tables},
+        args.json,
+    )
+    return 0
+
+
+def _preset_values(preset) -> list[float]:
+    """The numbers of a Material or Liquid, in the order of the presets table."""
+    return [getattr(preset, f.name) for f in fields(preset) if f.name not in ("name", "source")]
 
 
 COMMANDS = {
@@ -492,11 +692,16 @@ COMMANDS = {
     "sweep": sweep_command,
     "critical": critical_command,
     "fit": fit_command,
+    "presets": presets_command,
 }
 
 
 def main(argv=None) -> int:
+    """The ``ehdfem`` command; returns the exit status (0 done, 2 bad input, 3 solver
+    failure)."""
     args = _parser().parse_args(argv)
+    was_quiet = is_quiet()
+    set_quiet(not args.verbose)
     try:
         return COMMANDS[args.command](args)
     except checks.InputError as err:
@@ -505,6 +710,8 @@ def main(argv=None) -> int:
     except NormalSolverError as err:
         print(f"ehdfem: solver failure: {err}", file=sys.stderr)
         return 3
+    finally:
+        set_quiet(was_quiet)
 
 
 if __name__ == "__main__":

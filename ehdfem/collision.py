@@ -8,7 +8,7 @@ motion (:mod:`ehdfem.normal`) and, for an oblique impact, the tangential motion
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -21,6 +21,7 @@ from .scales import CollisionParameters, PhysicalCollision, hertz_max_compressio
 from .tangential import MODELS as TANGENTIAL_MODELS
 from .tangential import TangentialResult, solve_tangential
 from .timestepping import IntegratorOptions
+from .version import __version__
 
 MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
@@ -89,11 +90,15 @@ class CollisionResult:
     physical: PhysicalCollision | None = None
     compliance: Compliance | None = None
 
-    def summary(self) -> dict:
-        """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"."""
+    def summary(self, run: dict | None = None) -> dict:
+        """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"; the
+        ehdfem version; and under "inputs" everything needed to run the collision again (see
+        :meth:`inputs`; ``run``: the options of the :func:`collide` call, e.g. model, nodes,
+        rtol, tangential, solids)."""
         n = self.normal
         p = self.params
         out = {
+            "ehdfem_version": __version__,
             "model": self.model,
             "layer": p.layer,
             "St": p.St,
@@ -118,6 +123,7 @@ class CollisionResult:
             "max_compression": n.max_compression,
             "energy_error": n.energy_error,
             "rtol": n.rtol,
+            "film_control": n.film_control,
             "film_nodes": len(n.radii),
             "time_steps": n.steps,
             "e_t": None,
@@ -141,7 +147,26 @@ class CollisionResult:
                 u0 = self.physical.tangential_speed
                 out["si"]["exit_tangential_speed_m_s"] = self.tangential.e_t * u0
                 out["si"]["spin_change_rad_s"] = self.tangential.spin_change * u0 / s.sphere_radius
+        out["inputs"] = self.inputs(run)
         return out
+
+    def inputs(self, run: dict | None = None) -> dict:
+        """The inputs of this collision as a JSON-ready dict: "parameters", every
+        CollisionParameters field (dimensionless, DSH scales; P_cav None for no limit);
+        "physical", for physical inputs, every PhysicalCollision field (SI) with the
+        materials' and the liquid's values; then the options of the call, ``run``, over those
+        the result knows (model, rtol, tangential model of an oblique impact, film nodes used)."""
+        parameters = asdict(self.params)
+        parameters["p_cav"] = cavitation.suction_limit_output(self.params.p_cav)
+        known = {"model": self.model, "rtol": self.normal.rtol, "nodes": len(self.normal.radii)}
+        if self.tangential is not None:
+            known["tangential"] = self.tangential.model
+        return {
+            "parameters": parameters,
+            "physical": None if self.physical is None else asdict(self.physical),
+            **known,
+            **(run or {}),
+        }
 
 
 def collide(

@@ -2,38 +2,76 @@
 
 Values are SI at about 20 C. "approx." marks typical values of a class of materials rather than
 a measured sample. The presets are shortcuts for :class:`ehdfem.scales.PhysicalCollision`;
-:func:`ehdfem.scales.from_presets` builds physical inputs from their names.
+:func:`ehdfem.scales.from_presets` builds physical inputs from their names, and
+:func:`custom_material` and :func:`custom_liquid` build a user's own sphere, wall or liquid,
+from values alone or from a preset with some values changed. Every value is checked against
+its range (MATERIAL_RANGES, LIQUID_RANGES) when a Material or Liquid is made.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import MISSING, dataclass, fields, replace
 
 from . import checks
+
+USER_SOURCE = "given by the user"
+
+MATERIAL_RANGES = {
+    "young_modulus": dict(lower=0.0, lower_open=True, upper=2e12),  # Pa; diamond is 1.1e12
+    "poisson_ratio": dict(lower=-1.0, upper=0.5, lower_open=True, upper_open=True),
+    "density": dict(lower=0.0, lower_open=True, upper=3e4),  # kg/m^3; osmium is 22,590
+}
+"""Allowed ranges of a material's values (SI), as keyword arguments of
+:func:`ehdfem.checks.number`."""
+
+LIQUID_RANGES = {
+    "viscosity": dict(lower=0.0, lower_open=True),  # Pa s
+    "density": dict(lower=0.0, lower_open=True, upper=3e4),  # kg/m^3
+    "vapour_pressure": dict(lower=0.0),  # Pa, absolute; below the ambient: PhysicalCollision
+    "pressure_viscosity": dict(lower=0.0, upper=1e-6),  # 1/Pa
+}
+"""Allowed ranges of a liquid's values (SI), as keyword arguments of
+:func:`ehdfem.checks.number`."""
+
+
+def _check_values(values: dict, ranges: dict, labels) -> dict:
+    """``values`` (a subset of ``ranges``' keys) as floats, each checked against its range;
+    an error names the value by ``labels(key)``."""
+    return {key: checks.number(labels(key), value, **ranges[key]) for key, value in values.items()}
 
 
 @dataclass(frozen=True)
 class Material:
-    """An elastic solid: Young's modulus [Pa], Poisson's ratio, density [kg/m^3], source."""
+    """An elastic solid: Young's modulus [Pa], Poisson's ratio, density [kg/m^3], source.
+    Refuses values outside MATERIAL_RANGES."""
 
     name: str
     young_modulus: float
     poisson_ratio: float
     density: float
-    source: str
+    source: str = USER_SOURCE
+
+    def __post_init__(self):
+        values = {key: getattr(self, key) for key in MATERIAL_RANGES}
+        _check_values(values, MATERIAL_RANGES, lambda key: f"{key} of material {self.name!r}")
 
 
 @dataclass(frozen=True)
 class Liquid:
     """A Newtonian liquid at about 20 C: viscosity [Pa s], density [kg/m^3], vapour pressure
-    [Pa, absolute], Barus pressure-viscosity coefficient [1/Pa] (0 where negligible), source."""
+    [Pa, absolute], Barus pressure-viscosity coefficient [1/Pa] (0 where negligible), source.
+    Refuses values outside LIQUID_RANGES."""
 
     name: str
     viscosity: float
     density: float
     vapour_pressure: float
-    pressure_viscosity: float
-    source: str
+    pressure_viscosity: float = 0.0
+    source: str = USER_SOURCE
+
+    def __post_init__(self):
+        values = {key: getattr(self, key) for key in LIQUID_RANGES}
+        _check_values(values, LIQUID_RANGES, lambda key: f"{key} of liquid {self.name!r}")
 
 
 _NIJSSEN = "Nijssen, Ottens & Padding 2022 (sphere sets of Joseph & Hunt 2004)"
@@ -87,6 +125,73 @@ def _preset(kind, name, table):
     if name not in table:
         raise checks.InputError(f"unknown {kind} preset {name!r}; known: {', '.join(table)}")
     return table[name]
+
+
+BODIES = {"sphere": "material", "wall": "material", "liquid": "liquid"}
+
+
+def body(role: str, spec) -> Material | Liquid:
+    """The data of the ``role`` ("sphere", "wall" or "liquid") from ``spec``: a preset name, a
+    Material or Liquid, or a dict of values with an optional "preset" key (as for
+    :func:`custom_material` and :func:`custom_liquid`; errors name a value "role.key")."""
+    checks.choice("role", role, tuple(BODIES))
+    kind = Material if BODIES[role] == "material" else Liquid
+    if isinstance(spec, kind):
+        return spec
+    if isinstance(spec, str):
+        return material(spec) if kind is Material else liquid(spec)
+    if not isinstance(spec, dict):
+        raise checks.InputError(f"{role} must be a preset name or a table of values, got {spec!r}")
+    values = dict(spec)
+    preset = values.pop("preset", None)
+    build = custom_material if kind is Material else custom_liquid
+    return build(preset, labels=lambda key: f"{role}.{key}", **values)
+
+
+def custom_material(preset: str | None = None, labels=None, **values) -> Material:
+    """A material from ``values`` (any of young_modulus [Pa], poisson_ratio, density
+    [kg/m^3]): the preset ``preset`` with those values changed, or, with no preset, a new
+    material that needs all three. ``labels(key)``: how an error names a value (default: the
+    key itself), e.g. the command-line option that gave it."""
+    return _custom(Material, MATERIAL_RANGES, material, preset, labels, values)
+
+
+def custom_liquid(preset: str | None = None, labels=None, **values) -> Liquid:
+    """A liquid from ``values`` (any of viscosity [Pa s], density [kg/m^3], vapour_pressure
+    [Pa, absolute], pressure_viscosity [1/Pa]): the preset ``preset`` with those values
+    changed, or, with no preset, a new liquid that needs the first three (pressure_viscosity
+    defaults to 0). ``labels`` as in :func:`custom_material`."""
+    return _custom(Liquid, LIQUID_RANGES, liquid, preset, labels, values)
+
+
+def _custom(kind, ranges, find, preset, labels, values):
+    """A ``kind`` (Material or Liquid) from a preset (found by ``find``) and ``values``."""
+    labels = labels or str
+    unknown = sorted(set(values) - set(ranges))
+    if unknown:
+        raise checks.InputError(
+            f"unknown {kind.__name__.lower()} value(s) {', '.join(unknown)}; "
+            f"known: {', '.join(ranges)}"
+        )
+    values = _check_values(values, ranges, labels)
+    if preset is not None:
+        base = find(preset)
+        if not values:
+            return base
+        changed = ", ".join(f"{key} = {value:g}" for key, value in values.items())
+        return replace(
+            base,
+            **values,
+            name=f"{base.name} (changed)",
+            source=f"{base.source}; changed by the user: {changed}",
+        )
+    required = [f.name for f in fields(kind) if f.name in ranges and f.default is MISSING]
+    missing = [labels(key) for key in required if key not in values]
+    if missing:
+        raise checks.InputError(
+            f"a {kind.__name__.lower()} without a preset needs {', '.join(missing)}"
+        )
+    return kind(name="custom", **values)
 
 
 EXAMPLE = dict(

@@ -22,15 +22,25 @@ import numpy as np
 
 from . import checks
 from .compliance.fem import solids_of
+from .quiet import quiet_vtk
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
 BAR_WIDTH = 160  # pixels kept for the colour bar
 
 
+def _pyvista():
+    """pyvista, imported on first use, with VTK's logging set as :mod:`ehdfem.quiet` says
+    (quiet: no "bad X server connection" warning from off-screen rendering)."""
+    import pyvista
+
+    quiet_vtk()
+    return pyvista
+
+
 def _section(solids, shape, nodal_pressure, field, magnification):
     """The (r, z) triangles of ``shape`` (a :class:`ehdfem.compliance.fem.Deformation` of
     ``solids``) moved by the magnified displacement, with ``field`` at the points."""
-    import pyvista
+    pyvista = _pyvista()
 
     triangles = np.asarray(shape.triangles)
     cells = np.column_stack([np.full(len(triangles), 3), triangles]).ravel()
@@ -69,7 +79,7 @@ def _pressure_curve(solids, nodal_pressure):
     """The film pressure P(r) drawn above the wall's contact face in both cut planes, its
     height scaled so that the peak stands at a third of the film radius (a picture of the
     pressure profile, not to any length scale)."""
-    import pyvista
+    pyvista = _pyvista()
 
     r = solids.radii_a
     peak = max(float(np.abs(nodal_pressure).max()), 1e-300)
@@ -97,7 +107,7 @@ def render_solids(
     of FIELDS. ``magnification``: display factor on the displacement (default: so that the
     largest displacement shows as a tenth of the contact region). Returns the magnification
     used."""
-    import pyvista
+    pyvista = _pyvista()
 
     checks.choice("field", field, FIELDS)
     solids = solids_of(compliance, "rendering the solids")

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from . import cavitation, checks
 from .film import LAYERS
 from .gap import GAPS
-from .presets import Liquid, Material, liquid, material
+from .presets import Liquid, Material, body
 from .viscosity import LAWS as VISCOSITY_LAWS
 from .viscosity import (
     ROELANDS_INDEX,
@@ -185,6 +185,12 @@ class PhysicalCollision:
     shear_traction: bool | None = None
 
     def __post_init__(self):
+        for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):
+            if not isinstance(getattr(self, role), kind):
+                raise checks.InputError(
+                    f"{role} must be a {kind.__name__} (see ehdfem.presets), "
+                    f"got {getattr(self, role)!r}"
+                )
         checks.positive("radius", self.radius)
         checks.positive("speed", self.speed)
         checks.positive("layer_thickness", self.layer_thickness)
@@ -201,6 +207,12 @@ class PhysicalCollision:
                 self.cavitation_pressure,
                 lower=0.0,
                 upper=self.ambient_pressure,
+            )
+        elif self.liquid.vapour_pressure >= self.ambient_pressure:
+            raise checks.InputError(
+                f"vapour_pressure of liquid {self.liquid.name!r} = "
+                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
+                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
             )
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
@@ -295,6 +307,8 @@ class PhysicalCollision:
 
 def from_presets(**values) -> PhysicalCollision:
     """A :class:`PhysicalCollision` (SI inputs) whose ``sphere``, ``wall`` (materials) and
-    ``liquid`` are given by preset name."""
-    presets = {"sphere": material, "wall": material, "liquid": liquid}
-    return PhysicalCollision(**{k: presets[k](v) if k in presets else v for k, v in values.items()})
+    ``liquid`` are each given by preset name, as a Material or Liquid, or as a dict of values
+    (SI) with an optional "preset" key whose values it changes (:func:`ehdfem.presets.body`),
+    e.g. ``sphere={"young_modulus": 3e9, "poisson_ratio": 0.35, "density": 1200}``."""
+    bodies = ("sphere", "wall", "liquid")
+    return PhysicalCollision(**{k: body(k, v) if k in bodies else v for k, v in values.items()})

@@ -14,6 +14,20 @@ A study is a TOML file (see studies/*.toml):
     [output]
     table = "results/example.csv" # relative to the study file
 
+or, with physical inputs (SI), a ``[physical]`` table of :class:`ehdfem.scales.PhysicalCollision`
+fields held fixed, and a ``[grid]`` over PhysicalCollision fields (plus "tangential"):
+
+    [physical]
+    sphere = "steel"              # a preset name, or a table of values, with an optional preset
+    wall = {young_modulus = 3e9, poisson_ratio = 0.35, density = 1200}
+    liquid = {preset = "glycerol_80", viscosity = 0.05}
+    radius = 6.35e-3
+    layer_thickness = 3e-4
+    [grid]
+    speed = {geomspace = [0.05, 2.0, 8]}
+    angle = [0.0, 30.0]
+
+Their rows also give St, eps, delta, P_cav and the SI results (``*_m``, ``*_N``, ...).
 Points are claimed dynamically by the ranks (an exclusive file per point), so ranks that draw
 cheap points take more of them. Each finished point is written atomically as its own JSON file
 next to the table (``<table>.points/``); a run that is killed and started again skips the
@@ -42,12 +56,16 @@ import numpy as np
 from . import cavitation, checks
 from .collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
 from .normal import NormalSolverError
-from .scales import CollisionParameters, PhysicalCollision
+from .progress import Counter
+from .scales import CollisionParameters, PhysicalCollision, from_presets
 from .timestepping import IntegratorOptions
 from .version import __version__
 
 PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
 GRID_KEYS = (*PARAMETERS, "tangential")
+PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
+PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
+SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
 NUMERICS = ("nodes", "rtol")
 OUTPUTS = (
     "rebound",
@@ -66,8 +84,9 @@ OUTPUTS = (
 
 
 class Study:
-    """A parsed study file: the points (dicts of CollisionParameters fields plus "tangential"),
-    the numerics and the table path."""
+    """A parsed study file: the points (dicts of CollisionParameters fields plus "tangential",
+    or with a [physical] table, of PhysicalCollision fields plus "tangential"), the fixed
+    physical inputs (None for a dimensionless study), the numerics and the table path."""
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
@@ -77,12 +96,10 @@ class Study:
             spec = tomllib.loads(self.path.read_text())
         except tomllib.TOMLDecodeError as err:
             raise checks.InputError(f"study file {self.path}: {err}") from err
-        _known_keys("study file", spec, ("name", "grid", "numerics", "output"))
+        _known_keys("study file", spec, ("name", "grid", "physical", "numerics", "output"))
         grid = spec.get("grid", {})
-        _known_keys("[grid]", grid, GRID_KEYS)
-        for name in ("St", "eps"):
-            if name not in grid:
-                raise checks.InputError(f"[grid] needs {name}")
+        self.physical = spec.get("physical")
+        _check_grid(grid, self.physical)
         self.name = spec.get("name", self.path.stem)
         numerics = spec.get("numerics", {})
         _known_keys("[numerics]", numerics, NUMERICS)
@@ -97,13 +114,48 @@ class Study:
         self.points = [
             dict(zip(axes, combo, strict=True)) for combo in itertools.product(*axes.values())
         ]
-        for point in self.points:  # validate every point before any work starts
-            _parameters(point)
+        self.stokes_numbers = []  # validate every point before any work starts
+        for point in self.points:
+            inputs = self.inputs(point)
+            scaled = inputs.dimensionless() if self.physical is not None else inputs
+            self.stokes_numbers.append(scaled.St)
             checks.choice("grid.tangential", point.get("tangential", "couette"), TANGENTIAL_MODELS)
 
     @property
     def point_dir(self) -> Path:
         return self.table.with_name(self.table.name + ".points")
+
+    def inputs(self, point: dict) -> CollisionParameters | PhysicalCollision:
+        """The collision inputs of ``point``: dimensionless, or the [physical] table's values
+        (SI) with the point's."""
+        if self.physical is None:
+            return _parameters(point)
+        values = {k: v for k, v in {**self.physical, **point}.items() if k != "tangential"}
+        return from_presets(**values)
+
+    def key(self, point: dict) -> str:
+        """The name of ``point``'s result file: a hash of its inputs (with the [physical]
+        table's, so that a changed table is not mistaken for finished points)."""
+        return point_key(point if self.physical is None else {**point, "[physical]": self.physical})
+
+
+def _check_grid(grid: dict, physical: dict | None) -> None:
+    """Refuse unknown or missing keys: a dimensionless grid needs St and eps; with a
+    [physical] table, the grid is over PhysicalCollision fields and the two tables together
+    need the sphere, wall, liquid, radius, speed and layer thickness."""
+    if physical is None:
+        _known_keys("[grid]", grid, GRID_KEYS)
+        for name in ("St", "eps"):
+            if name not in grid:
+                raise checks.InputError(f"[grid] needs {name}")
+        return
+    if not isinstance(physical, dict):
+        raise checks.InputError("[physical] must be a table of PhysicalCollision fields")
+    _known_keys("[physical]", physical, PHYSICAL_FIELDS)
+    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, "tangential"))
+    missing = [name for name in PHYSICAL_REQUIRED if name not in physical and name not in grid]
+    if missing:
+        raise checks.InputError(f"[physical] (or [grid]) needs {', '.join(missing)}")
 
 
 def _known_keys(where, table, allowed):
@@ -158,13 +210,16 @@ def run_point(study: Study, point: dict) -> dict:
     row = {**point}
     try:
         result = collide(
-            _parameters(point),
+            study.inputs(point),
             nodes=study.nodes,
             options=study.options,
             tangential=point.get("tangential", "couette"),
         )
         summary = result.summary()
+        if study.physical is not None:
+            row.update({name: summary[name] for name in SCALED_GROUPS})
         row.update({name: summary.get(name) for name in OUTPUTS})
+        row.update(summary.get("si", {}))
         row["status"] = "ok:" + summary["status"]
     except (NormalSolverError, checks.InputError, np.linalg.LinAlgError) as err:
         row.update({name: None for name in OUTPUTS})
@@ -176,7 +231,10 @@ def run_point(study: Study, point: dict) -> dict:
 
 def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     """Run every point not yet in the study's point folder, spread over the ranks of ``comm``
-    (mpi4py communicator or None), then write the table. Returns the rows (on every rank)."""
+    (mpi4py communicator or None), then write the table. Returns the rows (on every rank).
+    ``progress(line)`` reports each finished point ("[done/total] rank r: inputs -> outcome");
+    on a terminal, rank 0 also draws a bar of the points done with rate and time left
+    (:mod:`ehdfem.progress`)."""
     rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
     points_dir = study.point_dir
     claims = points_dir / "claims"
@@ -186,29 +244,22 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
             stale.unlink()
     if comm is not None:
         comm.Barrier()
-    order = sorted(range(len(study.points)), key=lambda i: -study.points[i]["St"])  # costly first
-    for i in order:
-        point = study.points[i]
-        key = point_key(point)
-        done = points_dir / f"{key}.json"
-        if done.exists():
-            continue
-        try:
-            fd = os.open(claims / key, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-        except FileExistsError:
-            continue
-        os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
-        os.close(fd)
-        row = run_point(study, point)
-        _write_atomic(done, json.dumps(row))
-        (claims / key).unlink(missing_ok=True)
-        finished = sum(1 for _ in points_dir.glob("*.json"))
-        if progress is not None:
-            progress(
-                f"[{finished}/{len(study.points)}] rank {rank}: "
-                + ", ".join(f"{k}={v}" for k, v in point.items())
-                + f" -> {row['status']} e_n={row['e_n']} ({row['seconds']} s)"
-            )
+    order = sorted(range(len(study.points)), key=lambda i: -study.stokes_numbers[i])  # costly 1st
+    total = len(study.points)
+    with Counter(total, f"sweep {study.name}", _finished(points_dir), unit="point") as bar:
+        for i in order:
+            row = _claim_and_run(study, study.points[i], claims)
+            if row is None:
+                continue
+            finished = _finished(points_dir)
+            bar.advance_to(finished)
+            if progress is not None:
+                with bar.paused():
+                    progress(
+                        f"[{finished}/{total}] rank {rank}: "
+                        + ", ".join(f"{k}={v}" for k, v in study.points[i].items())
+                        + f" -> {row['status']} e_n={row['e_n']} ({row['seconds']} s)"
+                    )
     if comm is not None:
         comm.Barrier()
     rows = collect(study)
@@ -217,11 +268,35 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     return rows
 
 
+def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
+    """Run ``point`` and write its result file, unless it is finished or claimed by another
+    rank (then None): the claim is an exclusive file in ``claims``, removed when done."""
+    key = study.key(point)
+    done = study.point_dir / f"{key}.json"
+    if done.exists():
+        return None
+    try:
+        fd = os.open(claims / key, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+    except FileExistsError:
+        return None
+    os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
+    os.close(fd)
+    row = run_point(study, point)
+    _write_atomic(done, json.dumps(row))
+    (claims / key).unlink(missing_ok=True)
+    return row
+
+
+def _finished(points_dir: Path) -> int:
+    """How many points are finished (result files in ``points_dir``)."""
+    return sum(1 for _ in points_dir.glob("*.json"))
+
+
 def collect(study: Study) -> list[dict]:
     """The finished rows, in the order of the study's points (missing points are skipped)."""
     rows = []
     for point in study.points:
-        path = study.point_dir / f"{point_key(point)}.json"
+        path = study.point_dir / f"{study.key(point)}.json"
         if path.exists():
             rows.append(json.loads(path.read_text()))
     return rows
@@ -285,10 +360,13 @@ def critical_stokes(
     nodes: int = DEFAULT_NODES,
     options: IntegratorOptions | None = None,
     model: str = "halfspace",
+    progress_label: str | None = None,
 ) -> dict:
     """St_c: the smallest St at which the sphere leaves the layer (e_n > 0), by bisection in
     log St on the outcome of the collision (other inputs from ``params``). Returns St_c, the
     final bracket [sticks, rebounds], the relative tolerance and the number of collisions.
+    ``progress_label``: label of a progress bar over the collisions (terminal only; None: no
+    bar).
 
     The film grid is chosen once, for the top of the bracket (the widest contact), and the
     compliance is built once on it: the FE solids are factorised a single time."""
@@ -307,7 +385,7 @@ def critical_stokes(
         params = CollisionParameters(**{**values, "St": St})
         return collide(params, options=options, compliance=compliance).normal.rebound
 
-    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7))
+    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)
     return {
         "St_c": math.sqrt(lo * hi),
         "bracket": [lo, hi],
@@ -316,30 +394,50 @@ def critical_stokes(
     }
 
 
-def threshold(rebounds, low, high, rtol, name, limits):
+def bisections(low: float, high: float, rtol: float) -> int:
+    """How many halvings in log bring the bracket [low, high] to a relative width <= rtol."""
+    ratio = math.log(high / low) / math.log1p(rtol)
+    return max(0, math.ceil(math.log2(ratio))) if ratio > 1 else 0
+
+
+def threshold(rebounds, low, high, rtol, name, limits, progress_label=None):
     """The bracket [low, high] (relative width <= rtol) of the value of ``name`` where the
     outcome ``rebounds(value)`` turns from False to True, by bisection in log after widening
-    the starting bracket by factors of 4 within ``limits``. Returns (low, high, evaluations)."""
+    the starting bracket by factors of 4 within ``limits``. Returns (low, high, evaluations).
+    ``progress_label``: label of a progress bar over the evaluations (terminal only), whose
+    total is the count if the starting bracket holds the threshold, raised when it is
+    widened."""
     evaluations = 0
+    count = 2 + bisections(low, high, rtol)
+    bar = Counter(count, progress_label, unit="collision") if progress_label else None
 
-    def outcome(value):
+    def outcome(value, more):
+        """The outcome at ``value``; ``more``: evaluations after this one besides the halvings
+        of the current bracket (1 and 0 for the ends' checks, -1 for a halving itself)."""
         nonlocal evaluations
+        rebound = rebounds(value)
         evaluations += 1
-        return rebounds(value)
+        if bar is not None:
+            bar.advance_to(evaluations, evaluations + more + bisections(low, high, rtol))
+        return rebound
 
-    while outcome(low):  # widen until the low end sticks and the high end rebounds
-        low, high = low / 4, low
-        if low < limits[0]:
-            raise checks.InputError(
-                f"the sphere rebounds even at {name} = {limits[0]:g}: no critical {name}"
-            )
-    while not outcome(high):
-        low, high = high, high * 4
-        if high > limits[1]:
-            raise checks.InputError(f"the sphere sticks up to {name} = {limits[1]:g}")
-    while high / low - 1 > rtol:
-        mid = math.sqrt(low * high)
-        low, high = (low, mid) if outcome(mid) else (mid, high)
+    try:
+        while outcome(low, 1):  # widen until the low end sticks and the high end rebounds
+            low, high = low / 4, low
+            if low < limits[0]:
+                raise checks.InputError(
+                    f"the sphere rebounds even at {name} = {limits[0]:g}: no critical {name}"
+                )
+        while not outcome(high, 0):
+            low, high = high, high * 4
+            if high > limits[1]:
+                raise checks.InputError(f"the sphere sticks up to {name} = {limits[1]:g}")
+        while high / low - 1 > rtol:
+            mid = math.sqrt(low * high)
+            low, high = (low, mid) if outcome(mid, -1) else (mid, high)
+    finally:
+        if bar is not None:
+            bar.close()
     return low, high, evaluations
 
 

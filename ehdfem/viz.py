@@ -11,19 +11,47 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
-def snapshot_indices(result, count: int = 6) -> list[int]:
-    """Steps worth showing: evenly spread in time plus the instants of maximum force and
-    maximum compression and the last step."""
+def profile_instants(result) -> list[tuple[int, str]]:
+    """The steps where the film changes, each with the name of its phase, in time order:
+
+    - approach: the gap X has closed to half the layer (the film still a paraboloid);
+    - X = 0: the undeformed solids would touch, from here on the solids flatten;
+    - maximum force;
+    - maximum compression (smallest X, V = 0): the dimple (film thinner at its rim than on
+      the axis) is deepest around here;
+    - rebound: after maximum compression, the force back to half its maximum;
+    - strongest suction: the most negative force (the film pulls the sphere back), if any;
+    - exit (rebound) or end (sticking): the last step.
+
+    Phases that do not occur (a sphere that stops before X = 0, no suction) are left out, and
+    phases at the same step share it. Returns [(step, label)]."""
     hist = result.history
-    steps = np.unique(
-        np.concatenate(
-            [
-                np.searchsorted(hist.time, np.linspace(0, hist.time[-1], count)[1:-1]),
-                [int(np.argmax(hist.force)), int(np.argmin(hist.gap)), len(hist.time) - 1],
-            ]
-        )
-    )
-    return [int(i) for i in steps if 0 < i < len(hist.time)]
+    last = len(hist.time) - 1
+    deepest = int(np.argmin(hist.gap))
+    strongest = int(np.argmax(hist.force))
+    phases = [
+        (_first(hist.gap <= 0.5), "approach"),
+        (_first(hist.gap <= 0.0), "X = 0"),
+        (strongest, "maximum force"),
+        (deepest, "maximum compression"),
+        (
+            _first((hist.force <= 0.5 * hist.force[strongest]) & (np.arange(last + 1) > deepest)),
+            "rebound",
+        ),
+        (int(np.argmin(hist.force)) if hist.force.min() < 0 else None, "strongest suction"),
+        (last, "exit" if result.rebound else "end"),
+    ]
+    labels = {}
+    for step, phase in phases:
+        if step is not None and step > 0:
+            labels.setdefault(step, []).append(phase)
+    return [(step, " + ".join(labels[step])) for step in sorted(labels)]
+
+
+def _first(condition) -> int | None:
+    """The first index where ``condition`` holds, None if nowhere."""
+    hits = np.flatnonzero(condition)
+    return int(hits[0]) if len(hits) else None
 
 
 def plot_histories(result, path: Path) -> Path:
@@ -52,25 +80,36 @@ def plot_histories(result, path: Path) -> Path:
 
 
 def plot_profiles(result, path: Path) -> Path:
-    """Pressure P(R) and film thickness H(R) at the snapshot instants."""
+    """Pressure P(R) (by mu V0 a / x0^2) and film thickness H(R) (by x0) against R (by
+    sqrt(a x0)) at the instants where the film changes (:func:`profile_instants`: approach,
+    X = 0, maximum force, maximum compression, rebound, strongest suction, exit), each
+    labelled with its phase and T (by x0/V0)."""
     hist = result.history
-    fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(11, 4.5))
-    steps = snapshot_indices(result)
+    fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(12, 4.8))
+    instants = profile_instants(result)
+    steps = [step for step, _ in instants]
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(steps)))
     # show the radii where the pressure matters: 1.5 times the widest 1 % support of P
     pressure = np.abs(hist.pressure[steps])
     loaded = result.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
     shown = result.radii <= 1.5 * (loaded.max() if len(loaded) else result.radii[-1])
-    for colour, i in zip(colours, steps, strict=True):
-        label = f"T = {hist.time[i]:.4g}"
+    for colour, (i, phase) in zip(colours, instants, strict=True):
+        label = f"{phase}, T = {hist.time[i]:.4g}"
         ax_p.plot(result.radii[shown], hist.pressure[i][shown], color=colour, label=label)
         ax_h.semilogy(result.radii[shown], hist.film_thickness[i][shown], color=colour, label=label)
+    ax_p.axhline(0.0, color="0.6", lw=0.8)
     ax_p.set_ylabel("pressure P (by $\\mu V_0 a/x_0^2$)")
+    suction = -float(hist.pressure[steps][:, shown].min())
+    if suction > 0:  # linear through the suction, logarithmic above it: both show
+        linear = max(suction, 1e-6 * float(pressure.max()))
+        ax_p.set_yscale("symlog", linthresh=linear)
+        ax_p.set_ylim(bottom=-2 * linear)
+        ax_p.set_ylabel(f"{ax_p.get_ylabel()}; linear within $\\pm${linear:.3g}")
     ax_h.set_ylabel("film thickness H (by $x_0$)")
     for ax in (ax_p, ax_h):
         ax.set_xlabel("radius R (by $\\sqrt{a x_0}$)")
         ax.grid(alpha=0.3)
-    ax_p.legend(fontsize=8)
+    ax_h.legend(fontsize=8, title="phase", title_fontsize=8)
     fig.suptitle(_title(result))
     return _save(fig, path)
 

@@ -1,12 +1,18 @@
-"""`ehdfem collide`: results, JSON, plots, and refusal of bad inputs before any work."""
+"""`ehdfem collide`: results, JSON, plots, and refusal of bad inputs before any work; clean
+machine-readable output, quiet runs, custom materials and liquids."""
 
 import json
+import os
+import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 from ehdfem.checks import InputError
 from ehdfem.cli import main
+from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
 
@@ -53,8 +59,7 @@ def test_dimensionless_collision_writes_json_and_plots(tmp_path, capsys):
 def test_physical_collision_reports_si_values(capsys):
     code = main(["collide", "--example", "--json", "-"])
     assert code == 0
-    text = capsys.readouterr().out
-    result = json.loads(text[text.index("{") :])
+    result = json.loads(capsys.readouterr().out)
     assert result["si"]["contact_time_s"] > 0 and result["St"] > 1
 
 
@@ -71,8 +76,7 @@ def test_film_options_reach_the_collision(capsys):
         "barus",
     ]
     assert main(["collide", *args, "--pressure-viscosity", "2e-8", "--json", "-"]) == 0
-    text = capsys.readouterr().out
-    result = json.loads(text[text.index("{") :])
+    result = json.loads(capsys.readouterr().out)
     scale = 0.0965 * 0.2 * np.cos(np.radians(30)) * 6.35e-3 / 3e-4**2
     assert result["cavitation"] == "mass-conserving" and result["viscosity"] == "barus"
     assert result["alpha"] == pytest.approx(2e-8 * scale, rel=1e-12)
@@ -128,3 +132,174 @@ def test_field_instants_include_requested_times():
     assert np.allclose(pressure, 0.5 * (hist.pressure[10] + hist.pressure[11]))
     with pytest.raises(InputError, match="field time"):
         field_snapshots(normal, [hist.time[-1] + 1])
+
+
+def run_ehdfem(*args, env=None, timeout=120):
+    """``ehdfem ARGS`` in a fresh process; returns (exit code, stdout, stderr)."""
+    done = subprocess.run(
+        [sys.executable, "-m", "ehdfem.cli", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env={**os.environ, **(env or {})},
+    )
+    return done.returncode, done.stdout, done.stderr
+
+
+SMALL_COLLISION = ["--St", "10", "--eps", "1e-3", "--p-cav=-2", "--nodes", "40"]
+
+
+def test_json_to_stdout_is_the_json_alone():
+    """`--json -`: standard output parses as JSON as a whole (jq, json.load); the table goes to
+    standard error. The JSON records the version and the inputs to run it again."""
+    code, out, err = run_ehdfem("collide", *SMALL_COLLISION, "--angle", "30", "--json", "-")
+    assert code == 0
+    result = json.loads(out)
+    assert 0 < result["e_n"] < 1 and "e_n" in err and "{" not in err
+    assert result["ehdfem_version"] == __version__
+    inputs = result["inputs"]
+    assert inputs["parameters"]["St"] == 10 and inputs["parameters"]["angle"] == 30
+    assert inputs["parameters"]["p_cav"] == -2 and inputs["physical"] is None
+    assert (inputs["model"], inputs["nodes"], inputs["tangential"]) == ("halfspace", 40, "couette")
+
+
+def test_physical_json_records_the_materials_and_the_liquid(capsys):
+    assert main(["collide", "--example", "--nodes", "60", "--json", "-"]) == 0
+    physical = json.loads(capsys.readouterr().out)["inputs"]["physical"]
+    assert physical["sphere"]["young_modulus"] == 190e9 and physical["wall"]["name"] == "glass"
+    assert physical["liquid"]["viscosity"] == 0.0965 and physical["radius"] == 6.35e-3
+
+
+COMPILER_OR_VTK = re.compile(r"INFO:root|gcc|build_ext|X server", re.IGNORECASE)
+
+
+@pytest.mark.parametrize("verbose", [False, True])
+def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
+    """A default FE collide on an empty JIT cache compiles its forms: no compiler lines on
+    standard output or error, unless --verbose (which proves the forms were compiled here)."""
+    cache = tmp_path / "cache"
+    env = {"XDG_CACHE_HOME": str(cache), "EHDFEM_MESH_CACHE": str(tmp_path / "meshes")}
+    args = ["collide", *SMALL_COLLISION, "--model", "fem", *(["--verbose"] if verbose else [])]
+    code, out, err = run_ehdfem(*args, env=env)
+    assert code == 0, err
+    assert list((cache / "fenics").glob("libffcx_forms_*.c"))  # compiled on this run
+    chatter = [line for line in (out + err).splitlines() if COMPILER_OR_VTK.search(line)]
+    assert bool(chatter) == verbose, chatter
+    assert "e_n" in out
+
+
+def test_render_is_quiet(tmp_path):
+    """No VTK "bad X server connection" warning (and no compiler lines) from a render; with
+    `--json -` its standard output is the JSON alone."""
+    env = {"EHDFEM_MESH_CACHE": str(tmp_path / "meshes")}
+    out_file = str(tmp_path / "r.png")
+    code, out, err = run_ehdfem(
+        "render", *SMALL_COLLISION, "--out", out_file, "--json", "-", env=env
+    )
+    assert code == 0, err
+    assert not [line for line in (out + err).splitlines() if COMPILER_OR_VTK.search(line)]
+    assert json.loads(out)["model"] == "fem" and "wrote" in err
+    assert (tmp_path / "r.png").stat().st_size > 10_000
+
+
+EXAMPLE_VALUES = [
+    *("--sphere-modulus 190e9 --sphere-poisson 0.27 --sphere-density 7780").split(),
+    *("--wall-modulus 60e9 --wall-poisson 0.23 --wall-density 2540").split(),
+    *("--liquid-viscosity 0.0965 --liquid-density 965 --vapour-pressure 0").split(),
+    *("--pressure-viscosity 1.5e-8 --radius 6.35e-3 --speed 1 --angle 30").split(),
+    *("--layer-thickness 3e-4 --nodes 60 --json -").split(),
+]
+RESULTS = ("St", "eps", "delta", "p_cav", "e_n", "e_t", "max_force", "min_film_thickness", "si")
+
+
+def collide_json(capsys, *args):
+    assert main(["collide", *args]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_custom_materials_and_liquid_equal_their_presets(capsys):
+    """The example's steel, glass and 100 cSt silicone oil given as values, or as other
+    presets whose values are all changed to those, give the same collision."""
+    preset = collide_json(capsys, "--example", "--nodes", "60", "--json", "-")
+    custom = collide_json(capsys, *EXAMPLE_VALUES)
+    changed = collide_json(
+        capsys, "--sphere", "glass", "--wall", "brass", "--liquid", "water", *EXAMPLE_VALUES
+    )
+    for result in (custom, changed):
+        assert {k: result[k] for k in RESULTS} == {k: preset[k] for k in RESULTS}
+    assert custom["inputs"]["physical"]["sphere"]["name"] == "custom"
+    assert changed["inputs"]["physical"]["wall"]["name"] == "brass (changed)"
+
+
+def test_one_changed_value_changes_the_collision(capsys):
+    """A softer sphere than the preset's: eps grows by theta's ratio."""
+    base = collide_json(capsys, "--example", "--nodes", "60", "--json", "-")
+    soft = collide_json(
+        capsys, "--example", "--sphere-modulus", "19e9", "--nodes", "60", "--json", "-"
+    )
+    theta = [(1 - 0.27**2) / e + (1 - 0.23**2) / 60e9 for e in (190e9, 19e9)]
+    assert soft["eps"] / base["eps"] == pytest.approx(theta[1] / theta[0], rel=1e-12)
+    assert soft["St"] == base["St"]
+
+
+@pytest.mark.parametrize(
+    ("args", "name"),
+    [
+        (["--sphere-poisson", "0.5"], "--sphere-poisson"),
+        (["--sphere-poisson=-1"], "--sphere-poisson"),
+        (["--wall-modulus=-60e9"], "--wall-modulus"),
+        (["--wall-modulus", "3e12"], "--wall-modulus"),
+        (["--sphere-density", "0"], "--sphere-density"),
+        (["--liquid-viscosity", "0"], "--liquid-viscosity"),
+        (["--liquid-density=-1"], "--liquid-density"),
+        (["--vapour-pressure=-1"], "--vapour-pressure"),
+        (["--vapour-pressure", "2e5"], "vapour_pressure"),
+        (["--liquid-viscosity", "nan"], "--liquid-viscosity"),
+        (["--sphere", "unobtainium", "--sphere-modulus", "1e9"], "unobtainium"),
+    ],
+)
+def test_bad_custom_values_are_refused_with_the_option_named(args, name, capsys):
+    assert main(["collide", "--example", *args]) == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err
+
+
+def test_a_custom_body_without_preset_needs_all_its_values(capsys):
+    """No preset and not every value: the missing ones are named."""
+    scalars = ["--radius", "1e-3", "--speed", "1", "--layer-thickness", "1e-4", "--wall", "glass"]
+    sphere = ["--sphere-modulus", "1e9", "--sphere-poisson", "0.3"]
+    assert main(["collide", *scalars, "--liquid", "water", *sphere]) == 2
+    err = capsys.readouterr().err
+    assert "--sphere-density" in err and "--sphere-modulus" not in err
+    assert main(["collide", *scalars, "--sphere", "steel", "--liquid-viscosity", "0.01"]) == 2
+    err = capsys.readouterr().err
+    assert "--liquid-density" in err and "--vapour-pressure" in err
+    oil = ["--liquid-viscosity", "0.1", "--liquid-density", "900", "--vapour-pressure", "0"]
+    assert main(["collide", *scalars, "--sphere", "steel", *oil, "--viscosity", "barus"]) == 2
+    assert "--pressure-viscosity" in capsys.readouterr().err
+
+
+def test_presets_version_and_help(capsys):
+    assert main(["presets"]) == 0
+    out = capsys.readouterr().out
+    assert "E [Pa]" in out and "mu [Pa s]" in out and "Nijssen" in out and "glycerol_80" in out
+    assert main(["presets", "--json", "-"]) == 0
+    listed = json.loads(capsys.readouterr().out)
+    assert listed["materials"]["steel"]["young_modulus"] == 190e9
+    assert listed["liquids"]["water"]["source"]
+    with pytest.raises(SystemExit):
+        main(["--version"])
+    assert capsys.readouterr().out.strip() == f"ehdfem {__version__}"
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    description = capsys.readouterr().out.split("\n\n")[1]
+    assert description.rstrip().endswith(".") and "critical Stokes number" in description
+
+
+def test_critical_json_to_stdout_is_the_json_alone(capsys):
+    args = ["critical", "--eps", "1e-3", "--p-cav=-2", "--nodes", "80", "--rtol", "0.05"]
+    args += ["--bracket", "1", "30"]
+    assert main([*args, "--json", "-"]) == 0
+    captured = capsys.readouterr()
+    found = json.loads(captured.out)
+    assert found["bracket"][0] < found["St_c"] < found["bracket"][1] and "St_c" in captured.err

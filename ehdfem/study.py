@@ -385,7 +385,10 @@ def critical_stokes(
         params = CollisionParameters(**{**values, "St": St})
         return collide(params, options=options, compliance=compliance).normal.rebound
 
-    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)
+    try:
+        lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)
+    finally:
+        compliance.close()
     return {
         "St_c": math.sqrt(lo * hi),
         "bracket": [lo, hi],
@@ -460,7 +463,9 @@ def critical_speed(
     if rebounds is None:
 
         def rebounds(speed):
-            return collide(replace(physical, speed=speed), model=model).normal.rebound
+            result = collide(replace(physical, speed=speed), model=model)
+            result.compliance.close()
+            return result.normal.rebound
 
     lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "speed [m/s]", (1e-4, 1e3))
     speed = math.sqrt(lo * hi)

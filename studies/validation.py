@@ -105,6 +105,7 @@ def thin_cases(table):
             params = CollisionParameters(St=St, eps=1e-3, angle=45.0, **THIN)
             result = collide(params, compliance=compliance)
             out.append({"St": St, "e_n": result.normal.e_n, "e_t": result.tangential.e_t})
+        compliance.close()
         return out
 
     e_n = {model: cached(table, f"e_n {model}", lambda m=model: restitution(m)) for model in MODELS}

@@ -2,7 +2,8 @@
 
 For each layer-to-radius ratio delta and dry Hertz compression c = (13.88 eps St)^(2/5) (gap
 units; St = 20, eps from c), thin layer, P_cav = -2, 30 degrees, Couette tangential model, 120
-film nodes, five models on the same film grid, each one step from the theory:
+film nodes, rtol 1e-5 (film thickness controlled), five models on the same film grid, each one
+step from the theory:
 
 - theory:    half-space, paraboloid gap, pressure only (the asymptotic theory);
 - geometry:  half-space, exact sphere gap;
@@ -31,7 +32,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem import CollisionParameters, collide, elasticity, film_radii  # noqa: E402
+from ehdfem import (  # noqa: E402
+    CollisionParameters,
+    IntegratorOptions,
+    collide,
+    elasticity,
+    film_radii,
+)
 from ehdfem.compliance.fem import FECompliance  # noqa: E402
 from ehdfem.compliance.halfspace import HalfSpaceCompliance  # noqa: E402
 from ehdfem.study import ResultTable  # noqa: E402
@@ -48,6 +55,7 @@ MATERIALS = {
 VARIANTS = ("theory", "geometry", "shear", "finite", "full")
 OUTPUTS = ("e_n", "min_film_thickness", "max_compression", "e_t")
 ST, NODES, FE_LIMIT = 20.0, 120, 0.7
+OPTIONS = IntegratorOptions(rtol=1e-5)
 
 
 def parameters(delta, compression, gap):

@@ -38,6 +38,9 @@ class Compliance(Protocol):
     def with_eps(self, eps: float) -> Compliance:
         """The same solids at another eps (the matrix scaled by eps / self.eps)."""
 
+    def close(self) -> None:
+        """Free what the solids hold outside Python (the FE factorisation); a no-op else."""
+
 
 class LinearCompliance:
     """A compliance C = factor(eps) * unit_matrix: ``unit_matrix`` comes from the solids
@@ -67,6 +70,9 @@ class LinearCompliance:
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
         return self.matrix @ np.asarray(pressure, dtype=float)
+
+    def close(self) -> None:
+        """Nothing to free for a matrix held in numpy."""
 
     def with_eps(self, eps: float):
         """The same solids at ``eps`` (self if eps is unchanged)."""

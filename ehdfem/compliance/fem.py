@@ -218,11 +218,11 @@ class FESolids:
         strain, stress = self._constitutive_law(materials)
         u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
         self._bcs = self._constraints()
-        stiffness = dolfinx_compat.assemble_matrix(
+        self._stiffness = dolfinx_compat.assemble_matrix(
             fem.form(ufl.inner(stress(u), strain(v)) * self._r * ufl.dx), self._bcs
         )
         self._ksp = PETSc.KSP().create(self.comm)
-        self._ksp.setOperators(stiffness)
+        self._ksp.setOperators(self._stiffness)
         self._ksp.setType("preonly")
         self._ksp.getPC().setType("lu")
         self._ksp.getPC().setFactorSolverType("mumps")
@@ -328,7 +328,9 @@ class FESolids:
         radial shear traction ``shear`` (callable of r, the same unit; outward positive) on
         both faces. Returns the displacement (a DOLFINx function, in units of a p/E_ref), also
         kept for :meth:`gap_opening`."""
-        self._ksp.solve(self._load_vector(pressure, shear), dolfinx_compat.petsc_vector(self._u))
+        load = self._load_vector(pressure, shear)
+        self._ksp.solve(load, dolfinx_compat.petsc_vector(self._u))
+        load.destroy()
         self._u.x.scatter_forward()
         return self._u
 
@@ -362,6 +364,13 @@ class FESolids:
         return (np.interp(self.radii_a, r_up, u_up) - upper) - (
             np.interp(self.radii_a, r_lo, u_lo) - lower
         )
+
+    def close(self) -> None:
+        """Free the factorised stiffness (PETSc memory, a few hundred MB at production
+        resolution, which Python's garbage collector does not return). Collective under MPI;
+        the solids cannot solve afterwards. Studies that build many solids call it for each."""
+        self._ksp.destroy()
+        self._stiffness.destroy()
 
     def scale(self, eps: float) -> float:
         """x0 per (a p / E_ref): FE displacements to the gap unit (module docstring)."""
@@ -409,7 +418,9 @@ class FESolids:
         solution = rhs.duplicate()
         self._ksp.setUp()
         self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
-        values = solution.getDenseArray()
+        values = solution.getDenseArray().copy()
+        for petsc_object in (rhs, solution, *vectors):  # PETSc memory is not freed by Python's GC
+            petsc_object.destroy()
         centres = [self.comm.allreduce(weights @ values) for weights in self._centre_weights]
         upper, lower = [*centres, np.zeros(len(loads))][:2]
         r_up, u_up = self._owned_surface(self._geometry.SPHERE_CONTACT, values)
@@ -543,6 +554,10 @@ class FECompliance(LinearCompliance):
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""
         return self.solids.scale(eps)
+
+    def close(self) -> None:
+        """Free the solids' factorisation (:meth:`FESolids.close`)."""
+        self.solids.close()
 
     @property
     def surface_radii(self) -> tuple:

@@ -1,14 +1,14 @@
 """Accuracy of every reported output at the default numerics, and what it costs.
 
-For a grid of collisions (thin and immersed layers; no cavitation limit, truncation and
-mass-conserving cavitation; St from 1.2 St_c to 1000; eps from 1e-6 to 0.1; the FE model at
-delta = 0.01), each output of the result is compared with a converged run (rtol 1e-8, twice
-the film nodes) and the cost of the default is compared with the old default (rtol 5e-5,
-step control on X and V only). Every collision is oblique (30 degrees) so that e_t and the
-spin change are measured too. Writes benchmarks/results/accuracy.json (per case and output
-the relative error, per case the cost ratio; the largest of each) and prints the table of
+For a grid of collisions (thin and immersed layers; no cavitation limit, truncation and mass-
+conserving cavitation; St from 1.2 St_c to 1000; eps from 1e-6 to 0.1; the FE model at delta =
+0.01; see ``cases``), each output of the result is compared with a converged run (rtol 1e-8,
+twice the film nodes) and the cost of the default is compared with the old default (rtol 5e-5,
+step control on X and V only). Every collision is oblique (30 degrees) so that e_t and the spin
+change are measured too. Writes benchmarks/results/accuracy.json (per case and output the
+relative error, per case the cost ratio; the largest of each) and prints the table of
 docs/performance.md. Resumable: finished cases are kept in benchmarks/results/accuracy.csv.
-Run: .venv/bin/python benchmarks/accuracy.py   (about 15 minutes)
+Run: .venv/bin/python benchmarks/accuracy.py   (about 40 minutes)
 """
 
 import os
@@ -45,11 +45,14 @@ CONVERGED = IntegratorOptions(rtol=1e-8)
 
 
 def cases():
-    """(name, parameters, model) of the grid."""
+    """(name, layer, film, St, eps, film parameters) of the grid: the thin layer with every
+    film model over the whole (St, eps) range, the immersed layer with every film model at
+    St = 20, eps = 1e-3 and without a cavitation limit over the range, and the FE model."""
+    ranges = ((20.0, 1e-3), (1000.0, 1e-6), (50.0, 0.1), ("near", 1e-3))
     out = []
     for layer in ("thin", "immersed"):
         for film, options in FILMS.items():
-            for St, eps in ((20.0, 1e-3), (1000.0, 1e-6), (50.0, 0.1), ("near", 1e-3)):
+            for St, eps in ranges if layer == "thin" or film == "none" else ranges[:1]:
                 out.append((f"{layer} {film} St={St} eps={eps:g}", layer, film, St, eps, options))
     out.append(
         ("fem thin truncate St=20 eps=1e-3", "thin", "truncate", 20.0, 1e-3, FILMS["truncate"])

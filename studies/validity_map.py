@@ -135,8 +135,17 @@ def errors(rows):
     return out
 
 
+def log_edges(values):
+    """Cell edges around log-spaced values: geometric midpoints, extended at both ends."""
+    v = np.log10(values)
+    inner = 0.5 * (v[1:] + v[:-1])
+    return 10 ** np.concatenate([[2 * v[0] - inner[0]], inner, [2 * v[-1] - inner[-1]]])
+
+
 def plot(found):
-    fig, axes = plt.subplots(len(MATERIALS), len(OUTPUTS), figsize=(15, 6.5), sharex=True)
+    labels = {"e_n": "e_n", "min_film_thickness": "H_min", "max_compression": "max compression"}
+    labels["e_t"] = "e_t"
+    fig, axes = plt.subplots(len(MATERIALS), len(OUTPUTS), figsize=(15, 7), sharex=True)
     for row, materials in enumerate(MATERIALS):
         for col, output in enumerate(OUTPUTS):
             ax = axes[row, col]
@@ -146,28 +155,27 @@ def plot(found):
                     if (materials, d, c) in found:
                         grid[i, j] = abs(found[(materials, d, c)]["theory"][output]) * 100
             mesh = ax.pcolormesh(
-                DELTAS,
-                COMPRESSIONS,
+                log_edges(DELTAS),
+                log_edges(COMPRESSIONS),
                 np.log10(np.maximum(grid, 1e-3)),
                 vmin=-2,
-                vmax=1.5,
+                vmax=1,
                 cmap="viridis",
-                shading="nearest",
             )
-            filled = np.where(np.isnan(grid), 100.0, grid)
-            contours = ax.contour(DELTAS, COMPRESSIONS, filled, levels=(1.0, 5.0), colors="w")
+            masked = np.ma.masked_invalid(grid)
+            contours = ax.contour(DELTAS, COMPRESSIONS, masked, levels=(1.0, 5.0), colors="w")
             ax.clabel(contours, fmt="%g %%", fontsize=7)
             ax.set_xscale("log")
             ax.set_yscale("log")
-            ax.set_title(f"{materials}: |error| in {output}", fontsize=9)
+            ax.set_title(f"{materials}: {labels[output]}", fontsize=9)
             if row == len(MATERIALS) - 1:
                 ax.set_xlabel("delta = x0 / a")
             if col == 0:
                 ax.set_ylabel("dry Hertz compression / x0")
     bar = fig.colorbar(mesh, ax=axes, shrink=0.8)
-    bar.set_label("log10 |half-space theory - full FE model| / full  [%]")
+    bar.set_label("log10 of |theory - full FE model| / full model, in %")
     fig.suptitle(
-        "Validity of the half-space theory: St = 20, thin layer, P_cav = -2, 30 deg "
+        "Error of the half-space theory: St = 20, thin layer, P_cav = -2, 30 deg "
         "(white: 1 % and 5 % contours; blank: film beyond 0.7 a)"
     )
     FIGURE.parent.mkdir(parents=True, exist_ok=True)

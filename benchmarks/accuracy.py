@@ -19,21 +19,20 @@ import json  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
-from ehdfem import CollisionParameters, IntegratorOptions, collide, critical_stokes  # noqa: E402
+from ehdfem import (  # noqa: E402
+    CollisionParameters,
+    IntegratorOptions,
+    collide,
+    critical_stokes,
+    study,  # noqa: E402
+)
 from ehdfem.collision import DEFAULT_NODES  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
 from ehdfem.study import ResultTable  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
-OUTPUTS = (
-    "e_n",
-    "max_rebound_velocity",
-    "min_film_thickness",
-    "max_force",
-    "contact_time",
-    "max_compression",
-    "e_t",
-    "spin_change",
+OUTPUTS = tuple(
+    o for o in study.OUTPUTS if o not in ("rebound", "status", "energy_error", "film_nodes")
 )
 FILMS = {
     "none": {},

@@ -353,6 +353,15 @@ def computed_or_loaded(path: Path, compute, load: bool) -> list[dict]:
     return rows
 
 
+def study_script(root: Path, name: str, compute, plot, load: bool) -> None:
+    """The main of a study script: rows in root/studies/results/NAME.csv (computed, or read
+    back when ``load``), figure root/docs/figures/NAME.png by ``plot(rows, path)``."""
+    table = root / "studies" / "results" / f"{name}.csv"
+    figure = root / "docs" / "figures" / f"{name}.png"
+    plot(computed_or_loaded(table, compute, load), figure)
+    print(f"wrote {table} and {figure}")
+
+
 def critical_stokes(
     params: CollisionParameters,
     bracket=(1.0, 1000.0),

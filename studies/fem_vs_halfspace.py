@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import computed_or_loaded  # noqa: E402
+from ehdfem.study import study_script  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DELTAS = (0.001, 0.003, 0.01, 0.03, 0.1)
@@ -106,13 +106,5 @@ def plot(rows, figure):
     fig.savefig(figure, dpi=120)
 
 
-def main():
-    table = ROOT / "studies" / "results" / "fem_vs_halfspace.csv"
-    figure = ROOT / "docs" / "figures" / "fem_vs_halfspace.png"
-    rows = computed_or_loaded(table, run, load="--plot-only" in sys.argv)
-    plot(rows, figure)
-    print(f"wrote {table} and {figure}")
-
-
 if __name__ == "__main__":
-    main()
+    study_script(ROOT, "fem_vs_halfspace", run, plot, load="--plot-only" in sys.argv)

@@ -16,7 +16,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import computed_or_loaded  # noqa: E402
+from ehdfem.study import study_script  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 STOKES = np.geomspace(3, 1000, 16)
@@ -81,13 +81,5 @@ def plot(rows, figure):
     fig.savefig(figure, dpi=120)
 
 
-def main():
-    table = ROOT / "studies" / "results" / "tangential_vs_stokes.csv"
-    figure = ROOT / "docs" / "figures" / "tangential_vs_stokes.png"
-    rows = computed_or_loaded(table, run, load="--plot-only" in sys.argv)
-    plot(rows, figure)
-    print(f"wrote {table} and {figure}")
-
-
 if __name__ == "__main__":
-    main()
+    study_script(ROOT, "tangential_vs_stokes", run, plot, load="--plot-only" in sys.argv)

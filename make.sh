@@ -86,6 +86,7 @@ case "$job" in
         "$PY" benchmarks/normal_collision.py "$@"
         "$PY" benchmarks/sweep.py "$@"
         "$PY" benchmarks/film_options.py
+        "$PY" benchmarks/accuracy.py
         mpirun -n 2 "$PY" benchmarks/fem_collision.py "$@" ;;
     study) setup; run_study ;;
     validate) setup; "$PY" studies/validation.py ;;

@@ -312,30 +312,26 @@ class Film:
         return shear, force, torque
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
-        """T_i = -(H_i / 2) (dP/dR)_i at the nodes: the radial shear traction that the pressure-
-        driven flow exerts on each of the two surfaces, in the flow direction (by
-        sqrt(delta) mu V0 a / x0^2; positive outward). dP/dR is recovered at the nodes from the
-        element slopes, each weighted by the other element's length (second order on the
-        stretched grid); 0 on the axis and at dry nodes, the cut element's slope at the last
-        wet node of a thin layer."""
+        """T at the nodes: the radial shear traction -(H/2) dP/dR that the pressure-driven flow
+        exerts on each of the two surfaces, in the flow direction (by sqrt(delta) mu V0 a /
+        x0^2; positive outward). Each wetted element carries T = -(H/2) s with its own slope s
+        (the cut element up to the wetted edge, where P = 0); the nodal values are its lumped
+        projection, T_j = int phi_j T R dR / int phi_j R dR over the whole grid, so a node the
+        edge leaves keeps the share its part of the film gives it, and T moves continuously
+        with the edge."""
         _, _, el = self._elements(film_thickness)
         regular = el.right >= 0
         right = np.where(regular, el.right, 0)
         slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / el.length
-        weighted_sum, weights = np.zeros_like(pressure), np.zeros_like(pressure)
-        # node i sees its left element (e = i - 1) and its right element (e = i)
-        weighted_sum[el.left] += slope * np.roll(el.length, 1)
-        weights[el.left] += np.roll(el.length, 1)
-        inner = el.left[1:]
-        weighted_sum[inner] += slope[:-1] * el.length[1:]
-        weights[inner] += el.length[1:]
-        last = el.right[-1] if len(el.left) and regular[-1] else None
-        if last is not None:  # the immersed end: its one element's slope
-            weighted_sum[last], weights[last] = slope[-1], 1.0
-        nodal_slope = np.zeros_like(pressure)
-        np.divide(weighted_sum, weights, out=nodal_slope, where=weights > 0)
-        nodal_slope[0] = 0.0
-        return -0.5 * film_thickness * nodal_slope
+        traction = -0.5 * self._gauss_thickness(el) * slope[:, None]
+        # the grid's hats at the Gauss points (a cut element lies inside its full cell)
+        full = self._length[np.minimum(el.left, len(self._length) - 1)]
+        rising = (el.gauss_r - self.radii[el.left, None]) / full[:, None]
+        weight = el.length[:, None] * _GAUSS_W * el.gauss_r * traction
+        load = np.zeros_like(pressure)
+        np.add.at(load, el.left, (weight * (1.0 - rising)).sum(axis=1))
+        np.add.at(load, np.minimum(el.left + 1, len(load) - 1), (weight * rising).sum(axis=1))
+        return load / self._full_mass
 
     def _gauss_thickness(self, el: _Elements):
         """H at the Gauss points of the elements: the undeformed gap S is kept exactly between

@@ -92,15 +92,16 @@ class ImplicitStep:
 
     def thickness(self, pressure, gap):
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
-        h = gap + self.undeformed + self.compliance @ pressure
-        return h if self.shear is None else h + self.shear_opening(h, pressure)
+        return self.thickness_parts(pressure, gap)[0]
 
-    def shear_opening(self, h0, pressure):
-        """C_T T(H0, P): the gap opening by the squeeze-shear traction (by x0; 0 without it),
-        for the film thickness H0 without that opening."""
+    def thickness_parts(self, pressure, gap):
+        """(H, W_shear): the film thickness and its shear opening C_T T(H0, P) (by x0; None
+        without the shear traction), T formed with H0 = X + S(R) + C P."""
+        h0 = gap + self.undeformed + self.compliance @ pressure
         if self.shear is None:
-            return np.zeros_like(h0)
-        return self.shear @ self.film.squeeze_shear(h0, pressure)
+            return h0, None
+        opening = self.shear @ self.film.squeeze_shear(h0, pressure)
+        return h0 + opening, opening
 
     def solve(self, guess, step, a0, past) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted

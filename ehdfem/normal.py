@@ -131,23 +131,22 @@ class _NormalIntegration:
         self.rejected = self.iterations = 0
         self.rebounding = False
         self.exit_time = self.exit_velocity = np.nan
-        h = self.step_solver.thickness(self.pressure, self.gap)
+        h, opening = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(h, self.pressure)
-        self._record(0.0, np.ones(n), h, state, 0.0)
+        self._record(0.0, np.ones(n), (h, opening), state, 0.0)
 
-    def _record(self, time, fill, h, state, dissipated):
-        """Record the current state; the pressure's work on the shear opening is accumulated
-        by the trapezoidal rule, (1/3) int P.M dW_shear (the elastic energy's shear part)."""
-        solver, mass = self.step_solver, self.film.full_mass
-        opening = np.zeros_like(h)
-        if solver.shear is not None:
-            h0 = self.gap + solver.undeformed + solver.compliance @ self.pressure
-            opening = solver.shear_opening(h0, self.pressure)
-        if self.hist.time:
+    def _record(self, time, fill, thickness, state, dissipated):
+        """Record the current state, with ``thickness`` = (H, shear opening or None) from
+        :meth:`ImplicitStep.thickness_parts`; the pressure's work on the shear opening is
+        accumulated by the trapezoidal rule, (1/3) int P.M dW_shear (the elastic energy's
+        shear part)."""
+        (h, opening), mass = thickness, self.film.full_mass
+        if opening is not None and self.hist.time:
             mean = 0.5 * (self.hist.pressure[-1] + self.pressure)
             self.shear_work += float(mass * mean @ (opening - self.opening)) / 3.0
         self.opening = opening
-        energies = (self.params.St, solver.compliance, mass, dissipated, self.shear_work)
+        compliance = self.step_solver.compliance
+        energies = (self.params.St, compliance, mass, dissipated, self.shear_work)
         self.hist.record(time, self.gap, self.velocity, self.pressure, fill, h, state, energies)
 
     def run(self) -> NormalResult:
@@ -181,7 +180,8 @@ class _NormalIntegration:
             self._failed(failure, t_old)
             return None
         self.iterations += solution.iterations
-        new_h = self.step_solver.thickness(solution.pressure, solution.gap)
+        thickness = self.step_solver.thickness_parts(solution.pressure, solution.gap)
+        new_h = thickness[0]
         h_min = max(min(hist.min_film[-1], new_h.min()), 1e-12)
         checked = [(hist.gap, solution.gap, h_min), (hist.velocity, solution.velocity, 1.0)]
         if self.options.film_control:
@@ -191,7 +191,7 @@ class _NormalIntegration:
             self.rejected += 1
             stepper.reject(error, order)
             return None
-        status = self._accept(solution, new_h, t_old, t_new)
+        status = self._accept(solution, thickness, t_old, t_new)
         stepper.accept(error, order)
         return status
 
@@ -214,7 +214,7 @@ class _NormalIntegration:
                 f"{failure} (residual {residual:.3g})"
             ) from failure
 
-    def _accept(self, solution, h, t_old, t_new):
+    def _accept(self, solution, thickness, t_old, t_new):
         """Record an accepted step (trapezoidal dissipation) and return its event, if any."""
         step = self.stepper.step
         new_rate = self.film.dissipation_rate(solution.state, solution.pressure)
@@ -223,7 +223,7 @@ class _NormalIntegration:
         old_x, old_v = self.gap, self.velocity
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
-        self._record(t_new, solution.fill, h, solution.state, dissipated)
+        self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         self.rebounding = self.rebounding or self.velocity > 0
         if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, interpolated
             fraction = (1.0 - old_x) / (self.gap - old_x)

@@ -108,6 +108,11 @@ class CollisionParameters:
         checks.choice("layer", self.layer, LAYERS)
         checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
         checks.number("spin", self.spin)
+        if self.spin != 0.0 and self.tangential_speed == 0.0:
+            raise checks.InputError(
+                f"spin = {self.spin!r} needs an oblique impact (angle > 0): the tangential "
+                "motion of a head-on impact is not solved, so its spin would be ignored"
+            )
         checks.number(
             "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
         )

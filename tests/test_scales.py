@@ -85,6 +85,7 @@ def test_presets_are_physical():
         ({"p_cav": 1}, "p_cav"),
         ({"layer": "puddle"}, "layer"),
         ({"inertia_factor": 0.9}, "inertia_factor"),
+        ({"spin": 0.2}, "spin"),  # head-on (angle 0): the spin would be ignored
     ],
 )
 def test_bad_dimensionless_inputs(changes, name):

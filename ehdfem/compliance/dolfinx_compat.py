@@ -17,18 +17,19 @@ from __future__ import annotations
 import numpy as np
 
 
-def lagrange_space(mesh, degree: int, vector: bool = False):
+def lagrange_space(mesh, degree: int, vector: bool = False, components: int | None = None):
     """Continuous Lagrange space of ``degree`` on ``mesh``; with ``vector``, one component per
-    geometric dimension (the (u_r, u_z) displacement).
+    geometric dimension (the (u_r, u_z) displacement), or ``components`` of them (the three
+    mode-1 displacement amplitudes).
 
-    0.5: ``fem.FunctionSpace(mesh, ("CG", k))`` and ``fem.VectorFunctionSpace(mesh, ("CG", k))``.
-    0.7 adds ``fem.functionspace(mesh, ("Lagrange", k, shape))`` (or a
+    0.5: ``fem.FunctionSpace(mesh, ("CG", k))`` and ``fem.VectorFunctionSpace(mesh, ("CG", k),
+    dim=n)``. 0.7 adds ``fem.functionspace(mesh, ("Lagrange", k, shape))`` (or a
     ``basix.ufl.element("Lagrange", mesh.basix_cell(), k, shape=...)``), the only form from 0.8.
     """
     from dolfinx import fem
 
     if vector:
-        return fem.VectorFunctionSpace(mesh, ("CG", degree))
+        return fem.VectorFunctionSpace(mesh, ("CG", degree), dim=components)
     return fem.FunctionSpace(mesh, ("CG", degree))
 
 

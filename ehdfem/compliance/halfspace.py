@@ -75,34 +75,39 @@ def influence_matrix(radii: np.ndarray) -> np.ndarray:
 
     Scales: radii by sqrt(a x0); A maps P (by mu V0 a / x0^2) to W / eps (by x0).
     """
+    return hat_integrals(radii, _ring_kernel, 1)[0]
+
+
+def hat_integrals(radii, kernel, size):
+    """M[p, i, j] = int phi_j(S) kernel(R_i, S - R_i)[p] dS for the hat functions phi_j on
+    ``radii`` (by sqrt(a x0); the last hat a half hat, zero beyond). Each cell is integrated by
+    8-point Gauss-Legendre, or by the graded rule when it is closer to R_i than its length
+    (module docstring); ``kernel(radius, offset)`` returns ``size`` values along its first
+    axis."""
     r = np.asarray(radii, dtype=float)
     n = len(r)
     left, right = r[:-1], r[1:]
     length = right - left
-    # distance from each node to each cell, and which end of the cell is nearer
     dist = np.maximum(left[None, :] - r[:, None], r[:, None] - right[None, :])
     near_left = np.abs(r[:, None] - left[None, :]) <= np.abs(r[:, None] - right[None, :])
     close = dist < length[None, :]
-    matrix = np.zeros((n, n))
-    node, cell = np.nonzero(~close)
-    _accumulate(matrix, r, node, cell, _REGULAR_X, _REGULAR_W, from_right=False)
-    for from_right in (False, True):
-        node, cell = np.nonzero(close & (near_left != from_right))
-        _accumulate(matrix, r, node, cell, _GRADED_X, _GRADED_W, from_right)
+    matrix = np.zeros((size, n, n))
+    rules = (
+        (~close, _REGULAR_X, _REGULAR_W, False),
+        (close & near_left, _GRADED_X, _GRADED_W, False),
+        (close & ~near_left, _GRADED_X, _GRADED_W, True),
+    )
+    for pairs, u, w, from_right in rules:
+        node, cell = np.nonzero(pairs)
+        cell_length = length[cell][:, None]
+        radius = r[node][:, None]
+        start = (right if from_right else left)[cell][:, None]
+        offset = (start - radius) + (-cell_length if from_right else cell_length) * u
+        to_right = 1.0 - u if from_right else u  # weight of the hat of the cell's right node
+        values = kernel(radius, offset).reshape(size, *offset.shape) * w * cell_length
+        matrix[:, node, cell] += (values * (1.0 - to_right)).sum(axis=-1)
+        matrix[:, node, cell + 1] += (values * to_right).sum(axis=-1)
     return matrix
-
-
-def _accumulate(matrix, r, node, cell, u, w, from_right):
-    """Add the (node, cell) contributions of a rule (u, w) on [0, 1] measured from the cell's
-    left end, or from its right end (so that S next to R_i is computed without cancellation)."""
-    length = (r[cell + 1] - r[cell])[:, None]
-    radius = r[node][:, None]
-    start = (r[cell + 1] if from_right else r[cell])[:, None]
-    offset = (start - radius) + (-length if from_right else length) * u
-    to_right = 1.0 - u if from_right else u  # weight of the hat of the cell's right node
-    values = _ring_kernel(radius, offset) * w * length
-    np.add.at(matrix, (node, cell), (values * (1.0 - to_right)).sum(axis=1))
-    np.add.at(matrix, (node, cell + 1), (values * to_right).sum(axis=1))
 
 
 class HalfSpaceCompliance(LinearCompliance):

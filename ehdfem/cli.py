@@ -149,7 +149,9 @@ def _numerics_arguments(num) -> None:
         "--tangential",
         choices=TANGENTIAL_MODELS,
         default="couette",
-        help="film model of the tangential motion (oblique impacts)",
+        help="film model of the tangential motion (oblique impacts); 'lubrication' adds the "
+        "mode-1 sliding pressure of rigid solids, not yet consistent for deformable ones "
+        "(docs/tangential.md)",
     )
     num.add_argument("--nodes", type=int, default=DEFAULT_NODES, help="film nodes")
     num.add_argument(

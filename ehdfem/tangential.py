@@ -22,7 +22,10 @@ u_s = U - a Omega and the rolling speed w = U + a Omega, and I = k m a^2:
 - ``lubrication`` (beyond the source): the sliding-induced pressure too (azimuthal mode 1 of
   the Reynolds equation on the deformed film). On a rigid sphere near a wall it gives the
   classical leading logarithms: force 8/15 (translation) and 2/15 (rotation) of
-  6 pi mu a U ln(a/h), torque 1/10 and 2/5 of 8 pi mu a^2 U ln(a/h).
+  6 pi mu a U ln(a/h), torque 1/10 and 2/5 of 8 pi mu a^2 U ln(a/h). It is exact for rigid
+  solids only: on deformable ones its force takes the gap slope for the surfaces' slope and its
+  mode-1 film does not deform, and the system can create energy in a flattened contact
+  (docs/tangential.md derives the consistent model).
 
 Each step of the normal solution is integrated exactly for the step's mean coefficients (a
 2x2 matrix exponential, by Sylvester's formula so that it stays exact for the very large rates

@@ -3,7 +3,7 @@
 The upper sphere and the lower body (a wall block, a coated wall block, or a second sphere)
 are meshed in (r, z) with gmsh (meshes/contact.py through :mod:`ehdfem.compliance.fem_mesh`,
 lengths by the (reduced) radius a) and solved with P2 Lagrange elements in the r-weighted
-axisymmetric form (strain with the hoop term u_r / r). The stiffness is factorised once (LU);
+axisymmetric form (strain with the hoop term u_r / r). The stiffness is factorised once (Cholesky);
 one solve per film node j, with the hat pressure phi_j acting normally on both contact faces,
 gives the gap opening at every film node i,
 
@@ -221,10 +221,12 @@ class FESolids:
         self._stiffness = dolfinx_compat.assemble_matrix(
             fem.form(ufl.inner(stress(u), strain(v)) * self._r * ufl.dx), self._bcs
         )
+        # symmetric positive definite once the constraints remove the rigid motions: Cholesky
+        self._stiffness.setOption(PETSc.Mat.Option.SPD, True)
         self._ksp = PETSc.KSP().create(self.comm)
         self._ksp.setOperators(self._stiffness)
         self._ksp.setType("preonly")
-        self._ksp.getPC().setType("lu")
+        self._ksp.getPC().setType("cholesky")
         self._ksp.getPC().setFactorSolverType("mumps")
         self._load_forms(v)
 

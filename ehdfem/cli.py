@@ -44,6 +44,7 @@ from .presets import (
 from .quiet import is_quiet, set_quiet
 from .scales import CollisionParameters, PhysicalCollision, from_presets
 from .study import Study, critical_stokes, run_study
+from .tangential import DEFORMATIONS
 from .timestepping import IntegratorOptions
 from .version import __version__
 from .viscosity import LAWS as VISCOSITY_LAWS
@@ -149,9 +150,17 @@ def _numerics_arguments(num) -> None:
         "--tangential",
         choices=TANGENTIAL_MODELS,
         default="couette",
-        help="film model of the tangential motion (oblique impacts); 'lubrication' adds the "
-        "mode-1 sliding pressure of rigid solids, not yet consistent for deformable ones "
-        "(docs/tangential.md)",
+        help="film model of the tangential motion (oblique impacts): 'couette' (the source's "
+        "shear only) or 'lubrication' (the sliding film: mode-1 pressure on both deformed "
+        "surfaces, docs/tangential.md)",
+    )
+    num.add_argument(
+        "--sliding-deformation",
+        choices=DEFORMATIONS,
+        default="gap",
+        help="mode-1 deformation of the solids under the sliding film (--tangential "
+        "lubrication): 'gap' the normal displacements (default), 'full' also the tangential "
+        "ones in the slip, 'none' rigid mode-1 solids (exact for rigid solids only)",
     )
     num.add_argument("--nodes", type=int, default=DEFAULT_NODES, help="film nodes")
     num.add_argument(
@@ -471,12 +480,14 @@ def _run_collision(args, model: str):
         options=IntegratorOptions(rtol=args.rtol),
         tangential=args.tangential,
         solids=solids,
+        deformation=args.sliding_deformation,
     )
     run = {
         "model": model,
         "nodes": args.nodes,
         "rtol": args.rtol,
         "tangential": args.tangential,
+        "deformation": args.sliding_deformation,
         "solids": solids,
     }
     return result, run

@@ -18,8 +18,8 @@ from .compliance.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from .film import radial_grid
 from .normal import FilmClosedError, NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .tangential import DEFORMATIONS, TangentialResult, solve_tangential
 from .tangential import MODELS as TANGENTIAL_MODELS
-from .tangential import TangentialResult, solve_tangential
 from .timestepping import IntegratorOptions
 from .version import __version__
 
@@ -57,22 +57,57 @@ def elasticity(
     params.shear_traction says so (default: FE solids only). ``solids``: further FESolids
     arguments (lower body, coating, radius ratio)."""
     solids = dict(solids or {})
-    sphere, wall = IDENTICAL_SOLIDS
-    if physical is not None:
-        sphere, wall = (
-            (m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall)
-        )
-    sphere, wall = solids.pop("sphere", sphere), solids.pop("wall", wall)
+    sphere, wall = _materials(physical, solids)
+    solids.pop("sphere", None), solids.pop("wall", None)
     shear = params.shear_traction
     shear = model == "fem" if shear is None else shear
     if model == "halfspace":
         return HalfSpaceCompliance(
-            radii, params.eps, (params.delta, (sphere, wall)) if shear else None
+            radii, params.eps, (params.delta, (sphere, wall)) if shear else None, (sphere, wall)
         )
     from .compliance.fem import FESolids
 
     fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **solids)
     return fe.compliance(params.eps, shear=shear)
+
+
+_LOWER_SPHERE_SLIDING = (
+    "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower = "
+    "'sphere' is not supported: the sliding film's force and torque are derived for a sphere "
+    "on a wall); use tangential = 'couette'"
+)
+
+
+def _materials(physical, solids):
+    """(sphere, wall) as (Young's modulus, Poisson ratio): from ``solids`` if given, else
+    from the physical inputs, else identical solids."""
+    sphere, wall = IDENTICAL_SOLIDS
+    if physical is not None:
+        sphere, wall = (
+            (m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall)
+        )
+    solids = solids or {}
+    return solids.get("sphere", sphere), solids.get("wall", wall)
+
+
+def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, physical=None):
+    """The solids' mode-1 compliance (:class:`ehdfem.compliance.ModeOneCompliance`) matching
+    ``compliance`` at params.eps, for the sliding film: half-spaces of the same materials, or
+    the FE solids' own mesh (:class:`ehdfem.compliance.fem_mode_one.FEModeOne`). None for rigid
+    solids. The sliding film's force and torque are derived for a sphere on a wall: a lower
+    sphere is refused."""
+    if compliance.model == "rigid":
+        return None
+    if compliance.model == "fem":
+        from .compliance.fem_mode_one import FEModeOne
+
+        if compliance.solids.lower == "sphere":
+            raise checks.InputError(_LOWER_SPHERE_SLIDING)
+        return FEModeOne(compliance.solids, params.eps)
+    from .compliance.halfspace_mode_one import HalfSpaceModeOne
+
+    materials = getattr(compliance, "materials", None) or _materials(physical, None)
+    return HalfSpaceModeOne(compliance.radii, params.eps, params.delta, materials)
 
 
 @dataclass
@@ -134,6 +169,13 @@ class CollisionResult:
             out.update(
                 e_t=t.e_t, spin_change=t.spin_change, tangential_model=t.model, tangential_at=t.at
             )
+            if t.energy is not None:
+                out.update(
+                    sliding_deformation=t.deformation,
+                    tangential_balance_error=t.energy.balance_error,
+                    tangential_work_exchanged=float(t.energy.exchanged[-1]),
+                    tangential_dissipated=float(t.energy.dissipated[-1]),
+                )
         if self.physical is not None:
             s = self.physical.scales()
             out["si"] = {
@@ -178,6 +220,7 @@ def collide(
     tangential: str = "couette",
     solids: dict | None = None,
     compliance: Compliance | None = None,
+    deformation: str = "gap",
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
 
@@ -186,7 +229,9 @@ def collide(
     run again on a grid with twice the nodes, at most ``refinements`` times; the nodes used are
     reported in the result (``film_nodes``). ``tangential``: the film model of the
     tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential`); it is solved
-    when the impact is oblique (angle > 0). ``solids``: for the FE model, arguments of
+    when the impact is oblique (angle > 0). ``deformation``: the mode-1 deformation of the
+    lubrication model's solids, "full", "gap" or "none" (:data:`ehdfem.tangential.DEFORMATIONS`;
+    "none" is exact for rigid solids only). ``solids``: for the FE model, arguments of
     :class:`ehdfem.compliance.fem.FESolids` (e.g. ``lower="coated"``, ``coating=(E, nu)``,
     ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``). ``compliance``: an
     elasticity built before (e.g. by :func:`elasticity` for the widest collision of a sweep,
@@ -202,25 +247,45 @@ def collide(
         )
     checks.choice("model", model, MODELS)
     checks.choice("tangential", tangential, TANGENTIAL_MODELS)
+    checks.choice("deformation", deformation, DEFORMATIONS)
+    if tangential == "lubrication" and (solids or {}).get("lower") == "sphere":
+        raise checks.InputError(_LOWER_SPHERE_SLIDING)
+    sliding = (tangential, deformation)
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
     if compliance is not None:
-        return _collide_on(params, compliance.with_eps(params.eps), options, tangential, physical)
+        return _collide_on(params, compliance.with_eps(params.eps), options, sliding, physical)
     for attempt in range(refinements + 1):
         radii = film_radii(params, nodes * 2**attempt)
         try:
             compliance = elasticity(params, radii, model, physical, solids)
-            return _collide_on(params, compliance, options, tangential, physical)
+            return _collide_on(params, compliance, options, sliding, physical)
         except FilmClosedError:
             if attempt == refinements:
                 raise
 
 
-def _collide_on(params, compliance, options, tangential, physical):
-    """The normal and (oblique impacts) tangential motion on a given compliance."""
+def _collide_on(params, compliance, options, sliding, physical):
+    """The normal and (oblique impacts) tangential motion on a given compliance; ``sliding``:
+    (tangential model, mode-1 deformation)."""
     normal = solve_normal(params, compliance, options)
-    oblique = params.tangential_speed > 0
-    tangential_result = solve_tangential(normal, tangential) if oblique else None
+    tangential_result = None
+    if params.tangential_speed > 0:
+        model, deformation = sliding
+        mode_one = None
+        if model == "lubrication" and deformation != "none":
+            mode_one = mode_one_elasticity(params, compliance, physical)
+        try:
+            tangential_result = solve_tangential(
+                normal,
+                model,
+                mode_one,
+                getattr(compliance, "surface_sum_matrix", None),
+                deformation,
+            )
+        finally:
+            if mode_one is not None:
+                mode_one.close()
     return CollisionResult(
         params, compliance.model, normal, tangential_result, physical, compliance
     )

@@ -33,7 +33,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 
 from . import checks
 from .gap import Paraboloid
@@ -112,6 +111,106 @@ def tridiagonal_product(bands, vector):
     out = diagonal * vector
     out[1:] += lower[1:] * vector[:-1]
     out[:-1] += upper[:-1] * vector[1:]
+    return out
+
+
+@dataclass
+class ModeOneFilm:
+    """The film's azimuthal mode-1 (cos phi) operators at one instant (scaled).
+
+    A sliding and spinning sphere adds to the axisymmetric film (H0, P0) a mode-1 pressure
+    p1 = mu U0 sqrt(a) x0^(-3/2) q(R) cos(phi) and, on elastic solids, a mode-1 gap
+    h1 = x0 (U0/V0) sqrt(delta) H1(R) cos(phi). In these units (q is the film pressure unit
+    and H1 the gap unit, both times (U0/V0) sqrt(delta)) the mode-1 Reynolds equation,
+    linearised about (H0, P0), is
+
+        dH1/dT = (1/(12 R)) (R phi H0^3 q')' - phi H0^3 q / (12 R^2)
+                 + (1/(4 R)) (R phi H0^2 H1 P0')' + (1/(12 R)) (R phi_P H0^3 q P0')'
+                 + (w/2) dH0/dR,
+
+    with phi = mu0/mu(P0), phi_P = d phi/dP and w = (U + a Omega)/U0 the rolling speed. On P1
+    elements (weak form with the weight R, lumped mass) it reads, at the ``free`` nodes,
+
+        mass * dH1/dT + conductance q + thickness_coupling H1 + pressure_coupling q
+            = (w/2) drive,
+
+    and q = 0 elsewhere: on the axis, at dry nodes, at the immersed end and at cavitated nodes
+    (where P0 sits at the cavitation limit, the linearised limit P0 + q cos phi >= P_cav holds
+    for every phi only with q = 0). ``conductance`` is the symmetric form
+    (1/12) int phi H0^3 (q' v' + q v / R^2) R dR; q . conductance q is the Poiseuille
+    dissipation of the mode-1 flow. ``drive`` is int H0' v R dR. ``torque_weights`` give
+    int q R^2 dR. ``shear_weights`` j_i = int phi_i theta (mu/mu0) R dR / H0 give the
+    Couette force of nodal slip velocities; their sum is the Couette integral J. ``tail`` (immersed
+    only) is ln of the undeformed far-field film between the last node and the sphere's radius,
+    where the rigid resistances J, G and M grow as 1, 3/5 and 2/5 of it.
+    """
+
+    free: np.ndarray
+    mass: np.ndarray
+    conductance: np.ndarray
+    thickness_coupling: np.ndarray
+    pressure_coupling: np.ndarray
+    drive: np.ndarray
+    torque_weights: np.ndarray
+    shear_weights: np.ndarray
+    tail: float
+    _film: Film
+    _elements: _Elements
+    _pressure_slope: np.ndarray
+
+    def rigid_pressure(self) -> np.ndarray:
+        """q per unit rolling speed w on rigid solids (H1 = 0), the quasi-steady solution of
+        conductance q = drive / 2 at the free nodes (q = 6 w Pi of the classical mode-1
+        problem (1/R)(R H^3 Pi')' - H^3 Pi / R^2 = -H')."""
+        q = np.zeros_like(self.drive)
+        free = self.free
+        operator = self.conductance + self.pressure_coupling
+        q[free] = np.linalg.solve(operator[np.ix_(free, free)], 0.5 * self.drive[free])
+        return q
+
+    def surface_slope_weights(self, surface_sum: np.ndarray | None = None) -> np.ndarray:
+        """s with s . q = int q dSigma0/dR R dR, Sigma0 = X + S(R) + u_s + u_w the sum of the
+        two surfaces' heights: the undeformed gap plus ``surface_sum``, the nodal sum of the
+        sphere's and the wall's axisymmetric displacements along z (by x0, z from the wall into
+        the sphere; None: 0, as for identical half-spaces or rigid solids)."""
+        el, gap, radii = self._elements, self._film.gap, self._film.radii
+        left = radii[el.left]
+        chord = (gap.height(left + el.length) - gap.height(left)) / el.length
+        slope = chord[:, None] + gap.slope_between_nodes(left, el.length, _GAUSS_XI)
+        if surface_sum is not None:
+            ends = np.interp(left + el.length, radii, surface_sum) - surface_sum[el.left]
+            slope = slope + (ends / el.length)[:, None]
+        return _hat_weights(el, slope, len(self.drive))
+
+    def gradient_weights(self) -> np.ndarray:
+        """g with g . f = int f P0' R dR for a nodal (P1) f on the whole grid (f need not vanish
+        at the wetted edge)."""
+        el = self._elements
+        values = np.broadcast_to(self._pressure_slope[:, None], el.gauss_r.shape)
+        return _cell_hat_weights(el, self._film.radii, values)
+
+
+def _hat_weights(el: _Elements, values: np.ndarray, n: int) -> np.ndarray:
+    """w with w . f = int f g R dR over the elements, for a nodal (P1) f that is 0 at a cut
+    edge and g given at the elements' Gauss points, ``values`` (elements, 3)."""
+    regular = el.right >= 0
+    weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
+    out = np.zeros(n)
+    np.add.at(out, el.left, (weight * (1.0 - _GAUSS_XI)).sum(axis=1))
+    np.add.at(out, el.right[regular], (weight * _GAUSS_XI).sum(axis=1)[regular])
+    return out
+
+
+def _cell_hat_weights(el: _Elements, radii: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """w with w . f = int f g R dR over the wetted elements, for f linear on the grid's cells
+    (a cut element keeps the hats of its full cell, so f need not vanish at the wetted edge)
+    and g given at the elements' Gauss points, ``values`` (elements, 3)."""
+    full = np.diff(radii)[np.minimum(el.left, len(radii) - 2)]
+    rising = (el.gauss_r - radii[el.left, None]) / full[:, None]
+    weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
+    out = np.zeros(len(radii))
+    np.add.at(out, el.left, (weight * (1.0 - rising)).sum(axis=1))
+    np.add.at(out, np.minimum(el.left + 1, len(out) - 1), (weight * rising).sum(axis=1))
     return out
 
 
@@ -236,25 +335,23 @@ class Film:
         d_diagonal[-1] += r**2 * hn / 3.0 * pressure[-1]
         force_weights[-1] += hn / 3.0
 
-    def sliding_integrals(
-        self, film_thickness: np.ndarray, outer_radius: float = np.inf, pressure=None, fill=None
-    ):
-        """(J, G, M): the film's resistance to a sliding and spinning sphere (scaled).
+    def mode_one(
+        self,
+        film_thickness: np.ndarray,
+        outer_radius: float = np.inf,
+        pressure=None,
+        fill=None,
+        cavitated=None,
+    ) -> ModeOneFilm:
+        """The film's azimuthal mode-1 operators at one instant (see :class:`ModeOneFilm`).
 
-        J = int theta (mu/mu0) R dR / H is the Couette shear (a cavity shears only its liquid
-        fraction theta; mu at the nodal ``pressure``, theta the nodal ``fill``, 1 if not given;
-        tangential force -2 pi mu0 a u_s J). The sliding
-        pressure is p = 6 mu U0 sqrt(a) x0^(-3/2) w Pi(R) cos(phi), with w = (U + a Omega)/U0 and
-        Pi the azimuthal mode-1 solution of the Reynolds equation on the deformed film,
-
-            (1/R) (R H^3 Pi')' - H^3 Pi / R^2 = -dH/dR,   Pi(0) = 0, Pi = 0 at the edge,
-
-        (P1 elements, weak form int R H^3 Pi' v' + int H^3 Pi v / R = int H' v R; H^3 stands
-        for H^3 mu0/mu with the viscosity at the nodal ``pressure``, mu0 if not given). It adds
-        G = (3/2) int Pi H' R dR to the force and M = int Pi R^2 dR to the torque. Thin layer: up
-        to the wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta),
-        caps the logarithmic far field); beyond the last node the film is taken as the
-        undeformed X + R^2/2, where J, G and M grow as ln H, (3/5) ln H and (2/5) ln H.
+        ``film_thickness`` H0 and ``pressure`` P0 are the axisymmetric film at the nodes (by x0
+        and mu V0 a / x0^2; the viscosity is taken at P0, mu0 if not given), ``fill`` the liquid
+        fraction theta (1 if not given; a cavity shears only its liquid), ``cavitated`` the nodes
+        where P0 is at the cavitation limit (boolean; none if not given). Thin layer: up to the
+        wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta), caps
+        the logarithmic far field); beyond the last node the film is taken as the undeformed
+        X + R^2/2, whose rigid resistances grow as ln H (``tail``).
         """
         h = film_thickness
         n = len(h)
@@ -267,49 +364,77 @@ class Film:
 
         def gauss(nodal, edge_value):
             if nodal is None:
-                return np.ones_like(thickness)
+                return np.zeros_like(thickness) + edge_value
             return _gauss_values(nodal[el.left], np.where(regular, nodal[right], edge_value))
 
-        viscosity = self.viscosity.ratio(gauss(pressure, 0.0))[0]
-        liquid = gauss(fill, 1.0)
+        ratio, dlog = self.viscosity.ratio(gauss(pressure, 0.0))
+        fluidity = 1.0 / ratio  # mu0 / mu
         slope = ((el.h_right - el.h_left) / el.length)[:, None] + self.gap.slope_between_nodes(
             self.radii[el.left], el.length, _GAUSS_XI
         )
-        weight = el.length[:, None] * _GAUSS_W
-        phi_left, phi_right = 1.0 - _GAUSS_XI, _GAUSS_XI
-        cube = thickness**3 / viscosity
-        stiff = (weight * el.gauss_r * cube).sum(axis=1) / el.length**2
-        hoop = [
-            (weight * cube * a * b / el.gauss_r).sum(axis=1)
-            for a, b in ((phi_left, phi_left), (phi_left, phi_right), (phi_right, phi_right))
-        ]
-        source = weight * slope * el.gauss_r
-        diagonal, lower, upper, rhs = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
-        diagonal[el.left] += stiff + hoop[0]
-        rhs[el.left] += (source * phi_left).sum(axis=1)
-        left, right = el.left[regular], el.right[regular]
-        diagonal[right] += (stiff + hoop[2])[regular]
-        upper[left] += (hoop[1] - stiff)[regular]
-        lower[right] += (hoop[1] - stiff)[regular]
-        rhs[right] += (source * phi_right).sum(axis=1)[regular]
-        fixed = np.ones(n, bool)  # Pi = 0 on the axis, at dry nodes and at the immersed end
-        fixed[el.left[1:]] = False
+        weight = el.length[:, None] * _GAUSS_W * el.gauss_r  # R dR at the Gauss points
+        hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
+        hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
+        nodes = (el.left, np.where(regular, el.right, el.left))
+        live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
+        pressure_slope = np.zeros(len(el.left))
+        if pressure is not None:
+            pressure_slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / (
+                el.length
+            )
+        cube = fluidity * thickness**3
+        conductance = np.zeros((n, n))
+        thickness_coupling = np.zeros((n, n))
+        pressure_coupling = np.zeros((n, n))
+        drive, torque, mass = np.zeros(n), np.zeros(n), np.zeros(n)
+        dfluidity = -fluidity * (0.0 if dlog is None else dlog)
+        for a in range(2):
+            ia, va, sa = nodes[a], live[a], hat_slopes[a]
+            np.add.at(drive, ia, va * (weight * slope * hats[a]).sum(axis=1))
+            np.add.at(torque, ia, va * (weight * el.gauss_r * hats[a]).sum(axis=1))
+            np.add.at(mass, ia, va * (weight * hats[a]).sum(axis=1))
+            for b in range(2):
+                ib, on = nodes[b], va * live[b]
+                stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
+                hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
+                np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
+                grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
+                np.add.at(
+                    thickness_coupling,
+                    (ia, ib),
+                    on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
+                )
+                np.add.at(
+                    pressure_coupling,
+                    (ia, ib),
+                    on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
+                )
+        free = np.zeros(n, bool)  # q = 0 on the axis, at dry nodes and at the immersed end
+        free[el.left[1:]] = True
         if self.layer == "immersed" and len(el.left):
-            fixed[el.right[-1]] = True
-        diagonal[fixed], lower[fixed], upper[fixed], rhs[fixed] = 1.0, 0.0, 0.0, 0.0
-        pi = _solve_tridiagonal(lower, diagonal, upper, rhs)
-        pi_gauss = (
-            pi[el.left, None] * phi_left + np.where(regular, pi[el.right], 0.0)[:, None] * phi_right
-        )
-        shear = float((weight * el.gauss_r * liquid * viscosity / thickness).sum())
-        force = 1.5 * float((weight * pi_gauss * slope * el.gauss_r).sum())
-        torque = float((weight * pi_gauss * el.gauss_r**2).sum())
+            free[el.right[-1]] = False
+        if cavitated is not None:
+            free &= ~np.asarray(cavitated, bool)
+        shear = _cell_hat_weights(el, self.radii, gauss(fill, 1.0) * ratio / thickness)
+        tail = 0.0
         r_last = self.radii[-1]
         if self.layer == "immersed" and outer_radius > r_last:
             gap = h[-1] - 0.5 * r_last**2
-            tail = np.log((gap + 0.5 * outer_radius**2) / h[-1])
-            shear, force, torque = shear + tail, force + 0.6 * tail, torque + 0.4 * tail
-        return shear, force, torque
+            tail = float(np.log((gap + 0.5 * outer_radius**2) / h[-1]))
+        return ModeOneFilm(
+            free=free,
+            mass=mass,
+            conductance=conductance,
+            thickness_coupling=thickness_coupling,
+            pressure_coupling=pressure_coupling,
+            drive=drive,
+            torque_weights=torque,
+            shear_weights=shear,
+            tail=tail,
+            _film=self,
+            _elements=el,
+            _pressure_slope=pressure_slope,
+        )
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
         """T at the nodes: the radial shear traction -(H/2) dP/dR that the pressure-driven flow
@@ -324,13 +449,7 @@ class Film:
         right = np.where(regular, el.right, 0)
         slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / el.length
         traction = -0.5 * self._gauss_thickness(el) * slope[:, None]
-        # the grid's hats at the Gauss points (a cut element lies inside its full cell)
-        full = self._length[np.minimum(el.left, len(self._length) - 1)]
-        rising = (el.gauss_r - self.radii[el.left, None]) / full[:, None]
-        weight = el.length[:, None] * _GAUSS_W * el.gauss_r * traction
-        load = np.zeros_like(pressure)
-        np.add.at(load, el.left, (weight * (1.0 - rising)).sum(axis=1))
-        np.add.at(load, np.minimum(el.left + 1, len(load) - 1), (weight * rising).sum(axis=1))
+        load = _cell_hat_weights(el, self.radii, traction)
         return load / self._full_mass
 
     def _gauss_thickness(self, el: _Elements):
@@ -344,15 +463,6 @@ class Film:
         """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of
         m V0^2 per (x0/V0) divided by St (the same units as St d(V^2/2)/dT)."""
         return float(pressure @ state.flux(pressure)) / 3.0
-
-
-def _solve_tridiagonal(lower, diagonal, upper, rhs):
-    """Solve the band system with lower[i] = A[i, i-1] and upper[i] = A[i, i+1]."""
-    bands = np.zeros((3, len(rhs)))
-    bands[0, 1:] = upper[:-1]
-    bands[1] = diagonal
-    bands[2, :-1] = lower[1:]
-    return scipy.linalg.solve_banded((1, 1), bands, rhs)
 
 
 def _gauss_values(left, right):

@@ -6,30 +6,47 @@ Sign conventions (used everywhere in ehdfem):
 - the spin Omega is counted so that a Omega = U when the sphere rolls without slipping, i.e. the
   sphere's surface at the contact moves at the slip velocity u_s = U - a Omega.
 
-Scales: U, a Omega and u_s by U0 (when U0 > 0); time by x0/V0; tangential force by
-6 pi mu a^2 U0 / x0 (so St dU/dT = F_t, as for the normal motion); torque by 6 pi mu a^3 U0/x0.
-The initial spin input is a Omega0 / V0 (scaled by the normal speed, so that it is defined for
-head-on impacts too).
+Scales: U, a Omega, u_s and the rolling speed w = U + a Omega by U0; time by x0/V0; tangential
+force by 6 pi mu a^2 U0 / x0 (so St dU/dT = F_t, as for the normal motion); torque by
+6 pi mu a^3 U0 / x0; energies by m U0^2 / St (kinetic E_t = (St/2)(U^2 + k (a Omega)^2)). The
+initial spin input is a Omega0 / V0 (scaled by the normal speed). I = k m a^2.
 
-With the film integrals J, G, M of :meth:`ehdfem.film.Film.sliding_integrals`, the slip
-u_s = U - a Omega and the rolling speed w = U + a Omega, and I = k m a^2:
+Two film models (docs/tangential.md derives them):
 
-    St dU/dT = F_t = -(delta/3) (J u_s + G w),
-    k St d(a Omega)/dT = -F_t - delta M w.
+- ``couette`` (the source's sliding lubrication): the Couette shear of the normal solution's
+  film, J = int theta (mu/mu0) R dR / H0,
 
-- ``couette`` (the source's sliding lubrication): Couette shear only, G = M = 0; then the slip
-  decays as u_s0 exp(-(1 + 1/k) (delta/(3 St)) int J dT) and a DeltaOmega/U0 = (1 - e_t)/k.
-- ``lubrication`` (beyond the source): the sliding-induced pressure too (azimuthal mode 1 of
-  the Reynolds equation on the deformed film). On a rigid sphere near a wall it gives the
-  classical leading logarithms: force 8/15 (translation) and 2/15 (rotation) of
-  6 pi mu a U ln(a/h), torque 1/10 and 2/5 of 8 pi mu a^2 U ln(a/h). It is exact for rigid
-  solids only: on deformable ones its force takes the gap slope for the surfaces' slope and its
-  mode-1 film does not deform, and the system can create energy in a flattened contact
-  (docs/tangential.md derives the consistent model).
+      St dU/dT = -(delta/3) J u_s,    k St d(a Omega)/dT = (delta/3) J u_s,
 
-Each step of the normal solution is integrated exactly for the step's mean coefficients (a
-2x2 matrix exponential, by Sylvester's formula so that it stays exact for the very large rates
-of a piezoviscous film), which is exact for the Couette model given int J dT (trapezoid).
+  integrated exactly (U + k a Omega is conserved and u_s decays as
+  exp(-(1 + 1/k) (delta/(3 St)) int J dT), with int J dT by the trapezoid rule).
+- ``lubrication`` (beyond the source): the sliding film. The sphere's sliding and rolling drive
+  an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.ModeOneFilm`, unit
+  (U0/V0) sqrt(delta) mu V0 a / x0^2), which deforms the solids (mode-1 compliance,
+  :class:`ehdfem.compliance.ModeOneCompliance`): a mode-1 gap H1 = C q + ... that feeds back
+  into the film, and, with the Couette traction, tangential surface displacements D whose rate
+  adds to the slip (v = u_s + sqrt(delta) dD/dT at each node). Force and torque on the sphere
+  from the pressure on both deformed surfaces and the shear:
+
+      St dU/dT = -(delta/12) int q Sigma0' R dR + (delta/12) int Sigma1 P0' R dR
+                 - (delta/6) int (mu/mu0) theta (v_r + v_phi) R dR / H0,
+      k St d(a Omega)/dT = -St dU/dT - (delta/6) int q R^2 dR,
+
+  with Sigma = z_s + z_w the sum of the surface heights (Sigma0 = X + R^2/2 for identical
+  solids). ``deformation``: "none" (rigid mode-1 solids: q solves the quasi-steady rigid
+  problem; on rigid solids this gives the classical leading logarithms: force 8/15 and 2/15 of
+  6 pi mu a U ln(a/h), torque 1/10 and 2/5 of 8 pi mu a^2 U ln(a/h)), "gap" (the mode-1 normal
+  displacements) or "full" (also the tangential ones in the slip). The pressure is linearised
+  about the normal solution; where P0 sits at the cavitation limit q = 0.
+
+The lubrication system is a linear differential-algebraic system in (q, v, U, a Omega), solved
+at the normal solution's steps by variable-step BDF2 (BDF1 on the first step and where a step
+grows by more than 1 + sqrt(2)). Its energy balance (docs/tangential.md)
+
+    dE_t/dT = -(Couette + Poiseuille dissipation) - (delta/6) dE_1/dT + X
+
+is recorded term by term: E_1 the mode-1 elastic energy, X the work exchanged with the normal
+motion (zero on rigid solids, where the tangential motion only dissipates).
 """
 
 from __future__ import annotations
@@ -37,13 +54,32 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.integrate
 import scipy.linalg
 
 from . import checks
-from .film import Film
+from .compliance import ModeOneCompliance
+from .film import Film, ModeOneFilm
 from .normal import NormalResult
 
 MODELS = ("couette", "lubrication")
+DEFORMATIONS = ("none", "gap", "full")
+_BDF2_GROWTH = 1.0 + np.sqrt(2.0)  # largest step ratio for which variable-step BDF2 is stable
+
+
+@dataclass
+class TangentialEnergy:
+    """The sliding film's energy balance at the steps (by m U0^2 / St, as E_t): ``kinetic``
+    E_t, ``dissipated`` (Couette and Poiseuille, integrated), ``elastic`` (delta/6) E_1 of the
+    mode-1 loads, ``exchanged`` the integrated X (work from the normal motion, zero for rigid
+    solids). ``balance_error``: |E_t(0) - E_t - dissipated - elastic + exchanged| at the end
+    over the energy the tangential motion lost, max(E_t(0) - E_t(end), dissipated)."""
+
+    kinetic: np.ndarray
+    dissipated: np.ndarray
+    elastic: np.ndarray
+    exchanged: np.ndarray
+    balance_error: float
 
 
 @dataclass
@@ -54,9 +90,13 @@ class TangentialResult:
     sphere, or when the normal motion stopped for a sticking one (``at`` = "exit" or "stop").
     Both are None for a head-on impact (U0 = 0). Histories at the normal solution's steps:
     ``velocity`` U/U0, ``spin`` a Omega/U0, ``slip`` u_s/U0, ``force`` F_t, ``shear`` J(T).
+    ``deformation``: the mode-1 deformation of the lubrication model ("none" for Couette);
+    ``energy``: its balance (:class:`TangentialEnergy`, None for Couette);
+    ``mode_one_pressure``: q at the steps and film nodes (None for Couette).
     """
 
     model: str
+    deformation: str
     at: str
     e_t: float | None
     spin_change: float | None
@@ -66,97 +106,316 @@ class TangentialResult:
     spin: np.ndarray
     slip: np.ndarray
     force: np.ndarray
+    energy: TangentialEnergy | None
+    mode_one_pressure: np.ndarray | None = None
 
 
-def film_integrals(normal: NormalResult, model: str = "couette") -> np.ndarray:
-    """(steps, 3) array of J, G, M at each step of the normal solution (G = M = 0 for Couette),
-    with the film's viscosity at each step's pressure and its liquid fraction."""
-    checks.choice("tangential model", model, MODELS)
+def mode_one_films(normal: NormalResult):
+    """The film's mode-1 operators (:class:`ehdfem.film.ModeOneFilm`) at each step of the
+    normal solution, with the viscosity at each step's pressure, its liquid fraction and its
+    cavitated nodes."""
     params = normal.params
     film = Film(normal.radii, params.layer, params.viscosity_law(), normal.gap)
     outer = 1.0 / np.sqrt(params.delta)
     hist = normal.history
-    values = np.array(
-        [
-            film.sliding_integrals(h, outer, p, theta)
-            for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True)
-        ]
-    )
-    if model == "couette":
-        values[:, 1:] = 0.0
-    return values
+    p_cav = params.cavitation_model().p_cav
+    at_limit = p_cav + 1e-12 * abs(p_cav) if np.isfinite(p_cav) else -np.inf
+    for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True):
+        cavitated = (theta < 1.0) | (p <= at_limit)
+        yield film.mode_one(h, outer, p, theta, cavitated)
 
 
-def solve_tangential(normal: NormalResult, model: str = "couette") -> TangentialResult:
-    """Tangential velocity and spin through the collision from the normal solution's film."""
+def film_integrals(normal: NormalResult) -> np.ndarray:
+    """The Couette integral J(T) at the steps of the normal solution (immersed: with the far
+    field out to the sphere's radius)."""
+    return np.array([mf.shear_weights.sum() + mf.tail for mf in mode_one_films(normal)])
+
+
+def solve_tangential(
+    normal: NormalResult,
+    model: str = "couette",
+    mode_one: ModeOneCompliance | None = None,
+    surface_sum: np.ndarray | None = None,
+    deformation: str = "gap",
+) -> TangentialResult:
+    """Tangential velocity and spin through the collision from the normal solution's film.
+
+    ``model`` "couette" or "lubrication" (module docstring). For "lubrication": ``mode_one``
+    the solids' mode-1 compliance at the normal solution's eps and film nodes (None: rigid
+    solids), ``surface_sum`` the (N, N) sum of the two surfaces' axisymmetric z-displacements
+    per unit nodal pressure (:attr:`ehdfem.compliance.Compliance.surface_sum_matrix`; None:
+    zero), ``deformation`` which mode-1 deformation acts (DEFORMATIONS)."""
+    checks.choice("tangential model", model, MODELS)
+    checks.choice("deformation", deformation, DEFORMATIONS)
+    if model == "lubrication":
+        return _SlidingFilm(normal, mode_one, surface_sum, deformation).solve()
+    return _couette(normal)
+
+
+def _couette(normal: NormalResult) -> TangentialResult:
+    """The Couette model, integrated exactly for each step's mean J (module docstring)."""
     params = normal.params
     hist = normal.history
-    integrals = film_integrals(normal, model)
-    shear, force_pressure, torque_pressure = integrals.T
+    shear = film_integrals(normal)
     k, St, delta = params.inertia_factor, params.St, params.delta
-    tangential = params.tangential_speed  # U0 / V0
-    head_on = tangential == 0.0
-    spin0 = 0.0 if head_on else params.spin / tangential  # a Omega0 / U0
-    # mean coefficients over each step (the rates are linear in J, G, M)
-    shear_m, force_m, torque_m = (
-        0.5 * (v[1:] + v[:-1]) for v in (shear, force_pressure, torque_pressure)
-    )
-    rate = delta / (3 * St) * np.diff(hist.time)
-    rates = rate * np.array(
-        [
-            [-(shear_m + force_m), shear_m - force_m],
-            [
-                (shear_m + force_m - 3 * torque_m) / k,
-                -(shear_m - force_m + 3 * torque_m) / k,
-            ],
-        ]
-    )  # (2, 2, steps - 1): d(U, a Omega)/dT = rates @ (U, a Omega) / dT over each step
-    determinants = rate**2 * 6.0 * torque_m * shear_m / k  # exact, free of cancellation
+    spin0 = _initial_spin(params)
+    shear_m = 0.5 * (shear[1:] + shear[:-1])
+    rate = delta / (3 * St) * np.diff(hist.time) * shear_m
+    # d(U, a Omega)/dT = rate [[-1, 1], [1/k, -1/k]] (U, a Omega): eigenvalues 0, -(1 + 1/k)
+    decay = np.exp(-(1.0 + 1.0 / k) * rate)
     states = np.empty((len(hist.time), 2))
     states[0] = (1.0, spin0)
-    for i in range(len(hist.time) - 1):
-        states[i + 1] = _exponential(rates[:, :, i], determinants[i]) @ states[i]
+    for i, factor in enumerate(decay):
+        slip = (states[i, 0] - states[i, 1]) * factor
+        momentum = k * states[i, 1] + states[i, 0]  # conserved: U + k a Omega
+        states[i + 1] = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
     velocity, spin = states.T
-    slip, rolling = velocity - spin, velocity + spin
+    slip = velocity - spin
+    force = -delta / 3.0 * shear * slip
+    return _result(normal, "couette", "none", (velocity, spin, shear, force), None, None)
+
+
+def _initial_spin(params) -> float:
+    """a Omega0 / U0 (0 for a head-on impact, where the spin is refused by the parameters)."""
+    tangential = params.tangential_speed
+    return 0.0 if tangential == 0.0 else params.spin / tangential
+
+
+def _result(normal, model, deformation, histories, energy, mode_one_pressure):
+    """The TangentialResult from the histories (U, a Omega, J, F_t) at the steps."""
+    params, hist = normal.params, normal.history
+    velocity, spin, shear, force = histories
+    head_on = params.tangential_speed == 0.0
     end = _end_index(normal)
     steps = np.arange(len(velocity))
+    at_end = float(np.interp(end, steps, velocity))
     return TangentialResult(
         model=model,
+        deformation=deformation,
         at="exit" if normal.rebound else "stop",
-        e_t=None if head_on else float(np.interp(end, steps, velocity)),
-        spin_change=None if head_on else float(np.interp(end, steps, spin) - spin0),
+        e_t=None if head_on else at_end,
+        spin_change=None if head_on else float(np.interp(end, steps, spin) - spin[0]),
         time=hist.time,
         shear=shear,
         velocity=velocity,
         spin=spin,
-        slip=slip,
-        force=-delta / 3.0 * (shear * slip + force_pressure * rolling),
+        slip=velocity - spin,
+        force=force,
+        energy=energy,
+        mode_one_pressure=mode_one_pressure,
     )
 
 
-def _exponential(matrix, determinant):
-    """exp(matrix) for a 2x2 matrix with real eigenvalues l1, l2 (Sylvester's formula),
+class _SlidingFilm:
+    """The lubrication model's linear system over the normal solution's steps.
 
-        exp(A) = (l1 e^l2 - l2 e^l1) / (l1 - l2) I + (e^l1 - e^l2) / (l1 - l2) A,
+    Unknowns z = (q, v_r, v_phi, U, a Omega) at a step (v only with deformation "full"; else
+    the nodal slip is u_s). Loads on the solids L = (q, a_r, a_phi), the Couette traction
+    a = -(j / m) v on the sphere (m the lumped mass, j the Couette weights; by mu U0 / x0,
+    i.e. (U0/V0) sqrt(delta) times the traction unit of the mode-1 compliance) and -a on the
+    wall. Relative displacements of the faces: the gap H1, the sum Sigma1 and the tangential
+    D = (D_r, D_phi) of sphere minus wall, each the compliance times L."""
 
-    with the small eigenvalue from the given determinant, l2 = det / l1, so that it stays exact
-    when a piezoviscous film makes l1 so large that exp(l1) underflows (there the entries of A
-    are huge and the closed forms that use them to find both eigenvalues lose l2)."""
-    trace = matrix[0, 0] + matrix[1, 1]
-    discriminant = trace**2 - 4.0 * determinant
-    if discriminant <= 0.0:
-        return scipy.linalg.expm(matrix)
-    large = 0.5 * (trace + np.copysign(np.sqrt(discriminant), trace))
-    if large == 0.0:
-        return np.eye(2)
-    small = determinant / large
-    gap = large - small
-    if abs(gap) <= 1e-8 * abs(large):
-        return scipy.linalg.expm(matrix)
-    e_large, e_small = np.exp(large), np.exp(small)
-    return (large * e_small - small * e_large) / gap * np.eye(2) + (
-        e_large - e_small
-    ) / gap * matrix
+    def __init__(self, normal, mode_one, surface_sum, deformation):
+        params = normal.params
+        self.normal, self.deformation = normal, deformation
+        self.St, self.k, self.delta = params.St, params.inertia_factor, params.delta
+        n = self.n = len(normal.radii)
+        self.mass_full = Film(normal.radii).full_mass
+        self.size = n + (2 * n if deformation == "full" else 0) + 2
+        self.u, self.omega = self.size - 2, self.size - 1
+        relative = {"gap": (1.0, -1.0), "sum": (1.0, 1.0)}
+        if mode_one is None or deformation == "none":
+            self.compliance = {name: np.zeros((n, 3 * n)) for name in ("gap", "sum", "r", "phi")}
+        else:
+            self.compliance = {
+                name: _face_combination(mode_one, "normal", signs)
+                for name, signs in relative.items()
+            }
+            for name in ("r", "phi"):
+                component = "radial" if name == "r" else "hoop"
+                self.compliance[name] = _face_combination(mode_one, component, (1.0, -1.0))
+        if deformation != "full":
+            self.compliance["r"] = self.compliance["phi"] = None
+        self.surface_sum = surface_sum
+
+    def solve(self) -> TangentialResult:
+        """Step through the normal solution; the tangential result with its energy balance."""
+        normal, n = self.normal, self.n
+        hist = normal.history
+        steps = len(hist.time)
+        z = np.zeros((steps, self.size))
+        z[0, self.u], z[0, self.omega] = 1.0, _initial_spin(normal.params)
+        z[0, n:-2] = z[0, self.u] - z[0, self.omega]  # v = u_s (nothing deformed yet)
+        displacements = {name: np.zeros((steps, n)) for name in ("gap", "r", "phi")}
+        shear, force = np.zeros(steps), np.zeros(steps)
+        rates = np.zeros((steps, 2))  # dissipation and exchange rates
+        elastic = np.zeros(steps)
+        for i, mf in enumerate(mode_one_films(normal)):
+            shear[i] = mf.shear_weights.sum() + mf.tail
+            ops = self._operators(mf, i)
+            if i > 0:
+                step = hist.time[i] - hist.time[i - 1]
+                ratio = step / (hist.time[i - 1] - hist.time[i - 2]) if i >= 2 else np.inf
+                alpha = (1.0, -1.0, 0.0)  # BDF1
+                if ratio <= _BDF2_GROWTH:
+                    alpha = ((1 + 2 * ratio) / (1 + ratio), -(1 + ratio), ratio**2 / (1 + ratio))
+                past = {
+                    name: (alpha[1] * values[i - 1] + alpha[2] * values[i - 2]) / step
+                    for name, values in (*displacements.items(), ("z", z))
+                }
+                z[i] = _solve_equilibrated(*self._system(mf, ops, alpha[0] / step, past))
+                for name, values in displacements.items():
+                    if ops[name] is not None:
+                        values[i] = ops[name] @ z[i]
+            force[i] = ops["force"] @ z[i]
+            *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
+        velocity, spin = z[:, self.u], z[:, self.omega]
+        kinetic = 0.5 * self.St * (velocity**2 + self.k * spin**2)
+        dissipated, exchanged = scipy.integrate.cumulative_trapezoid(
+            rates, hist.time, axis=0, initial=0.0
+        ).T
+        lost = max(kinetic[0] - kinetic[-1], dissipated[-1], np.finfo(float).tiny)
+        residual = kinetic[0] - kinetic[-1] - dissipated[-1] - elastic[-1] + exchanged[-1]
+        energy = TangentialEnergy(kinetic, dissipated, elastic, exchanged, abs(residual) / lost)
+        return _result(
+            normal,
+            "lubrication",
+            self.deformation,
+            (velocity, spin, shear, force),
+            energy,
+            z[:, :n],
+        )
+
+    def _operators(self, mf: ModeOneFilm, i: int) -> dict:
+        """Row operators on z at step i: q, the Couette weights, the loads L, the face
+        displacements (gap, sum, r, phi), the force and the torque."""
+        n, size, delta = self.n, self.size, self.delta
+        full = self.deformation == "full"
+        rolling, sliding = np.zeros(size), np.zeros(size)
+        rolling[[self.u, self.omega]] = 1.0, 1.0
+        sliding[[self.u, self.omega]] = 1.0, -1.0
+        traction = -mf.shear_weights / self.mass_full  # a = traction * v, by mu U0 / x0
+
+        def slip(component):  # nodal slip velocity v_r or v_phi as rows on z
+            if full:
+                rows = np.zeros((n, size))
+                rows[:, n * (1 + component) : n * (2 + component)] = np.eye(n)
+                return rows
+            return np.outer(np.ones(n), sliding)
+
+        def displacement(compliance):  # compliance (n, 3n) @ L as rows on z
+            if compliance is None:
+                return None
+            rows = np.zeros((n, size))
+            rows[:, :n] = compliance[:, :n]
+            for component in range(2):
+                part = compliance[:, n * (1 + component) : n * (2 + component)] * traction
+                if full:
+                    rows[:, n * (1 + component) : n * (2 + component)] += part
+                else:
+                    rows += np.outer(part.sum(axis=1), sliding)
+            return rows
+
+        ops = {"slip_r": slip(0), "slip_phi": slip(1)}
+        ops.update({name: displacement(c) for name, c in self.compliance.items()})
+        surface_sum = None
+        if self.surface_sum is not None:
+            surface_sum = self.surface_sum @ self.normal.history.pressure[i]
+        slope_weights = mf.surface_slope_weights(surface_sum)
+        gradient_weights = mf.gradient_weights()
+        force = (delta / 12.0) * (gradient_weights @ ops["sum"])
+        force[:n] -= (delta / 12.0) * slope_weights
+        force -= (delta / 6.0) * (mf.shear_weights @ (ops["slip_r"] + ops["slip_phi"]))
+        force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * rolling)
+        torque = -force - 0.4 * delta * mf.tail * rolling
+        torque[:n] -= (delta / 6.0) * mf.torque_weights
+        ops.update(
+            force=force,
+            torque=torque,
+            gradient_weights=gradient_weights,
+            rolling=rolling,
+            sliding=sliding,
+            traction=traction,
+            slope_weights=slope_weights,
+        )
+        return ops
+
+    def _system(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict):
+        """The step's matrix and right-hand side; d/dT of Y is rate Y + past[Y]."""
+        n, size = self.n, self.size
+        matrix, rhs = np.zeros((size, size)), np.zeros(size)
+        free = np.flatnonzero(mf.free)
+        gap = ops["gap"]
+        film = (mf.conductance + mf.pressure_coupling)[free]
+        rows = mf.thickness_coupling[free] @ gap
+        rows[:, :n] += film
+        rows += rate * mf.mass[free, None] * gap[free]
+        rows -= 0.5 * np.outer(mf.drive[free], ops["rolling"])
+        matrix[free] = rows
+        rhs[free] = -mf.mass[free] * past["gap"][free]
+        fixed = np.flatnonzero(~mf.free)
+        matrix[fixed, fixed] = 1.0
+        if self.deformation == "full":
+            root = np.sqrt(self.delta)
+            for component, name in enumerate(("r", "phi")):
+                block = slice(n * (1 + component), n * (2 + component))
+                matrix[block] = ops["slip_" + name] - np.outer(np.ones(n), ops["sliding"])
+                matrix[block] -= root * rate * ops[name]
+                rhs[block] = root * past[name]
+        matrix[self.u] = -ops["force"]
+        matrix[self.u, self.u] += self.St * rate
+        rhs[self.u] = -self.St * past["z"][self.u]
+        matrix[self.omega] = -ops["torque"]
+        matrix[self.omega, self.omega] += self.k * self.St * rate
+        rhs[self.omega] = -self.k * self.St * past["z"][self.omega]
+        return matrix, rhs
+
+    def _energy_terms(self, mf: ModeOneFilm, ops: dict, z: np.ndarray, i: int, displacements):
+        """(dissipation rate, exchange rate X, elastic energy) at a step (module docstring)."""
+        n, delta = self.n, self.delta
+        q = z[:n]
+        u_s, w = ops["sliding"] @ z, ops["rolling"] @ z
+        v_r, v_phi = ops["slip_r"] @ z, ops["slip_phi"] @ z
+        h1 = displacements["gap"][i]
+        sigma1 = ops["sum"] @ z
+        dissipation = (delta / 6.0) * (
+            mf.shear_weights @ (v_r**2 + v_phi**2) + q @ mf.conductance @ q
+        )
+        dissipation += delta * mf.tail * (u_s**2 / 3.0 + w**2 / 5.0)
+        pressure_force = (delta / 12.0) * (
+            ops["gradient_weights"] @ sigma1 - ops["slope_weights"] @ q
+        )
+        exchange = u_s * (pressure_force + (delta / 12.0) * (mf.torque_weights @ q))
+        exchange -= (delta / 6.0) * (q @ mf.thickness_coupling @ h1 + q @ mf.pressure_coupling @ q)
+        exchange += (delta / 12.0) * w * ((mf.drive - mf.torque_weights) @ q)
+        work = self.mass_full @ (q * h1)
+        if self.deformation == "full":
+            loads = ops["traction"] * np.stack([v_r, v_phi])
+            shifts = np.stack([displacements["r"][i], displacements["phi"][i]])
+            work += np.sqrt(delta) * (self.mass_full * loads * shifts).sum()
+        return dissipation, exchange, (delta / 12.0) * work
+
+
+def _solve_equilibrated(matrix, rhs):
+    """Solve after scaling each row to unit largest entry: a piezoviscous film's Reynolds rows
+    are smaller than the others by mu/mu0, which can exceed 1e20."""
+    scale = 1.0 / np.abs(matrix).max(axis=1)
+    return scipy.linalg.solve(matrix * scale[:, None], rhs * scale)
+
+
+def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:
+    """(N, 3N): sign_s (sphere) + sign_w (wall) of a displacement ``component`` ("normal",
+    "radial", "hoop") under the loads L = (q, a_r, a_phi): the pressure q on both faces, the
+    traction (a_r, a_phi) on the sphere and its opposite on the wall."""
+    blocks = []
+    for loads in (("pressure",), ("sphere_radial", "wall_radial"), ("sphere_hoop", "wall_hoop")):
+        total = 0.0
+        for face, sign in zip(("sphere", "wall"), signs, strict=True):
+            for load, load_sign in zip(loads, (1.0, -1.0), strict=False):
+                total = total + sign * load_sign * mode_one.block(f"{face}_{component}", load)
+        blocks.append(total)
+    return np.hstack(blocks)
 
 
 def _end_index(normal: NormalResult) -> float:

@@ -63,6 +63,17 @@ def test_physical_collision_reports_si_values(capsys):
     assert result["si"]["contact_time_s"] > 0 and result["St"] > 1
 
 
+def test_sliding_film_options_reach_the_collision(capsys):
+    """--tangential lubrication with --sliding-deformation: the result names the deformation
+    and reports the tangential energy balance."""
+    args = ["collide", "--example", "--nodes", "60", "--tangential", "lubrication"]
+    assert main([*args, "--sliding-deformation", "full", "--json", "-"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["tangential_model"] == "lubrication"
+    assert result["sliding_deformation"] == "full"
+    assert result["tangential_dissipated"] > 0 and result["tangential_balance_error"] < 2e-2
+
+
 def test_film_options_reach_the_collision(capsys):
     """--cavitation and --viscosity with a physical alpha arrive scaled in the results:
     alpha = alpha_SI mu V0 a / x0^2 for the example's oil, speed and layer."""

@@ -9,7 +9,7 @@ from ehdfem.compliance import RigidSolids
 from ehdfem.film import Film, radial_grid
 from ehdfem.normal import solve_normal
 from ehdfem.scales import CollisionParameters
-from ehdfem.tangential import solve_tangential
+from ehdfem.tangential import film_integrals, solve_tangential
 
 pytestmark = pytest.mark.serial
 
@@ -26,10 +26,8 @@ def rigid_approach():
 def test_rigid_film_shear_is_log_of_gap(rigid_approach):
     """For H = X + R^2/2 in a thin layer, J = int_0^edge R dR / H = ln(1/X) (rel. 1e-3)."""
     _, normal = rigid_approach
-    film = Film(normal.radii, "thin")
     gaps = normal.history.gap[1:]
-    shear = [film.sliding_integrals(h)[0] for h in normal.history.film_thickness[1:]]
-    np.testing.assert_allclose(shear, np.log(1 / gaps), rtol=1e-3)
+    np.testing.assert_allclose(film_integrals(normal)[1:], np.log(1 / gaps), rtol=1e-3)
 
 
 def test_slip_decays_as_the_exact_exponential(rigid_approach):
@@ -96,14 +94,19 @@ def test_sticking_sphere_reports_the_state_at_the_stop():
 def test_lubrication_model_reproduces_near_wall_logarithms(slip, rolling, force, torque):
     """Rigid sphere near a wall: d(force)/d ln(1/h) = 8/15 and 2/15 of 6 pi mu a U, d(torque)/
     d ln(1/h) = 1/10 and 2/5 of 8 pi mu a^2 U, for translation and rotation (1 % at 400 nodes).
-    In those units (U0 = 1) the force is -(J u_s + G w)/3 and the torque, -a F - 6 pi mu a^2 U M w,
-    is -(3/4) (F + M w)."""
+    In those units (U0 = 1) and per unit delta, the sliding film's force is
+    -(J u_s)/3 - s.q/12 and its torque, -a F - 6 pi mu a^2 U (t.q/6), is -(3/4) (F + t.q/6),
+    with q the rigid mode-1 pressure and the immersed far field's 1, 3/5, 2/5 of ln H."""
     values = []
     for gap in (1e-3, 1e-4):
         film = Film(radial_grid(400, np.sqrt(gap), 30.0), "immersed")
-        shear, g, m = film.sliding_integrals(gap + 0.5 * film.radii**2, 10.0)
-        f = -(shear * slip + g * rolling) / 3
-        values.append((f, -0.75 * (f + m * rolling)))
+        mode_one = film.mode_one(gap + 0.5 * film.radii**2, 10.0)
+        q = rolling * mode_one.rigid_pressure()
+        tail = mode_one.tail
+        shear = mode_one.shear_weights.sum() + tail
+        f = -shear * slip / 3 - mode_one.surface_slope_weights() @ q / 12 - 0.2 * tail * rolling
+        torque_term = mode_one.torque_weights @ q / 6 + 0.4 * tail * rolling
+        values.append((f, -0.75 * (f + torque_term)))
     (f1, t1), (f2, t2) = values
     assert (f2 - f1) / np.log(10) == pytest.approx(force, rel=0.01)
     assert (t2 - t1) / np.log(10) == pytest.approx(torque, rel=0.01)

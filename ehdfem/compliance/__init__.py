@@ -31,6 +31,9 @@ class Compliance(Protocol):
     surface_radii: tuple  # radii of the sphere and the lower body by a (math.inf: a wall)
     shear_matrix: np.ndarray | None  # (N, N) gap opening per unit nodal squeeze-shear traction
     # T (by sqrt(delta) mu V0 a / x0^2, :meth:`ehdfem.film.Film.squeeze_shear`); None: not applied
+    surface_sum_matrix: np.ndarray | None  # (N, N) sum of the two surfaces' displacements along
+    # z (from the wall into the sphere; by x0) per unit nodal pressure; None: zero (identical
+    # half-spaces, rigid solids). The sliding film's force needs it (ehdfem.tangential).
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
@@ -69,16 +72,26 @@ class LinearCompliance(ProportionalToEps):
     surface_radii = (1.0, math.inf)
 
     def __init__(
-        self, radii: np.ndarray, unit_matrix: np.ndarray, eps: float | None, unit_shear=None
+        self,
+        radii: np.ndarray,
+        unit_matrix: np.ndarray,
+        eps: float | None,
+        unit_shear=None,
+        unit_surface_sum=None,
     ):
         self.radii = np.asarray(radii, dtype=float)
         self.unit_matrix, self.unit_shear = unit_matrix, unit_shear
+        self.unit_surface_sum = unit_surface_sum
         self._set_eps(eps)
 
     def _set_eps(self, eps):
         self.eps = eps
-        self.matrix = self.factor(eps) * self.unit_matrix
-        self.shear_matrix = None if self.unit_shear is None else self.factor(eps) * self.unit_shear
+        factor = self.factor(eps)
+        self.matrix = factor * self.unit_matrix
+        self.shear_matrix = None if self.unit_shear is None else factor * self.unit_shear
+        self.surface_sum_matrix = (
+            None if self.unit_surface_sum is None else factor * self.unit_surface_sum
+        )
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
@@ -151,6 +164,9 @@ class ModeOneCompliance(ProportionalToEps):
     def _set_eps(self, eps):
         self.eps = eps
         self.matrix = self.factor(eps) * self.unit_matrix
+
+    def close(self) -> None:
+        """Free what the solids hold outside Python (an FE factorisation); a no-op here."""
 
     def block(self, displacement: str, load: str) -> np.ndarray:
         """The (N, N) block of ``matrix`` from nodal ``load`` to nodal ``displacement``."""

@@ -396,17 +396,24 @@ class FESolids:
             zero, root = self.film_pressure(np.zeros(n)), math.sqrt(self.delta)
             loads += [(zero, lambda r, hat=hat: root * hat(r)) for hat in hats]
         blocks = range(0, len(loads), BLOCK)
-        openings = np.hstack(
-            [
-                self._gap_openings(loads[start : start + BLOCK])
-                for start in progress(blocks, desc="FE compliance")
-            ]
+        gap, surface_sum = (
+            np.hstack(parts)
+            for parts in zip(
+                *(
+                    self._gap_openings(loads[start : start + BLOCK])
+                    for start in progress(blocks, desc="FE compliance")
+                ),
+                strict=True,
+            )
         )
-        return FECompliance(self, openings[:, :n], eps, openings[:, n:] if shear else None)
+        return FECompliance(
+            self, gap[:, :n], eps, gap[:, n:] if shear else None, surface_sum[:, :n]
+        )
 
-    def _gap_openings(self, loads) -> np.ndarray:
-        """W (in units of a p/E_ref) at the film nodes, one column per (pressure, shear) load,
-        from one multiple-right-hand-side solve."""
+    def _gap_openings(self, loads) -> tuple[np.ndarray, np.ndarray]:
+        """The gap opening W and the sum of the two faces' u_z (in units of a p/E_ref, each
+        free body's centre motion removed) at the film nodes, one column per (pressure, shear)
+        load, from one multiple-right-hand-side solve."""
         from petsc4py import PETSc
 
         vectors = [self._load_vector(*load) for load in loads]
@@ -427,13 +434,13 @@ class FESolids:
         upper, lower = [*centres, np.zeros(len(loads))][:2]
         r_up, u_up = self._owned_surface(self._geometry.SPHERE_CONTACT, values)
         r_lo, u_lo = self._owned_surface(self._geometry.LOWER_CONTACT, values)
-        return np.column_stack(
-            [
-                (np.interp(self.radii_a, r_up, u_up[:, k]) - upper[k])
-                - (np.interp(self.radii_a, r_lo, u_lo[:, k]) - lower[k])
-                for k in range(len(loads))
-            ]
-        )
+        faces = [
+            np.column_stack(
+                [np.interp(self.radii_a, r, u[:, k]) - centre[k] for k in range(len(loads))]
+            )
+            for r, u, centre in ((r_up, u_up, upper), (r_lo, u_lo, lower))
+        ]
+        return faces[0] - faces[1], faces[0] + faces[1]
 
     @cached_property
     def _centre_weights(self):
@@ -549,9 +556,16 @@ class FECompliance(LinearCompliance):
 
     model = "fem"
 
-    def __init__(self, solids: FESolids, unit_matrix: np.ndarray, eps: float, unit_shear=None):
+    def __init__(
+        self,
+        solids: FESolids,
+        unit_matrix: np.ndarray,
+        eps: float,
+        unit_shear=None,
+        unit_surface_sum=None,
+    ):
         self.solids = solids
-        super().__init__(solids.radii, unit_matrix, eps, unit_shear)
+        super().__init__(solids.radii, unit_matrix, eps, unit_shear, unit_surface_sum)
 
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""

@@ -117,12 +117,15 @@ class HalfSpaceCompliance(LinearCompliance):
     elasticity parameter 4 theta mu V0 a^(3/2) / x0^(5/2) (> 0; 0 gives rigid solids).
     ``shear``: None (the squeeze shear is not applied, the asymptotic theory) or (delta,
     solids) with solids the (Young's modulus, Poisson ratio) pairs of sphere and wall: then
-    ``shear_matrix`` = -eps sqrt(delta) kappa B (module docstring).
+    ``shear_matrix`` = -eps sqrt(delta) kappa B (module docstring). ``solids``: those pairs for
+    the split of the opening between the faces (each takes its share of theta,
+    (1 - nu^2)/E over the sum): ``surface_sum_matrix`` = (share_sphere - share_wall) * matrix,
+    None for equal shares (identical solids, the default).
     """
 
     model = "halfspace"
 
-    def __init__(self, radii: np.ndarray, eps: float, shear=None):
+    def __init__(self, radii: np.ndarray, eps: float, shear=None, solids=None):
         radii = np.asarray(radii, dtype=float)
         if radii.ndim != 1 or len(radii) < 3:
             raise InputError("radii must be a 1-D array of at least 3 film nodes")
@@ -133,7 +136,13 @@ class HalfSpaceCompliance(LinearCompliance):
             delta, solids = shear
             kappa = shear_coefficient(solids)
             unit_shear = -np.sqrt(delta) * kappa * outer_integral_matrix(radii)
-        super().__init__(radii, influence_matrix(radii), number("eps", eps, lower=0.0), unit_shear)
+        kernel = influence_matrix(radii)
+        self.materials, unit_sum = solids, None
+        if solids is not None:
+            sphere, wall = ((1 - nu**2) / e for e, nu in solids)
+            if sphere != wall:
+                unit_sum = (sphere - wall) / (sphere + wall) * kernel
+        super().__init__(radii, kernel, number("eps", eps, lower=0.0), unit_shear, unit_sum)
 
     def factor(self, eps: float) -> float:
         """The kernel is per unit eps: C = eps * kernel."""

@@ -58,7 +58,8 @@ def elasticity(
     arguments (lower body, coating, radius ratio)."""
     solids = dict(solids or {})
     sphere, wall = _materials(physical, solids)
-    solids.pop("sphere", None), solids.pop("wall", None)
+    for name in ("sphere", "wall"):
+        solids.pop(name, None)
     shear = params.shear_traction
     shear = model == "fem" if shear is None else shear
     if model == "halfspace":

@@ -201,6 +201,16 @@ def _hat_weights(el: _Elements, values: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
+def _at_gauss_points(el: _Elements, nodal, edge_value: float) -> np.ndarray:
+    """A nodal field, linear on the elements, at their Gauss points (elements, 3); at a cut
+    element's edge it takes ``edge_value``, and everywhere if ``nodal`` is None."""
+    if nodal is None:
+        return np.full(el.gauss_r.shape, float(edge_value))
+    regular = el.right >= 0
+    right = np.where(regular, nodal[np.where(regular, el.right, 0)], edge_value)
+    return _gauss_values(nodal[el.left], right)
+
+
 def _cell_hat_weights(el: _Elements, radii: np.ndarray, values: np.ndarray) -> np.ndarray:
     """w with w . f = int f g R dR over the wetted elements, for f linear on the grid's cells
     (a cut element keeps the hats of its full cell, so f need not vanish at the wetted edge)
@@ -335,6 +345,33 @@ class Film:
         d_diagonal[-1] += r**2 * hn / 3.0 * pressure[-1]
         force_weights[-1] += hn / 3.0
 
+    def couette_weights(
+        self, film_thickness: np.ndarray, outer_radius: float = np.inf, pressure=None, fill=None
+    ) -> tuple[np.ndarray, float]:
+        """(j, tail): the Couette weights j_i = int phi_i theta (mu/mu0) R dR / H0 over the
+        wetted film inside ``outer_radius`` (phi_i the grid's hats), so that the Couette
+        integral is J = sum(j) + tail, and the far-field ``tail`` (immersed only: ln of the
+        undeformed film X + R^2/2 from the last node to ``outer_radius``; 0 for the thin
+        layer). H0 by x0, the viscosity at the nodal ``pressure`` P0 (by mu V0 a / x0^2; mu0 if
+        not given), theta the nodal ``fill`` (1 if not given)."""
+        h = film_thickness
+        el = self._inner_elements(h, outer_radius)
+        ratio = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))[0]
+        liquid = _at_gauss_points(el, fill, 1.0)
+        weights = _cell_hat_weights(el, self.radii, liquid * ratio / self._gauss_thickness(el))
+        tail = 0.0
+        r_last = self.radii[-1]
+        if self.layer == "immersed" and outer_radius > r_last:
+            gap = h[-1] - 0.5 * r_last**2
+            tail = float(np.log((gap + 0.5 * outer_radius**2) / h[-1]))
+        return weights, tail
+
+    def _inner_elements(self, film_thickness: np.ndarray, outer_radius: float) -> _Elements:
+        """The wetted elements that start inside ``outer_radius``."""
+        _, _, el = self._elements(film_thickness)
+        inside = self.radii[el.left] < outer_radius
+        return _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
+
     def mode_one(
         self,
         film_thickness: np.ndarray,
@@ -355,19 +392,11 @@ class Film:
         """
         h = film_thickness
         n = len(h)
-        _, _, el = self._elements(h)
-        inside = self.radii[el.left] < outer_radius
-        el = _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
+        el = self._inner_elements(h, outer_radius)
         thickness = self._gauss_thickness(el)
         regular = el.right >= 0
         right = np.where(regular, el.right, 0)
-
-        def gauss(nodal, edge_value):
-            if nodal is None:
-                return np.zeros_like(thickness) + edge_value
-            return _gauss_values(nodal[el.left], np.where(regular, nodal[right], edge_value))
-
-        ratio, dlog = self.viscosity.ratio(gauss(pressure, 0.0))
+        ratio, dlog = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))
         fluidity = 1.0 / ratio  # mu0 / mu
         slope = ((el.h_right - el.h_left) / el.length)[:, None] + self.gap.slope_between_nodes(
             self.radii[el.left], el.length, _GAUSS_XI
@@ -386,13 +415,9 @@ class Film:
         conductance = np.zeros((n, n))
         thickness_coupling = np.zeros((n, n))
         pressure_coupling = np.zeros((n, n))
-        drive, torque, mass = np.zeros(n), np.zeros(n), np.zeros(n)
         dfluidity = -fluidity * (0.0 if dlog is None else dlog)
         for a in range(2):
             ia, va, sa = nodes[a], live[a], hat_slopes[a]
-            np.add.at(drive, ia, va * (weight * slope * hats[a]).sum(axis=1))
-            np.add.at(torque, ia, va * (weight * el.gauss_r * hats[a]).sum(axis=1))
-            np.add.at(mass, ia, va * (weight * hats[a]).sum(axis=1))
             for b in range(2):
                 ib, on = nodes[b], va * live[b]
                 stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
@@ -415,20 +440,15 @@ class Film:
             free[el.right[-1]] = False
         if cavitated is not None:
             free &= ~np.asarray(cavitated, bool)
-        shear = _cell_hat_weights(el, self.radii, gauss(fill, 1.0) * ratio / thickness)
-        tail = 0.0
-        r_last = self.radii[-1]
-        if self.layer == "immersed" and outer_radius > r_last:
-            gap = h[-1] - 0.5 * r_last**2
-            tail = float(np.log((gap + 0.5 * outer_radius**2) / h[-1]))
+        shear, tail = self.couette_weights(h, outer_radius, pressure, fill)
         return ModeOneFilm(
             free=free,
-            mass=mass,
+            mass=_hat_weights(el, np.ones_like(thickness), n),
             conductance=conductance,
             thickness_coupling=thickness_coupling,
             pressure_coupling=pressure_coupling,
-            drive=drive,
-            torque_weights=torque,
+            drive=_hat_weights(el, slope, n),
+            torque_weights=_hat_weights(el, el.gauss_r, n),
             shear_weights=shear,
             tail=tail,
             _film=self,

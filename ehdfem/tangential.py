@@ -110,15 +110,19 @@ class TangentialResult:
     mode_one_pressure: np.ndarray | None = None
 
 
+def _film(normal: NormalResult) -> Film:
+    """The film of the normal solution (its nodes, layer, viscosity law and gap)."""
+    params = normal.params
+    return Film(normal.radii, params.layer, params.viscosity_law(), normal.gap)
+
+
 def mode_one_films(normal: NormalResult):
     """The film's mode-1 operators (:class:`ehdfem.film.ModeOneFilm`) at each step of the
     normal solution, with the viscosity at each step's pressure, its liquid fraction and its
     cavitated nodes."""
-    params = normal.params
-    film = Film(normal.radii, params.layer, params.viscosity_law(), normal.gap)
-    outer = 1.0 / np.sqrt(params.delta)
+    film, outer = _film(normal), 1.0 / np.sqrt(normal.params.delta)
     hist = normal.history
-    p_cav = params.cavitation_model().p_cav
+    p_cav = normal.params.cavitation_model().p_cav
     at_limit = p_cav + 1e-12 * abs(p_cav) if np.isfinite(p_cav) else -np.inf
     for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True):
         cavitated = (theta < 1.0) | (p <= at_limit)
@@ -128,7 +132,13 @@ def mode_one_films(normal: NormalResult):
 def film_integrals(normal: NormalResult) -> np.ndarray:
     """The Couette integral J(T) at the steps of the normal solution (immersed: with the far
     field out to the sphere's radius)."""
-    return np.array([mf.shear_weights.sum() + mf.tail for mf in mode_one_films(normal)])
+    film, outer = _film(normal), 1.0 / np.sqrt(normal.params.delta)
+    hist = normal.history
+    shear = []
+    for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True):
+        weights, tail = film.couette_weights(h, outer, p, theta)
+        shear.append(weights.sum() + tail)
+    return np.array(shear)
 
 
 def solve_tangential(
@@ -188,12 +198,11 @@ def _result(normal, model, deformation, histories, energy, mode_one_pressure):
     head_on = params.tangential_speed == 0.0
     end = _end_index(normal)
     steps = np.arange(len(velocity))
-    at_end = float(np.interp(end, steps, velocity))
     return TangentialResult(
         model=model,
         deformation=deformation,
         at="exit" if normal.rebound else "stop",
-        e_t=None if head_on else at_end,
+        e_t=None if head_on else float(np.interp(end, steps, velocity)),
         spin_change=None if head_on else float(np.interp(end, steps, spin) - spin[0]),
         time=hist.time,
         shear=shear,
@@ -224,19 +233,18 @@ class _SlidingFilm:
         self.mass_full = Film(normal.radii).full_mass
         self.size = n + (2 * n if deformation == "full" else 0) + 2
         self.u, self.omega = self.size - 2, self.size - 1
-        relative = {"gap": (1.0, -1.0), "sum": (1.0, 1.0)}
-        if mode_one is None or deformation == "none":
-            self.compliance = {name: np.zeros((n, 3 * n)) for name in ("gap", "sum", "r", "phi")}
-        else:
-            self.compliance = {
-                name: _face_combination(mode_one, "normal", signs)
-                for name, signs in relative.items()
-            }
-            for name in ("r", "phi"):
-                component = "radial" if name == "r" else "hoop"
-                self.compliance[name] = _face_combination(mode_one, component, (1.0, -1.0))
-        if deformation != "full":
-            self.compliance["r"] = self.compliance["phi"] = None
+        # (N, 3N) face combinations of the loads L: gap and sum of the normal displacements,
+        # and with "full" the relative tangential ones (r, phi); zero for rigid mode-1 solids
+        deformed = mode_one is not None and deformation != "none"
+        combinations = {"gap": ("normal", (1.0, -1.0)), "sum": ("normal", (1.0, 1.0))}
+        if deformation == "full":
+            combinations.update(r=("radial", (1.0, -1.0)), phi=("hoop", (1.0, -1.0)))
+        self.compliance = {
+            name: _face_combination(mode_one, *combination) if deformed else np.zeros((n, 3 * n))
+            for name, combination in combinations.items()
+        }
+        self.compliance.setdefault("r", None)
+        self.compliance.setdefault("phi", None)
         self.surface_sum = surface_sum
 
     def solve(self) -> TangentialResult:

@@ -110,6 +110,24 @@ def hat_integrals(radii, kernel, size):
     return matrix
 
 
+def film_nodes(radii) -> np.ndarray:
+    """``radii`` (by sqrt(a x0)) as a float array, or an InputError unless they are at least 3
+    finite film nodes starting at 0 and increasing strictly."""
+    r = np.asarray(radii, dtype=float)
+    if r.ndim != 1 or len(r) < 3:
+        raise InputError("radii must be a 1-D array of at least 3 film nodes")
+    if not np.all(np.isfinite(r)) or r[0] != 0.0 or np.any(np.diff(r) <= 0):
+        raise InputError("radii must be finite, start at 0 and increase strictly")
+    return r
+
+
+def theta_shares(solids) -> tuple[float, float]:
+    """Each solid's share of theta, ((1 - nu^2)/E) / sum((1 - nu^2)/E), for the (Young's
+    modulus, Poisson ratio) pairs of sphere and wall (moduli in any common unit)."""
+    sphere, wall = ((1 - nu**2) / e for e, nu in solids)
+    return sphere / (sphere + wall), wall / (sphere + wall)
+
+
 class HalfSpaceCompliance(LinearCompliance):
     """Elastic half-spaces at the film nodes: W = matrix @ P (see the module docstring).
 
@@ -126,11 +144,7 @@ class HalfSpaceCompliance(LinearCompliance):
     model = "halfspace"
 
     def __init__(self, radii: np.ndarray, eps: float, shear=None, solids=None):
-        radii = np.asarray(radii, dtype=float)
-        if radii.ndim != 1 or len(radii) < 3:
-            raise InputError("radii must be a 1-D array of at least 3 film nodes")
-        if radii[0] != 0.0 or np.any(np.diff(radii) <= 0) or not np.all(np.isfinite(radii)):
-            raise InputError("radii must start at 0 and increase strictly")
+        radii = film_nodes(radii)
         unit_shear = None
         if shear is not None:
             delta, solids = shear
@@ -139,9 +153,9 @@ class HalfSpaceCompliance(LinearCompliance):
         kernel = influence_matrix(radii)
         self.materials, unit_sum = solids, None
         if solids is not None:
-            sphere, wall = ((1 - nu**2) / e for e, nu in solids)
+            sphere, wall = theta_shares(solids)
             if sphere != wall:
-                unit_sum = (sphere - wall) / (sphere + wall) * kernel
+                unit_sum = (sphere - wall) * kernel
         super().__init__(radii, kernel, number("eps", eps, lower=0.0), unit_shear, unit_sum)
 
     def factor(self, eps: float) -> float:

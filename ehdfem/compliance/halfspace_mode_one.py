@@ -52,7 +52,7 @@ from scipy.special import ellipe, ellipkm1
 from ..checks import InputError, number, positive
 from ..presets import MATERIAL_RANGES
 from . import ModeOneCompliance
-from .halfspace import IDENTICAL_SOLIDS, hat_integrals
+from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, theta_shares
 
 _CLOSED_FORM_RATIO = 0.25  # min(R, S)/max(R, S) from which the elliptic closed forms are used
 _TRAPEZOID_ANGLES = np.linspace(0.0, np.pi, 17)  # half a period: the integrands are even
@@ -152,7 +152,7 @@ def _stacked(blocks):
 def response_parts(radii) -> np.ndarray:
     """(3, 3N, 3N): the parts (k0, k_beta, k_gamma) of :func:`surface_response`, which is
     their sum weighted by (1, beta, gamma) (module docstring)."""
-    r = _film_nodes(radii)
+    r = film_nodes(radii)
     matrix = hat_integrals(r, ring_kernel_parts, 27)
     return _stacked(matrix.reshape(3, 3, 3, len(r), len(r)))
 
@@ -189,18 +189,18 @@ class HalfSpaceModeOne(ModeOneCompliance):
     model = "halfspace"
 
     def __init__(self, radii, eps: float, delta: float, solids=IDENTICAL_SOLIDS):
-        radii = _film_nodes(radii)
+        radii = film_nodes(radii)
         delta = number("delta", delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
         if len(solids) != 2:
             raise InputError("solids must be two (Young's modulus, Poisson ratio) pairs")
         moduli = [positive(f"{name} Young's modulus", e) for name, (e, _) in _named(solids)]
         ratios = [_poisson(f"{name} Poisson ratio", nu) for name, (_, nu) in _named(solids)]
-        compliances = [(1 - nu**2) / e for e, nu in zip(moduli, ratios, strict=True)]
+        shares = theta_shares(tuple(zip(moduli, ratios, strict=True)))
         parts = response_parts(radii)
         n = len(radii)
         unit = np.zeros((6 * n, 5 * n))
-        for face, (nu, c) in enumerate(zip(ratios, compliances, strict=True)):
-            response = c / sum(compliances) * np.tensordot(_nu_weights(nu), parts, axes=1)
+        for face, (nu, share) in enumerate(zip(ratios, shares, strict=True)):
+            response = share * np.tensordot(_nu_weights(nu), parts, axes=1)
             if face == 0:  # the sphere: mirror image, u_z -> -u_z
                 response[2 * n :] *= -1.0
             rows = slice(3 * n * face, 3 * n * (face + 1))
@@ -223,12 +223,3 @@ def _named(solids):
 
 def _poisson(name, nu):
     return number(name, nu, **MATERIAL_RANGES["poisson_ratio"])
-
-
-def _film_nodes(radii):
-    r = np.asarray(radii, dtype=float)
-    if r.ndim != 1 or len(r) < 3:
-        raise InputError("radii must be a 1-D array of at least 3 film nodes")
-    if not np.all(np.isfinite(r)) or r[0] != 0.0 or np.any(np.diff(r) <= 0):
-        raise InputError("radii must be finite, start at 0 and increase strictly")
-    return r

@@ -8,16 +8,18 @@ motion (:mod:`ehdfem.normal`) and, for an oblique impact, the tangential motion
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
 from . import cavitation, checks
-from .compliance import Compliance
+from .compliance import Compliance, ModeOneCompliance
 from .compliance.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from .film import radial_grid
 from .normal import FilmClosedError, NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .superposition import SuperpositionValidity, SuperpositionWarning, superposition_validity
 from .tangential import DEFORMATIONS, TangentialResult, solve_tangential
 from .tangential import MODELS as TANGENTIAL_MODELS
 from .timestepping import IntegratorOptions
@@ -117,7 +119,9 @@ class CollisionResult:
     tangential motion (:class:`ehdfem.tangential.TangentialResult`, None for a head-on impact),
     the elasticity model used, for physical inputs the inputs (to convert back to SI), and the
     compliance used (:class:`ehdfem.compliance.Compliance`; an FE compliance keeps its solids,
-    for the fields of :mod:`ehdfem.exports` and the pictures of :mod:`ehdfem.render`)."""
+    for the fields of :mod:`ehdfem.exports` and the pictures of :mod:`ehdfem.render`), and for
+    the sliding film the validity of its mode-1 superposition
+    (:class:`ehdfem.superposition.SuperpositionValidity`; a flagged one was also warned of)."""
 
     params: CollisionParameters
     model: str
@@ -125,6 +129,7 @@ class CollisionResult:
     tangential: TangentialResult | None = None
     physical: PhysicalCollision | None = None
     compliance: Compliance | None = None
+    superposition: SuperpositionValidity | None = None
 
     def summary(self, run: dict | None = None) -> dict:
         """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"; the
@@ -177,6 +182,14 @@ class CollisionResult:
                     tangential_work_exchanged=float(t.energy.exchanged[-1]),
                     tangential_dissipated=float(t.energy.dissipated[-1]),
                 )
+            if self.superposition is not None:
+                v = self.superposition
+                out.update(
+                    superposition_flag=v.flagged,
+                    superposition_sensitivity=v.sensitivity,
+                    superposition_tilt=v.largest_tilt,
+                    superposition_overlap=v.suction_overlap,
+                )
         if self.physical is not None:
             s = self.physical.scales()
             out["si"] = {
@@ -222,6 +235,7 @@ def collide(
     solids: dict | None = None,
     compliance: Compliance | None = None,
     deformation: str = "gap",
+    mode_one: ModeOneCompliance | None = None,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
 
@@ -237,7 +251,15 @@ def collide(
     ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``). ``compliance``: an
     elasticity built before (e.g. by :func:`elasticity` for the widest collision of a sweep,
     whose grid then serves every point), used at params.eps on its own grid, without
-    refinement; ``model``, ``nodes`` and ``solids`` are then not used.
+    refinement; ``model``, ``nodes`` and ``solids`` are then not used. ``mode_one``: the
+    solids' mode-1 compliance (:class:`ehdfem.compliance.ModeOneCompliance`) built before by
+    :func:`mode_one_elasticity` for ``compliance``, at any eps; only with ``compliance`` (the
+    same elasticity model on the same film nodes). It is used at params.eps (``with_eps``) by
+    the lubrication model with deformation "gap" or "full", where it maps the mode-1 film loads
+    (pressure by mu V0 a / x0^2, shear tractions by sqrt(delta) times that, at the film nodes
+    by sqrt(a x0)) to the faces' displacements (by x0). Without it the collision builds one,
+    which for FE solids is a factorisation of tens of seconds. The caller owns it: ``collide``
+    does not close it.
     """
     physical = params if isinstance(params, PhysicalCollision) else None
     if physical is not None:
@@ -254,8 +276,13 @@ def collide(
     sliding = (tangential, deformation)
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
+    if mode_one is not None:
+        _check_mode_one(mode_one, compliance)
+        mode_one = mode_one.with_eps(params.eps)
     if compliance is not None:
-        return _collide_on(params, compliance.with_eps(params.eps), options, sliding, physical)
+        return _collide_on(
+            params, compliance.with_eps(params.eps), options, sliding, physical, mode_one
+        )
     for attempt in range(refinements + 1):
         radii = film_radii(params, nodes * 2**attempt)
         try:
@@ -266,27 +293,55 @@ def collide(
                 raise
 
 
-def _collide_on(params, compliance, options, sliding, physical):
+def _check_mode_one(mode_one, compliance):
+    """Refuse a mode-1 compliance without ``compliance`` or not matching it (model, nodes)."""
+    if not isinstance(mode_one, ModeOneCompliance):
+        raise checks.InputError(
+            f"mode_one must be a ModeOneCompliance, got {type(mode_one).__name__}"
+        )
+    if compliance is None:
+        raise checks.InputError(
+            "mode_one needs compliance: pass the compliance it was built for "
+            "(mode_one_elasticity(params, compliance))"
+        )
+    if mode_one.model != compliance.model:
+        raise checks.InputError(
+            f"mode_one is for {mode_one.model} solids, compliance for {compliance.model}"
+        )
+    if not np.array_equal(mode_one.radii, compliance.radii):
+        raise checks.InputError(
+            "mode_one and compliance must be on the same film nodes (radii differ)"
+        )
+
+
+def _collide_on(params, compliance, options, sliding, physical, given_mode_one=None):
     """The normal and (oblique impacts) tangential motion on a given compliance; ``sliding``:
-    (tangential model, mode-1 deformation)."""
+    (tangential model, mode-1 deformation); ``given_mode_one``: a mode-1 compliance at
+    params.eps that is not closed here (None: built here when needed, and closed)."""
     normal = solve_normal(params, compliance, options)
-    tangential_result = None
+    tangential_result = superposition = None
     if params.tangential_speed > 0:
         model, deformation = sliding
         mode_one = None
         if model == "lubrication" and deformation != "none":
-            mode_one = mode_one_elasticity(params, compliance, physical)
+            mode_one = given_mode_one or mode_one_elasticity(params, compliance, physical)
+        built = mode_one is not None and given_mode_one is None
+        surface_sum = getattr(compliance, "surface_sum_matrix", None)
         try:
-            tangential_result = solve_tangential(
-                normal,
-                model,
-                mode_one,
-                getattr(compliance, "surface_sum_matrix", None),
-                deformation,
-            )
+            tangential_result = solve_tangential(normal, model, mode_one, surface_sum, deformation)
+            if model == "lubrication":
+                superposition = superposition_validity(
+                    normal,
+                    tangential_result,
+                    lambda unloaded: solve_tangential(
+                        normal, model, mode_one, surface_sum, deformation, unloaded
+                    ),
+                )
+                if superposition.flagged:
+                    warnings.warn(superposition.warning(), SuperpositionWarning, stacklevel=3)
         finally:
-            if mode_one is not None:
+            if built:
                 mode_one.close()
     return CollisionResult(
-        params, compliance.model, normal, tangential_result, physical, compliance
+        params, compliance.model, normal, tangential_result, physical, compliance, superposition
     )

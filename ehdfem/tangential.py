@@ -92,7 +92,8 @@ class TangentialResult:
     ``velocity`` U/U0, ``spin`` a Omega/U0, ``slip`` u_s/U0, ``force`` F_t, ``shear`` J(T).
     ``deformation``: the mode-1 deformation of the lubrication model ("none" for Couette);
     ``energy``: its balance (:class:`TangentialEnergy`, None for Couette);
-    ``mode_one_pressure``: q at the steps and film nodes (None for Couette).
+    ``mode_one_pressure``: q and ``mode_one_gap``: H1 at the steps and film nodes (by
+    (U0/V0) sqrt(delta) times the film pressure unit and times x0; None for Couette).
     """
 
     model: str
@@ -108,31 +109,58 @@ class TangentialResult:
     force: np.ndarray
     energy: TangentialEnergy | None
     mode_one_pressure: np.ndarray | None = None
+    mode_one_gap: np.ndarray | None = None
 
 
-def _film(normal: NormalResult) -> Film:
+def normal_film(normal: NormalResult) -> Film:
     """The film of the normal solution (its nodes, layer, viscosity law and gap)."""
     params = normal.params
     return Film(normal.radii, params.layer, params.viscosity_law(), normal.gap)
 
 
-def mode_one_films(normal: NormalResult):
-    """The film's mode-1 operators (:class:`ehdfem.film.ModeOneFilm`) at each step of the
-    normal solution, with the viscosity at each step's pressure, its liquid fraction and its
-    cavitated nodes."""
-    film, outer = _film(normal), 1.0 / np.sqrt(normal.params.delta)
+def cavitated_nodes(normal: NormalResult, step: int) -> np.ndarray:
+    """Where the normal solution's film is cavitated at ``step`` (boolean, per node): P0 at the
+    cavitation limit, or a liquid fraction below 1."""
     hist = normal.history
     p_cav = normal.params.cavitation_model().p_cav
     at_limit = p_cav + 1e-12 * abs(p_cav) if np.isfinite(p_cav) else -np.inf
-    for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True):
-        cavitated = (theta < 1.0) | (p <= at_limit)
-        yield film.mode_one(h, outer, p, theta, cavitated)
+    return (hist.fill[step] < 1.0) | (hist.pressure[step] <= at_limit)
+
+
+def mode_one_film(
+    normal: NormalResult, step: int, film: Film | None = None, unloaded=None
+) -> ModeOneFilm:
+    """The film's mode-1 operators (:class:`ehdfem.film.ModeOneFilm`) at one step of the
+    normal solution, with the viscosity at that step's pressure, its liquid fraction and q = 0
+    at its cavitated nodes and at the nodes ``unloaded`` (boolean; None: none). ``film``:
+    :func:`normal_film`, if built already."""
+    film = normal_film(normal) if film is None else film
+    cavitated = cavitated_nodes(normal, step)
+    if unloaded is not None:
+        cavitated = cavitated | unloaded
+    hist = normal.history
+    outer = 1.0 / np.sqrt(normal.params.delta)
+    return film.mode_one(
+        hist.film_thickness[step],
+        outer,
+        hist.pressure[step],
+        hist.fill[step],
+        cavitated,
+    )
+
+
+def mode_one_films(normal: NormalResult, unloaded=None):
+    """:func:`mode_one_film` at each step of the normal solution, in order (``unloaded``:
+    (steps, N) boolean, more nodes with q = 0 at each step; None: none)."""
+    film = normal_film(normal)
+    for step in range(len(normal.history.time)):
+        yield mode_one_film(normal, step, film, None if unloaded is None else unloaded[step])
 
 
 def film_integrals(normal: NormalResult) -> np.ndarray:
     """The Couette integral J(T) at the steps of the normal solution (immersed: with the far
     field out to the sphere's radius)."""
-    film, outer = _film(normal), 1.0 / np.sqrt(normal.params.delta)
+    film, outer = normal_film(normal), 1.0 / np.sqrt(normal.params.delta)
     hist = normal.history
     shear = []
     for h, p, theta in zip(hist.film_thickness, hist.pressure, hist.fill, strict=True):
@@ -147,6 +175,7 @@ def solve_tangential(
     mode_one: ModeOneCompliance | None = None,
     surface_sum: np.ndarray | None = None,
     deformation: str = "gap",
+    unloaded: np.ndarray | None = None,
 ) -> TangentialResult:
     """Tangential velocity and spin through the collision from the normal solution's film.
 
@@ -154,11 +183,14 @@ def solve_tangential(
     the solids' mode-1 compliance at the normal solution's eps and film nodes (None: rigid
     solids), ``surface_sum`` the (N, N) sum of the two surfaces' axisymmetric z-displacements
     per unit nodal pressure (:attr:`ehdfem.compliance.Compliance.surface_sum_matrix`; None:
-    zero), ``deformation`` which mode-1 deformation acts (DEFORMATIONS)."""
+    zero), ``deformation`` which mode-1 deformation acts (DEFORMATIONS), ``unloaded`` a
+    (steps, N) boolean array of further nodes where q = 0 at each step (None: only the
+    cavitated ones; :mod:`ehdfem.superposition` uses it to measure the cavitation rule's
+    effect)."""
     checks.choice("tangential model", model, MODELS)
     checks.choice("deformation", deformation, DEFORMATIONS)
     if model == "lubrication":
-        return _SlidingFilm(normal, mode_one, surface_sum, deformation).solve()
+        return _SlidingFilm(normal, mode_one, surface_sum, deformation).solve(unloaded)
     return _couette(normal)
 
 
@@ -182,7 +214,7 @@ def _couette(normal: NormalResult) -> TangentialResult:
     velocity, spin = states.T
     slip = velocity - spin
     force = -delta / 3.0 * shear * slip
-    return _result(normal, "couette", "none", (velocity, spin, shear, force), None, None)
+    return _result(normal, "couette", "none", (velocity, spin, shear, force), None)
 
 
 def _initial_spin(params) -> float:
@@ -191,8 +223,9 @@ def _initial_spin(params) -> float:
     return 0.0 if tangential == 0.0 else params.spin / tangential
 
 
-def _result(normal, model, deformation, histories, energy, mode_one_pressure):
-    """The TangentialResult from the histories (U, a Omega, J, F_t) at the steps."""
+def _result(normal, model, deformation, histories, energy, mode_one=(None, None)):
+    """The TangentialResult from the histories (U, a Omega, J, F_t) at the steps and, for the
+    sliding film, (q, H1) at the steps."""
     params, hist = normal.params, normal.history
     velocity, spin, shear, force = histories
     head_on = params.tangential_speed == 0.0
@@ -211,7 +244,8 @@ def _result(normal, model, deformation, histories, energy, mode_one_pressure):
         slip=velocity - spin,
         force=force,
         energy=energy,
-        mode_one_pressure=mode_one_pressure,
+        mode_one_pressure=mode_one[0],
+        mode_one_gap=mode_one[1],
     )
 
 
@@ -247,8 +281,9 @@ class _SlidingFilm:
         self.compliance.setdefault("phi", None)
         self.surface_sum = surface_sum
 
-    def solve(self) -> TangentialResult:
-        """Step through the normal solution; the tangential result with its energy balance."""
+    def solve(self, unloaded=None) -> TangentialResult:
+        """Step through the normal solution; the tangential result with its energy balance
+        (``unloaded``: further nodes with q = 0, as for :func:`mode_one_films`)."""
         normal, n = self.normal, self.n
         hist = normal.history
         steps = len(hist.time)
@@ -259,7 +294,7 @@ class _SlidingFilm:
         shear, force = np.zeros(steps), np.zeros(steps)
         rates = np.zeros((steps, 2))  # dissipation and exchange rates
         elastic = np.zeros(steps)
-        for i, mf in enumerate(mode_one_films(normal)):
+        for i, mf in enumerate(mode_one_films(normal, unloaded)):
             shear[i] = mf.shear_weights.sum() + mf.tail
             ops = self._operators(mf, i)
             if i > 0:
@@ -292,7 +327,7 @@ class _SlidingFilm:
             self.deformation,
             (velocity, spin, shear, force),
             energy,
-            z[:, :n],
+            (z[:, :n], displacements["gap"]),
         )
 
     def _operators(self, mf: ModeOneFilm, i: int) -> dict:

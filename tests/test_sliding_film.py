@@ -8,7 +8,8 @@ by the trapezoid rule, so the balance closes to the time-discretisation error.
 import numpy as np
 import pytest
 
-from ehdfem.collision import collide
+from ehdfem import checks
+from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity
 from ehdfem.compliance import RigidSolids
 from ehdfem.film import radial_grid
 from ehdfem.normal import solve_normal
@@ -71,3 +72,24 @@ def test_a_rigid_mode_one_film_on_deformed_solids_gains_its_energy_from_x():
     assert tangential.e_t > 1.0
     assert tangential.energy.exchanged[-1] > tangential.energy.dissipated[-1]
     assert tangential.energy.balance_error < 5e-3
+
+
+def test_a_prebuilt_mode_one_compliance_gives_the_same_collision():
+    """collide(..., compliance=, mode_one=) with a half-space mode-1 compliance built at another
+    eps gives the e_t and spin change of the collision that builds its own, and leaves the
+    caller's compliance at its eps; one on other film nodes, or without ``compliance``, is
+    refused."""
+    params = thin(1e-3, 20.0)
+    radii = film_radii(params, 60)
+    compliance = elasticity(params, radii, "halfspace")
+    prebuilt = mode_one_elasticity(thin(0.1, 20.0), compliance.with_eps(0.1))
+    own = collide(params, compliance=compliance, **FAST).tangential
+    given = collide(params, compliance=compliance, mode_one=prebuilt, **FAST).tangential
+    assert given.e_t == pytest.approx(own.e_t, rel=0.0, abs=1e-12)
+    assert given.spin_change == pytest.approx(own.spin_change, rel=0.0, abs=1e-12)
+    assert prebuilt.eps == 0.1
+    other = elasticity(params, film_radii(params, 50), "halfspace")
+    with pytest.raises(checks.InputError, match="mode_one"):
+        collide(params, compliance=other, mode_one=prebuilt, **FAST)
+    with pytest.raises(checks.InputError, match="mode_one"):
+        collide(params, mode_one=prebuilt, **FAST)

@@ -324,7 +324,9 @@ def _collide_on(params, compliance, options, sliding, physical, given_mode_one=N
         model, deformation = sliding
         mode_one = None
         if model == "lubrication" and deformation != "none":
-            mode_one = given_mode_one or mode_one_elasticity(params, compliance, physical)
+            mode_one = given_mode_one
+            if mode_one is None:
+                mode_one = mode_one_elasticity(params, compliance, physical)
         built = mode_one is not None and given_mode_one is None
         surface_sum = getattr(compliance, "surface_sum_matrix", None)
         try:

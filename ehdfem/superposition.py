@@ -249,7 +249,7 @@ def _check_step(result, validity, step, element_size, comm) -> SuperpositionChec
     edge = float(hist.edge_radius[step])
     disk = {
         "edge_radius": edge,
-        "p_cav": params.cavitation_model().p_cav if params.cavitation == "truncate" else -np.inf,
+        "p_cav": params.cavitation_model().p_cav,
         "fluidity": _fluidity(film.viscosity),
         "surface_sum": surface_sum,
         "element_size": edge / 200 if element_size is None else element_size,
@@ -303,11 +303,4 @@ def _fluidity(viscosity):
         return None
     import ufl
 
-    def fluidity(pressure):
-        compressive = ufl.max_value(pressure, 0.0)
-        if viscosity.law == "barus":
-            return ufl.exp(-viscosity.alpha * compressive)
-        z, p_r = viscosity.roelands_index, viscosity.roelands_pressure
-        return ufl.exp(-viscosity.alpha * p_r / z * ((1.0 + compressive / p_r) ** z - 1.0))
-
-    return fluidity
+    return lambda pressure: ufl.exp(-viscosity.log_ratio(ufl.max_value(pressure, 0.0)))

@@ -70,6 +70,14 @@ class Viscosity:
         """True when mu = mu0 at every pressure (the constant law, or alpha = 0)."""
         return self.law == "constant" or self.alpha == 0.0
 
+    def log_ratio(self, compressive):
+        """ln(mu / mu0) at the compressive part max(P, 0) of the scaled pressure (a numpy array
+        or a UFL expression; not for the constant law)."""
+        if self.law == "barus":
+            return self.alpha * compressive
+        z, p_r = self.roelands_index, self.roelands_pressure
+        return self.alpha * p_r / z * ((1.0 + compressive / p_r) ** z - 1.0)
+
     def ratio(self, pressure):
         """(mu / mu0, d ln(mu / mu0) / dP) at the scaled pressures ``pressure``."""
         pressure = np.asarray(pressure, dtype=float)
@@ -77,12 +85,9 @@ class Viscosity:
         if self.constant:
             return np.ones_like(pressure), np.zeros_like(pressure)
         if self.law == "barus":
-            exponent = self.alpha * compressive
             slope = np.where(pressure > 0.0, self.alpha, 0.0)
         else:
-            z, p_r = self.roelands_index, self.roelands_pressure
-            base = 1.0 + compressive / p_r
-            exponent = self.alpha * p_r / z * (base**z - 1.0)
-            slope = np.where(pressure > 0.0, self.alpha * base ** (z - 1.0), 0.0)
+            base = 1.0 + compressive / self.roelands_pressure
+            slope = np.where(pressure > 0.0, self.alpha * base ** (self.roelands_index - 1.0), 0.0)
         with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
-            return np.exp(exponent), slope
+            return np.exp(self.log_ratio(compressive)), slope

@@ -188,6 +188,7 @@ class CollisionResult:
                     superposition_flag=v.flagged,
                     superposition_sensitivity=v.sensitivity,
                     superposition_tilt=v.largest_tilt,
+                    superposition_viscosity_tilt=v.largest_viscosity_tilt,
                     superposition_overlap=v.suction_overlap,
                 )
         if self.physical is not None:

@@ -18,10 +18,15 @@ small against what it is superposed on:
   (the mean |mode-1 pressure| at its peak): the share of the mode-1 pressure the limit would
   remove;
 - *tilt*: s |H1| / H0, the mode-1 gap against the film thickness (at 1 the film closes on one
-  side).
+  side);
+- *viscosity tilt*: s |q| d ln(mu)/dP, the change of ln mu that the mode-1 pressure makes and
+  the sliding film linearises (0 at constant viscosity; large where a piezoviscous film is
+  frozen, as in the elastohydrodynamic contact of hard solids).
 
 :func:`superposition_validity` evaluates both at every step of a collision, cheaply, and flags
-the collision when either exceeds its limit (OVERLAP_LIMIT, TILT_LIMIT). The limits come from
+the collision when the cavitation-rule sensitivity or a tilt exceeds its limit
+(SENSITIVITY_LIMIT, TILT_LIMIT); the sliding film itself stops when a tilt reaches 1
+(:class:`ehdfem.tangential.SlidingFilmError`). The limits come from
 :func:`check_superposition`, which solves the full Reynolds equation on the disk
 (:mod:`ehdfem.film_disk`, with the sliding term and the cavitation limit imposed pointwise) at
 chosen instants and compares the mode-1 pressure's moment int P X dA and slope force
@@ -39,7 +44,15 @@ import numpy as np
 
 from . import checks
 from .film import Film
-from .tangential import TangentialResult, cavitated_nodes, mode_one_film, normal_film
+from .tangential import (
+    TangentialResult,
+    cavitated_nodes,
+    gap_tilt,
+    mode_one_film,
+    normal_film,
+    sliding_amplitude,
+    viscosity_tilt,
+)
 
 SENSITIVITY_LIMIT = 0.02  # flag above this change of 1 - e_t or of the spin change
 TILT_LIMIT = 0.3  # flag above this largest s |H1| / H0
@@ -47,11 +60,6 @@ TILT_LIMIT = 0.3  # flag above this largest s |H1| / H0
 
 class SuperpositionWarning(UserWarning):
     """A sliding-film result outside the range where its superposition was checked."""
-
-
-def sliding_amplitude(params) -> float:
-    """s = (U0/V0) sqrt(delta): the mode-1 pressure and gap's factor (module docstring)."""
-    return params.tangential_speed * math.sqrt(params.delta)
 
 
 @dataclass(frozen=True)
@@ -62,8 +70,10 @@ class SuperpositionValidity:
     ``largest_tilt`` their largest values; ``overlapping`` (steps, N) the wet nodes where
     P0 - s |q| < P_cav; ``alternative`` (e_t, spin change) with q = 0 also there, and
     ``sensitivity`` the larger relative change that makes in 1 - e_t or in the spin change
-    (0 without overlap); ``flagged`` when the sensitivity exceeds SENSITIVITY_LIMIT or the tilt
-    TILT_LIMIT."""
+    (0 without overlap); ``viscosity_tilt`` at the steps and ``largest_viscosity_tilt``:
+    :func:`ehdfem.tangential.viscosity_tilt`; ``flagged`` when the sensitivity exceeds
+    SENSITIVITY_LIMIT or either tilt TILT_LIMIT (at BREAKDOWN_TILT the sliding film stops with
+    :class:`ehdfem.tangential.SlidingFilmError`)."""
 
     sliding_amplitude: float
     overlap: np.ndarray
@@ -71,6 +81,8 @@ class SuperpositionValidity:
     overlapping: np.ndarray
     suction_overlap: float
     largest_tilt: float
+    viscosity_tilt: np.ndarray
+    largest_viscosity_tilt: float
     alternative: tuple[float, float]
     sensitivity: float
     flagged: bool
@@ -80,7 +92,8 @@ class SuperpositionValidity:
         return (
             "the sliding film's mode-1 superposition is outside its checked range: "
             f"cavitation-rule sensitivity {self.sensitivity:.3g} (limit {SENSITIVITY_LIMIT}), "
-            f"mode-1 tilt s|H1|/H0 {self.largest_tilt:.3g} (limit {TILT_LIMIT}); e_t and "
+            f"mode-1 tilt s|H1|/H0 {self.largest_tilt:.3g} and viscosity tilt "
+            f"s|q| d ln(mu)/dP {self.largest_viscosity_tilt:.3g} (limit {TILT_LIMIT}); e_t and "
             "spin_change of tangential = 'lubrication' are uncertain by about that much "
             "(docs/tangential.md)"
         )
@@ -117,8 +130,8 @@ def superposition_validity(normal, tangential: TangentialResult, resolve) -> Sup
         offset = np.minimum(p_cav - hist.pressure, 0.0)
         overlap = ring_cut(offset, mode_one) @ mass / size.max()
         overlapping = wet & (mode_one > -offset)
-    tilt = np.where(wet, s * np.abs(tangential.mode_one_gap) / hist.film_thickness, 0.0)
-    tilt = tilt.max(axis=1)
+    tilt = gap_tilt(params, hist.film_thickness, tangential.mode_one_gap).max(axis=1)
+    thinning = viscosity_tilt(params, hist.pressure, tangential.mode_one_pressure).max(axis=1)
     alternative, sensitivity = (tangential.e_t, tangential.spin_change), 0.0
     if overlapping.any() and tangential.e_t is not None:
         other = resolve(overlapping)
@@ -134,9 +147,13 @@ def superposition_validity(normal, tangential: TangentialResult, resolve) -> Sup
         overlapping=overlapping,
         suction_overlap=float(overlap.max()),
         largest_tilt=float(tilt.max()),
+        viscosity_tilt=thinning,
+        largest_viscosity_tilt=float(thinning.max()),
         alternative=alternative,
         sensitivity=sensitivity,
-        flagged=bool(sensitivity > SENSITIVITY_LIMIT or tilt.max() > TILT_LIMIT),
+        flagged=bool(
+            sensitivity > SENSITIVITY_LIMIT or max(tilt.max(), thinning.max()) > TILT_LIMIT
+        ),
     )
 
 

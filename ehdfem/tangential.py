@@ -60,11 +60,40 @@ import scipy.linalg
 from . import checks
 from .compliance import ModeOneCompliance
 from .film import Film, ModeOneFilm
-from .normal import NormalResult
+from .normal import NormalResult, NormalSolverError
 
 MODELS = ("couette", "lubrication")
 DEFORMATIONS = ("none", "gap", "full")
 _BDF2_GROWTH = 1.0 + np.sqrt(2.0)  # largest step ratio for which variable-step BDF2 is stable
+BREAKDOWN_TILT = 1.0  # a linearisation tilt (gap_tilt, viscosity_tilt) at which it fails
+
+
+class SlidingFilmError(NormalSolverError):
+    """The sliding film's linearisation broke down: a tilt (:func:`gap_tilt`,
+    :func:`viscosity_tilt`) reached BREAKDOWN_TILT or its linear system had no finite solution.
+    Where this happens (a film frozen by a pressure-dependent viscosity, docs/tangential.md)
+    only the Couette model applies."""
+
+
+def sliding_amplitude(params) -> float:
+    """s = (U0/V0) sqrt(delta): the factor of the mode-1 pressure q and gap H1 (scaled)."""
+    return params.tangential_speed * np.sqrt(params.delta)
+
+
+def gap_tilt(params, film_thickness, mode_one_gap):
+    """s |H1| / H0 at the wetted nodes (0 elsewhere; H by x0, any leading shape): the mode-1
+    gap against the film thickness it is superposed on; at 1 the film closes on one side."""
+    wet = film_thickness < 1.0 if params.layer == "thin" else np.ones(film_thickness.shape, bool)
+    return np.where(wet, sliding_amplitude(params) * np.abs(mode_one_gap) / film_thickness, 0.0)
+
+
+def viscosity_tilt(params, pressure, mode_one_pressure):
+    """s |q| d ln(mu/mu0)/dP at P0 (pressures by mu V0 a / x0^2, any leading shape): the change of
+    ln mu the mode-1 pressure makes, which the sliding film linearises (mu = mu(P0)
+    (1 + s q cos(phi) d ln mu/dP)); 0 at constant viscosity, and at 1 exp differs from its
+    linearisation by a factor e/2."""
+    slope = params.viscosity_law().ratio(pressure)[1]
+    return sliding_amplitude(params) * np.abs(mode_one_pressure) * slope
 
 
 @dataclass
@@ -307,10 +336,11 @@ class _SlidingFilm:
                     name: (alpha[1] * values[i - 1] + alpha[2] * values[i - 2]) / step
                     for name, values in (*displacements.items(), ("z", z))
                 }
-                z[i] = _solve_equilibrated(*self._system(mf, ops, alpha[0] / step, past))
+                z[i] = self._step(mf, ops, alpha[0] / step, past, i)
                 for name, values in displacements.items():
                     if ops[name] is not None:
                         values[i] = ops[name] @ z[i]
+                self._check_tilts(z[i], displacements["gap"][i], i)
             force[i] = ops["force"] @ z[i]
             *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
         velocity, spin = z[:, self.u], z[:, self.omega]
@@ -329,6 +359,41 @@ class _SlidingFilm:
             energy,
             (z[:, :n], displacements["gap"]),
         )
+
+    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int) -> np.ndarray:
+        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution."""
+        try:
+            z = _solve_equilibrated(*self._system(mf, ops, rate, past), self.u, self.omega)
+        except (np.linalg.LinAlgError, ValueError):
+            z = np.full(self.size, np.nan)
+        if not np.isfinite(z).all():
+            raise SlidingFilmError(
+                f"the sliding film has no finite solution at T = {self.normal.history.time[i]:.4g}"
+                f" (mu/mu0 up to {self._viscosity_ratio(i):.3g}); use tangential = 'couette'"
+            )
+        return z
+
+    def _check_tilts(self, z: np.ndarray, mode_one_gap: np.ndarray, i: int) -> None:
+        """SlidingFilmError where a tilt of the linearisation reaches BREAKDOWN_TILT at step i."""
+        params, hist = self.normal.params, self.normal.history
+        tilts = {
+            "s |H1| / H0": gap_tilt(params, hist.film_thickness[i], mode_one_gap),
+            "s |q| d ln(mu)/dP": viscosity_tilt(params, hist.pressure[i], z[: self.n]),
+        }
+        for name, tilt in tilts.items():
+            if tilt.max() >= BREAKDOWN_TILT:
+                raise SlidingFilmError(
+                    f"the sliding film's linearisation broke down at T = {hist.time[i]:.4g}:"
+                    f" {name} = {tilt.max():.3g} >= {BREAKDOWN_TILT} (mu/mu0 up to"
+                    f" {self._viscosity_ratio(i):.3g}); the film is not a small perturbation"
+                    " of the normal one (a film frozen by the pressure-dependent viscosity,"
+                    " docs/tangential.md); use tangential = 'couette'"
+                )
+
+    def _viscosity_ratio(self, i: int) -> float:
+        """The largest mu/mu0 of the normal film at step i."""
+        law = self.normal.params.viscosity_law()
+        return float(law.ratio(self.normal.history.pressure[i])[0].max())
 
     def _operators(self, mf: ModeOneFilm, i: int) -> dict:
         """Row operators on z at step i: q, the Couette weights, the loads L, the face
@@ -440,11 +505,22 @@ class _SlidingFilm:
         return dissipation, exchange, (delta / 12.0) * work
 
 
-def _solve_equilibrated(matrix, rhs):
-    """Solve after scaling each row to unit largest entry: a piezoviscous film's Reynolds rows
-    are smaller than the others by mu/mu0, which can exceed 1e20."""
-    scale = 1.0 / np.abs(matrix).max(axis=1)
-    return scipy.linalg.solve(matrix * scale[:, None], rhs * scale)
+def _solve_equilibrated(matrix, rhs, u: int, omega: int):
+    """Solve matrix z = rhs in the unknowns y = z except the sliding velocity U - a Omega in
+    place of U (index ``u``; ``omega`` that of a Omega), with every column of the transformed
+    matrix and then every row scaled to unit largest entry. A piezoviscous film's Reynolds rows
+    are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
+    the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
+    are then parallel to round-off (the film locks the sphere into rolling), the scaled system
+    is not."""
+    basis = np.eye(len(rhs))
+    basis[u, omega] = 1.0  # z_U = (U - a Omega) + a Omega
+    transformed = matrix @ basis
+    column_scale = 1.0 / np.abs(transformed).max(axis=0)
+    transformed *= column_scale
+    row_scale = 1.0 / np.abs(transformed).max(axis=1)
+    sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
+    return basis @ (column_scale * sliding)
 
 
 def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:

@@ -91,7 +91,7 @@ def cases():
         ),
         (
             "immersed-barus-lubrication",
-            p(**IMMERSED, p_cav=-5.0, viscosity="barus", alpha=0.02, angle=45.0),
+            p(**IMMERSED, p_cav=-5.0, viscosity="barus", alpha=0.005, angle=45.0),
             {**FAST, "tangential": "lubrication"},
         ),
         (

@@ -282,9 +282,11 @@ class FESolids:
         return bcs
 
     def _load_forms(self, v):
-        """The load of a film pressure (normal on both contact faces, balanced on each free body
-        by a uniform body force) and of a radial shear traction (the same on both faces; no net
-        force), the pressure's resultant, and each free body's volume and u_z moment."""
+        """The film loads as matrices on a traction profile (P2, both contact faces): the
+        normal pressure -p n and the radial shear traction t_r, each int (.) . v r ds; the
+        pressure's resultant on the lower face as a row; each free body's volume; the rows the
+        Dirichlet conditions fix (their load is zero)."""
+        import dolfinx.fem.petsc
         import ufl
         from dolfinx import fem
 
@@ -293,56 +295,129 @@ class FESolids:
         self._test = v
         ds = ufl.Measure("ds", domain=msh, subdomain_data=self._facet_tags)
         n = ufl.FacetNormal(msh)
-        p = self._pressure = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
-        shear = self._shear = fem.Function(dolfinx_compat.lagrange_space(msh, 2))
-        self._u = fem.Function(self._space)
-        self._resultant = fem.form(p * r * ds(geometry.LOWER_CONTACT))
+        self._profile_space = dolfinx_compat.lagrange_space(msh, 2)
+        q = ufl.TrialFunction(self._profile_space)
         faces = ds(geometry.SPHERE_CONTACT) + ds(geometry.LOWER_CONTACT)
-        load = (-p * ufl.dot(n, v) + shear * v[0]) * r * faces
-        self._body_forces, self._volumes, self._moments = [], [], []
-        for body in self.bodies:
-            force = fem.Constant(msh, np.zeros(2))
-            self._body_forces.append(force)
-            self._volumes.append(
-                self.comm.allreduce(fem.assemble_scalar(fem.form(r * dx(body.cell_tag))))
-            )
-            self._moments.append(fem.form(self._u[1] * r * dx(body.cell_tag)))
-            load = load + ufl.dot(force, v) * r * dx(body.cell_tag)
-        self._load = fem.form(load)
+        works = {"pressure": -ufl.dot(n, v), "shear": v[0]}
+        self._tractions = {
+            kind: dolfinx_compat.assemble_matrix(fem.form(q * work * r * faces), [])
+            for kind, work in works.items()
+        }
+        resultant = ufl.TestFunction(self._profile_space) * r * ds(geometry.LOWER_CONTACT)
+        self._resultant = dolfinx_compat.assemble_vector(fem.form(resultant), []).getArray()
+        self._volumes = [
+            self.comm.allreduce(fem.assemble_scalar(fem.form(r * dx(body.cell_tag))))
+            for body in self.bodies
+        ]
+        self._u = fem.Function(self._space)
+        marker = dolfinx.fem.petsc.create_vector(fem.form(v[0] * r * dx))
+        with marker.localForm() as local:
+            local.set(1.0)
+        dolfinx.fem.petsc.set_bc(marker, self._bcs)
+        self._constrained = np.flatnonzero(marker.getArray() == 0.0)
+        marker.destroy()
 
-    def _load_vector(self, pressure, shear=None):
-        """The assembled load (PETSc vector) of a film pressure and a radial shear traction,
-        each a callable of r (by a) in the film pressure unit (shear outward positive, on both
-        faces; None: none), with the d'Alembert body forces that balance the pressure on the
-        free spheres."""
+    @cached_property
+    def _profile_rows(self):
+        """Per contact face (upper, lower): the owned dofs of the P2 traction profile space on
+        it and their r (by a)."""
         from dolfinx import fem
 
-        self._pressure.interpolate(lambda x: pressure(x[0]))
-        self._shear.interpolate(lambda x: np.zeros_like(x[0]) if shear is None else shear(x[0]))
-        load = self.comm.allreduce(fem.assemble_scalar(self._resultant))
-        for force, volume, body in zip(self._body_forces, self._volumes, self.bodies, strict=True):
-            force.value[:] = (0.0, body.direction * load / volume)
-        return dolfinx_compat.assemble_vector(self._load, self._bcs)
+        space = self._profile_space
+        coordinates = space.tabulate_dof_coordinates()
+        out = []
+        for tag in (self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT):
+            dofs = fem.locate_dofs_topological(space, 1, self._facet_tags.find(tag))
+            dofs = dofs[dofs < space.dofmap.index_map.size_local]
+            out.append((dofs, coordinates[dofs, 0]))
+        return out
 
-    def displacement(self, pressure, shear=None):
-        """Solve for a film pressure given as a callable of r (by a), in the film pressure unit:
-        normal pressure on both contact faces, d'Alembert body forces on free spheres; and a
-        radial shear traction ``shear`` (callable of r, the same unit; outward positive) on
-        both faces. Returns the displacement (a DOLFINx function, in units of a p/E_ref), also
-        kept for :meth:`gap_opening`."""
-        load = self._load_vector(pressure, shear)
-        self._ksp.solve(load, dolfinx_compat.petsc_vector(self._u))
-        load.destroy()
+    def profile_values(self, faces) -> np.ndarray:
+        """The owned entries (rows, columns) of the P2 traction profiles with nodal values
+        ``faces`` = (upper, lower), each (N, columns) at the film nodes (linear between them,
+        zero beyond the last; :meth:`film_pressure`), on the two contact faces, zero elsewhere."""
+        values = np.zeros((self._profile_space.dofmap.index_map.size_local, faces[0].shape[1]))
+        for (dofs, r), nodal in zip(self._profile_rows, faces, strict=True):
+            for k in range(nodal.shape[1]):
+                values[dofs, k] = self.film_pressure(nodal[:, k])(r)
+        return values
+
+    def traction_loads(self, matrix, values: np.ndarray) -> np.ndarray:
+        """The owned rows of ``matrix`` (unknowns x P2 profile dofs) times the owned profile
+        entries ``values`` (:meth:`profile_values`), as a dense array (rows, columns)."""
+        from petsc4py import PETSc
+
+        index_map = self._profile_space.dofmap.index_map
+        dense = PETSc.Mat().createDense(
+            [(index_map.size_local, index_map.size_global), (PETSc.DECIDE, values.shape[1])],
+            comm=self.comm,
+        )
+        dense.setUp()
+        dense.getDenseArray()[:] = values
+        dense.assemble()
+        product = matrix.matMult(dense)
+        loads = product.getDenseArray().copy()
+        for petsc_object in (dense, product):
+            petsc_object.destroy()
+        return loads
+
+    def _film_loads(self, pressure: np.ndarray, shear: np.ndarray | None = None) -> np.ndarray:
+        """The owned rows (rows, columns) of the loads of film pressures ``pressure`` (N,
+        columns) at the film nodes, in the film pressure unit, normal on both contact faces,
+        and of radial shear tractions ``shear`` (the same unit, outward positive, on both
+        faces; None: none), with the d'Alembert body forces that balance the pressure on the
+        free spheres (uniform, int f . v r dx over the body = the resultant times the centre
+        weights); zero on the constrained rows."""
+        values = self.profile_values((pressure, pressure))
+        loads = self.traction_loads(self._tractions["pressure"], values)
+        if shear is not None:
+            loads += self.traction_loads(
+                self._tractions["shear"], self.profile_values((shear,) * 2)
+            )
+        resultant = self.comm.allreduce(self._resultant @ values)
+        for body, weights in zip(self.bodies, self._centre_weights, strict=True):
+            loads += np.outer(body.direction * weights, resultant)
+        loads[self._constrained] = 0.0
+        return loads
+
+    def _solve(self, loads: np.ndarray) -> np.ndarray:
+        """The owned rows of the displacements (by a p / E_ref) of the load columns ``loads``,
+        from one multiple-right-hand-side solve on the factorisation."""
+        from petsc4py import PETSc
+
+        size = (loads.shape[0], self.comm.allreduce(loads.shape[0]))
+        rhs = PETSc.Mat().createDense([size, (PETSc.DECIDE, loads.shape[1])], comm=self.comm)
+        rhs.setUp()
+        rhs.getDenseArray()[:] = loads
+        rhs.assemble()
+        solution = rhs.duplicate()
+        self._ksp.setUp()
+        self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
+        values = solution.getDenseArray().copy()
+        for petsc_object in (rhs, solution):  # PETSc memory is not freed by Python's GC
+            petsc_object.destroy()
+        return values
+
+    def displacement(self, nodal_pressure, nodal_shear=None):
+        """Solve for the film pressure with values ``nodal_pressure`` (N,) at the film nodes, in
+        the film pressure unit: normal pressure on both contact faces, d'Alembert body forces
+        on free spheres; and a radial shear traction ``nodal_shear`` (the same unit, outward
+        positive; None: none) on both faces. Returns the displacement (a DOLFINx function, in
+        units of a p/E_ref), also kept for :meth:`gap_opening`."""
+        columns = [
+            None if x is None else np.asarray(x, float)[:, None]
+            for x in (nodal_pressure, nodal_shear)
+        ]
+        values = self._solve(self._film_loads(*columns))
+        self._u.x.array[: len(values)] = values[:, 0]
         self._u.x.scatter_forward()
         return self._u
 
     def _centres(self):
         """Centre-of-mass u_z (by a p/E_ref) of each free body, in the order of ``bodies``."""
-        from dolfinx import fem
-
         return [
-            self.comm.allreduce(fem.assemble_scalar(form)) / volume
-            for form, volume in zip(self._moments, self._volumes, strict=True)
+            self.comm.allreduce(weights @ self._u.x.array[: len(weights)])
+            for weights in self._centre_weights
         ]
 
     def _surface(self, tag):
@@ -387,56 +462,33 @@ class FESolids:
         """The film compliance in the units of the half-space kernel; with ``shear`` also the
         gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
         pressure unit, :meth:`ehdfem.film.Film.squeeze_shear`) on both faces. The unit loads
-        (hat pressures, then hat shear tractions) are solved in blocks of BLOCK right-hand
-        sides on the one factorisation."""
+        (hat pressures, then hat shear tractions) are built from the traction matrices and
+        solved in blocks of BLOCK right-hand sides on the one factorisation."""
         n = len(self.radii)
-        hats = [self.film_pressure(np.eye(n)[j]) for j in range(n)]
-        loads = [(hat, None) for hat in hats]
-        if shear:
-            zero, root = self.film_pressure(np.zeros(n)), math.sqrt(self.delta)
-            loads += [(zero, lambda r, hat=hat: root * hat(r)) for hat in hats]
-        blocks = range(0, len(loads), BLOCK)
-        gap, surface_sum = (
-            np.hstack(parts)
-            for parts in zip(
-                *(
-                    self._gap_openings(loads[start : start + BLOCK])
-                    for start in progress(blocks, desc="FE compliance")
-                ),
-                strict=True,
-            )
-        )
+        kinds = ("pressure", "shear") if shear else ("pressure",)
+        blocks = [(kind, start) for kind in kinds for start in range(0, n, BLOCK)]
+        parts = []
+        for kind, start in progress(blocks, desc="FE compliance"):
+            hats = np.eye(n)[:, start : start + BLOCK]
+            loads = (hats, None) if kind == "pressure" else (0 * hats, math.sqrt(self.delta) * hats)
+            parts.append(self._gap_openings(self._solve(self._film_loads(*loads))))
+        gap, surface_sum = (np.hstack(columns) for columns in zip(*parts, strict=True))
         return FECompliance(
             self, gap[:, :n], eps, gap[:, n:] if shear else None, surface_sum[:, :n]
         )
 
-    def _gap_openings(self, loads) -> tuple[np.ndarray, np.ndarray]:
+    def _gap_openings(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The gap opening W and the sum of the two faces' u_z (in units of a p/E_ref, each
-        free body's centre motion removed) at the film nodes, one column per (pressure, shear)
-        load, from one multiple-right-hand-side solve."""
-        from petsc4py import PETSc
-
-        vectors = [self._load_vector(*load) for load in loads]
-        size = (vectors[0].getLocalSize(), vectors[0].getSize())
-        rhs = PETSc.Mat().createDense([size, (PETSc.DECIDE, len(loads))], comm=self.comm)
-        rhs.setUp()
-        columns = rhs.getDenseArray()
-        for k, vector in enumerate(vectors):
-            columns[:, k] = vector.getArray()
-        rhs.assemble()
-        solution = rhs.duplicate()
-        self._ksp.setUp()
-        self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
-        values = solution.getDenseArray().copy()
-        for petsc_object in (rhs, solution, *vectors):  # PETSc memory is not freed by Python's GC
-            petsc_object.destroy()
+        free body's centre motion removed) at the film nodes, one column per column of the
+        owned solution rows ``values``."""
+        columns = values.shape[1]
         centres = [self.comm.allreduce(weights @ values) for weights in self._centre_weights]
-        upper, lower = [*centres, np.zeros(len(loads))][:2]
+        upper, lower = [*centres, np.zeros(columns)][:2]
         r_up, u_up = self._owned_surface(self._geometry.SPHERE_CONTACT, values)
         r_lo, u_lo = self._owned_surface(self._geometry.LOWER_CONTACT, values)
         faces = [
             np.column_stack(
-                [np.interp(self.radii_a, r, u[:, k]) - centre[k] for k in range(len(loads))]
+                [np.interp(self.radii_a, r, u[:, k]) - centre[k] for k in range(columns)]
             )
             for r, u, centre in ((r_up, u_up, upper), (r_lo, u_lo, lower))
         ]
@@ -483,7 +535,7 @@ class FESolids:
         """The solids under the film pressure with values ``nodal_pressure`` at the film nodes
         (by mu V0 a / x0^2) at elasticity parameter ``eps``: one solve; see
         :class:`Deformation` for the fields and their units."""
-        self.displacement(self.film_pressure(nodal_pressure))
+        self.displacement(nodal_pressure)
         vertices = self._vertex_mesh
         vertices.function.interpolate(self._u)
         values = vertices.function.x.array.reshape(-1, 2).copy()

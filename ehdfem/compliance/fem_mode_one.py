@@ -45,7 +45,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -224,7 +223,6 @@ class FEModeOne(ModeOneCompliance):
         self._ksp.getPC().setType("cholesky")
         self._ksp.getPC().setFactorSolverType("mumps")
         self._ksp.setUp()
-        self._profile_space = dolfinx_compat.lagrange_space(self.solids.mesh, DEGREE)
         self._tractions = self._traction_matrices()
         self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.bodies]
         self._faces = [self._face(tag) for tag in self._face_tags]
@@ -275,7 +273,7 @@ class FEModeOne(ModeOneCompliance):
         from dolfinx import fem
 
         msh = self.solids.mesh
-        q = ufl.TrialFunction(self._profile_space)
+        q = ufl.TrialFunction(self.solids._profile_space)
         v_r, v_phi, v_z = (amplitudes(ufl.TestFunction(self.space))[k] for k in range(3))
         n = ufl.FacetNormal(msh)
         ds = ufl.Measure("ds", domain=msh, subdomain_data=self.solids._facet_tags)
@@ -335,48 +333,16 @@ class FEModeOne(ModeOneCompliance):
         to_film_nodes[rows, right] += weight
         return _Face(parent[keep], first, to_film_nodes)
 
-    @cached_property
-    def _profile_rows(self):
-        """Per contact face (upper, lower): the owned dofs of the scalar P2 profile space on
-        it and their r (by a)."""
-        from dolfinx import fem
-
-        space = self._profile_space
-        coordinates = space.tabulate_dof_coordinates()
-        out = []
-        for tag in self._face_tags:
-            dofs = fem.locate_dofs_topological(space, 1, self.solids._facet_tags.find(tag))
-            dofs = dofs[dofs < space.dofmap.index_map.size_local]
-            out.append((dofs, coordinates[dofs, 0]))
-        return out
-
     def _loads(self, profiles) -> np.ndarray:
         """The owned rows of the load vectors (rows, columns) of nodal traction profiles:
         ``profiles[kind]`` = (upper, lower), each (N, columns) of amplitudes at the film nodes
         on that face (hat functions, zero beyond the last node), by the film pressure unit p
         (shear profiles already multiplied by sqrt(delta)); kinds from TRACTIONS."""
-        from petsc4py import PETSc
-
-        space, comm = self._profile_space, self.solids.comm
-        local = space.dofmap.index_map.size_local
-        total = 0.0
-        for kind, faces in profiles.items():
-            columns = faces[0].shape[1]
-            values = PETSc.Mat().createDense(
-                [(local, space.dofmap.index_map.size_global), (PETSc.DECIDE, columns)], comm=comm
-            )
-            values.setUp()
-            array = values.getDenseArray()
-            array[:] = 0.0
-            for (dofs, r), nodal in zip(self._profile_rows, faces, strict=True):
-                for k in range(columns):
-                    array[dofs, k] = self.solids.film_pressure(nodal[:, k])(r)
-            values.assemble()
-            load = self._tractions[kind].matMult(values)
-            total = total + load.getDenseArray().copy()
-            for petsc_object in (values, load):
-                petsc_object.destroy()
-        return total
+        solids = self.solids
+        return sum(
+            solids.traction_loads(self._tractions[kind], solids.profile_values(faces))
+            for kind, faces in profiles.items()
+        )
 
     def _solve(self, loads: np.ndarray) -> np.ndarray:
         """Displacements (owned rows of the unknowns, by a p / E_ref) of the load columns

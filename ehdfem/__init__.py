@@ -10,9 +10,14 @@ inputs in SI; see :mod:`ehdfem.scales`):
   :func:`collide` for a whole sweep at fixed geometry and materials;
 - :func:`solve_normal`, :func:`solve_tangential`: the two motions on their own;
 - :func:`critical_stokes`, :func:`critical_speed`: the rebound threshold;
-- :class:`IntegratorOptions`: time-step tolerance and limits.
+- :class:`IntegratorOptions`: time-step tolerance and limits;
+- :func:`bounce` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a liquid and
+  bouncing until it rests, each contact an immersed EHD collision (:class:`BounceResult`). The
+  function shadows the module's name: import the module's other names with
+  ``from ehdfem.bounce import ...``.
 """
 
+from .bounce import BounceInputs, BounceResult, bounce
 from .collision import CollisionResult, collide, elasticity, film_radii
 from .normal import NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, from_presets
@@ -22,6 +27,8 @@ from .timestepping import IntegratorOptions
 from .version import __version__
 
 __all__ = [
+    "BounceInputs",
+    "BounceResult",
     "CollisionParameters",
     "CollisionResult",
     "IntegratorOptions",
@@ -29,6 +36,7 @@ __all__ = [
     "PhysicalCollision",
     "TangentialResult",
     "__version__",
+    "bounce",
     "collide",
     "critical_speed",
     "critical_stokes",

@@ -151,26 +151,36 @@ class GondretRun:
         """Impact speed V0 = Re mu / (rho_f D) [m/s]."""
         return self.reynolds * self.viscosity / (self.liquid_density * self.diameter)
 
-    def collision(self, gap_over_radius: float = 0.1) -> PhysicalCollision:
-        """The run as an immersed collision. Assumptions (not in what we have of the source):
-        the sphere has the steel preset's elastic constants, the plate is glass, and the
-        lubrication region starts at a gap x0 = ``gap_over_radius`` a, where the sphere still
-        moves at V0; P_cav follows from the liquid's vapour pressure (taken as 0)."""
+    @property
+    def sphere(self) -> Material:
+        """The sphere: the published density with the steel preset's elastic constants
+        (assumed; not in what we have of the source)."""
         steel = material("steel")
-        sphere = Material(
+        return Material(
             "gondret_steel",
             steel.young_modulus,
             steel.poisson_ratio,
             self.sphere_density,
             f"{GONDRET_2002} (density); elastic constants of the steel preset",
         )
-        oil = Liquid("gondret_liquid", self.viscosity, self.liquid_density, 0.0, 0.0, GONDRET_2002)
+
+    @property
+    def liquid(self) -> Liquid:
+        """The liquid: published viscosity and density; vapour pressure and pressure-viscosity
+        coefficient taken as 0."""
+        return Liquid("gondret_liquid", self.viscosity, self.liquid_density, 0.0, 0.0, GONDRET_2002)
+
+    def collision(self, gap_over_radius: float = 0.1) -> PhysicalCollision:
+        """The run as an immersed collision. Assumptions (not in what we have of the source):
+        the sphere and liquid of :attr:`sphere` and :attr:`liquid`, the plate is glass, and the
+        lubrication region starts at a gap x0 = ``gap_over_radius`` a, where the sphere still
+        moves at V0."""
         radius = self.diameter / 2
         return PhysicalCollision(
             radius=radius,
-            sphere=sphere,
+            sphere=self.sphere,
             wall=material("glass"),
-            liquid=oil,
+            liquid=self.liquid,
             speed=self.speed,
             layer_thickness=gap_over_radius * radius,
             layer="immersed",

@@ -134,6 +134,54 @@ def plot_tangential(collision, path: Path) -> Path:
     return _save(fig, path)
 
 
+def plot_bounce(result, path: Path, measured=None) -> Path:
+    """A bounce (:class:`ehdfem.bounce.BounceResult`) as in the experiments: gap / D against
+    t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St marked at
+    its apex. ``measured``: optional (t [s], gap [m]) of an experiment, time 0 at its impact."""
+    inputs = result.inputs
+    diameter, unit = inputs.diameter, inputs.time_scale()
+    trajectory = result.trajectory
+    contact = np.flatnonzero(trajectory["phase"] == "contact")
+    start = trajectory["time"][contact[0]] if contact.size else 0.0
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    ax.plot(
+        (trajectory["time"] - start) / unit,
+        trajectory["gap"] / diameter,
+        lw=1.4,
+        label=f"ehdfem bounce ({result.model}, {inputs.drag})",
+    )
+    if measured is not None:
+        ax.plot(
+            np.asarray(measured[0]) / unit,
+            np.asarray(measured[1]) / diameter,
+            "o",
+            mfc="none",
+            color="k",
+            ms=4,
+            label="experiment",
+        )
+    for c in result.contacts:
+        if c.apex_time is not None:
+            ax.annotate(
+                f"e = {c.e:.3f}\nSt = {c.St:.0f}",
+                ((c.apex_time - start) / unit, c.apex_gap / diameter),
+                textcoords="offset points",
+                xytext=(4, 4),
+                fontsize=8,
+            )
+    ax.set_xlabel(r"$t/\sqrt{D/g}$")
+    ax.set_ylabel("gap / D")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title(
+        f"{inputs.sphere.name} D = {diameter * 1e3:.3g} mm in {inputs.liquid.name}: "
+        f"{result.status}",
+        fontsize=10,
+    )
+    return _save(fig, path)
+
+
 def _title(result) -> str:
     p = result.params
     outcome = f"e_n = {result.e_n:.4g}" if result.rebound else "sticks"

@@ -8,7 +8,9 @@ from mpi4py import MPI
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.compliance import fem_mesh
 from ehdfem.compliance.fem import FESolids
+from ehdfem.compliance.fem_mode_one import FEModeOne
 from ehdfem.compliance.halfspace import HalfSpaceCompliance
 from ehdfem.exports import write_fields
 from ehdfem.film import radial_grid
@@ -236,3 +238,29 @@ def test_fields_need_fe_solids(tmp_path):
     radii = radial_grid(20, 0.5, 2.0)
     with pytest.raises(InputError, match="--model fem"):
         write_fields(HalfSpaceCompliance(radii, 1e-3), tmp_path / "f.xdmf", [(0.0, radii)])
+
+
+def test_cached_compliance_is_the_computed_one(tmp_path, monkeypatch):
+    """With a compliance cache (rank 0's temporary directory), the second build of the same
+    solids reads the axisymmetric unit matrices (pressure, shear, surface sum) and the mode-1
+    one bit for bit, without solving; other moduli are another entry. On 2 ranks too."""
+    comm = MPI.COMM_WORLD
+    monkeypatch.setattr(fem_mesh, "COMPLIANCE_CACHE", comm.bcast(str(tmp_path)))
+    radii = radial_grid(30, 0.5, 2.0)
+    first = FESolids(1e-3, radii)
+    computed = first.compliance(1.0, shear=True), FEModeOne(first, 1.0)
+
+    def fail(*_):
+        raise AssertionError("solved although cached")
+
+    monkeypatch.setattr(FESolids, "_unit_matrices", fail)
+    monkeypatch.setattr(FEModeOne, "_condense", fail)
+    again = FESolids(1e-3, radii)
+    cached = again.compliance(1.0, shear=True), FEModeOne(again, 1.0)
+    for name in ("unit_matrix", "unit_shear", "unit_surface_sum"):
+        assert np.array_equal(getattr(cached[0], name), getattr(computed[0], name))
+    assert np.array_equal(cached[1].unit_matrix, computed[1].unit_matrix)
+    if comm.rank == 0:
+        assert len(list(Path(tmp_path).glob("*.npz"))) == 2
+    with pytest.raises(AssertionError, match="although cached"):
+        FESolids(1e-3, radii, wall=(0.5, 0.3)).compliance(1.0, shear=True)

@@ -33,6 +33,7 @@ depends on the release go through :mod:`ehdfem.compliance.dolfinx_compat`.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -41,7 +42,7 @@ import numpy as np
 from .. import checks
 from ..progress import progress
 from . import LinearCompliance, dolfinx_compat
-from .fem_mesh import contact_mesh
+from .fem_mesh import cached_matrices, contact_mesh
 
 BLOCK = (
     48  # right-hand sides per multiple-RHS solve of the condensation (memory: 8 B x dofs x BLOCK)
@@ -186,7 +187,16 @@ class FESolids:
         e_ref = sphere[0]
         self._theta_e_ref = sum((1 - nu**2) * e_ref / (math.pi * e) for e, nu in (sphere, wall))
         materials = {geometry.SPHERE: sphere, geometry.LOWER: wall, geometry.COATING: coating}
-        self._assemble({tag: (e / e_ref, nu) for tag, (e, nu) in materials.items()}, degree)
+        scaled = {tag: (e / e_ref, nu) for tag, (e, nu) in materials.items()}
+        self.cache_arguments = (arguments, sorted(scaled.items()), degree)
+        self._assemble(scaled, degree)
+
+    @property
+    def cache_sources(self) -> list:
+        """The code whose source keys the cached matrices of these solids (with
+        ``cache_arguments``: the mesh generator's arguments, the scaled moduli per cell tag and
+        the degree; :func:`ehdfem.compliance.fem_mesh.cached_matrices`)."""
+        return [sys.modules[__name__], dolfinx_compat, self._geometry.build]
 
     @property
     def radii_a(self):
@@ -465,6 +475,20 @@ class FESolids:
         (hat pressures, then hat shear tractions) are built from the traction matrices and
         solved in blocks of BLOCK right-hand sides on the one factorisation."""
         n = len(self.radii)
+        arrays = cached_matrices(
+            self.comm,
+            ("axisymmetric", *self.cache_arguments, shear),
+            self.cache_sources,
+            lambda: self._unit_matrices(shear),
+        )
+        return FECompliance(
+            self, arrays["gap"][:, :n], eps, arrays.get("shear"), arrays["surface_sum"]
+        )
+
+    def _unit_matrices(self, shear: bool) -> dict:
+        """{"gap", "surface_sum"[, "shear"]}: the (N, N) unit matrices of :meth:`compliance`,
+        computed on the factorisation."""
+        n = len(self.radii)
         kinds = ("pressure", "shear") if shear else ("pressure",)
         blocks = [(kind, start) for kind in kinds for start in range(0, n, BLOCK)]
         parts = []
@@ -473,9 +497,10 @@ class FESolids:
             loads = (hats, None) if kind == "pressure" else (0 * hats, math.sqrt(self.delta) * hats)
             parts.append(self._gap_openings(self._solve(self._film_loads(*loads))))
         gap, surface_sum = (np.hstack(columns) for columns in zip(*parts, strict=True))
-        return FECompliance(
-            self, gap[:, :n], eps, gap[:, n:] if shear else None, surface_sum[:, :n]
-        )
+        arrays = {"gap": gap[:, :n], "surface_sum": surface_sum[:, :n]}
+        if shear:
+            arrays["shear"] = gap[:, n:]
+        return arrays
 
     def _gap_openings(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The gap opening W and the sum of the two faces' u_z (in units of a p/E_ref, each

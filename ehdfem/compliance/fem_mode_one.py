@@ -44,6 +44,7 @@ them into x0. Film radii R by sqrt(a x0), at r = R sqrt(delta) a on the mesh.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,6 +53,7 @@ from .. import checks
 from ..progress import progress
 from . import MODE_ONE_LOADS, ModeOneCompliance, dolfinx_compat
 from .fem import BLOCK, FESolids
+from .fem_mesh import cached_matrices
 
 DEGREE = 2  # of the Lagrange elements
 TRACTIONS = ("pressure", "radial", "hoop")
@@ -191,7 +193,13 @@ class FEModeOne(ModeOneCompliance):
         self.solids = solids
         self.space = mode_one_space(solids.mesh)
         self._assemble()
-        super().__init__(solids.radii, self._condense(), eps)
+        unit = cached_matrices(
+            solids.comm,
+            ("mode one", *solids.cache_arguments),
+            [sys.modules[__name__], *solids.cache_sources],
+            lambda: {"unit": self._condense()},
+        )["unit"]
+        super().__init__(solids.radii, unit, eps)
 
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""
@@ -204,8 +212,8 @@ class FEModeOne(ModeOneCompliance):
             petsc_object.destroy()
 
     def _assemble(self):
-        """Assemble and factorise the stiffness (MUMPS Cholesky: it is symmetric positive
-        definite once pinned; half the time and memory of FESolids' LU); set up the traction
+        """Assemble the stiffness and set up its factorisation (MUMPS Cholesky, made on the
+        first solve: it is symmetric positive definite once pinned); set up the traction
         matrices, the free bodies and the contact faces."""
         from dolfinx import fem
         from petsc4py import PETSc
@@ -222,7 +230,6 @@ class FEModeOne(ModeOneCompliance):
         self._ksp.setType("preonly")
         self._ksp.getPC().setType("cholesky")
         self._ksp.getPC().setFactorSolverType("mumps")
-        self._ksp.setUp()
         self._tractions = self._traction_matrices()
         self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.bodies]
         self._faces = [self._face(tag) for tag in self._face_tags]
@@ -363,6 +370,7 @@ class FEModeOne(ModeOneCompliance):
         rhs.getDenseArray()[:] = loads
         rhs.assemble()
         solution = rhs.duplicate()
+        self._ksp.setUp()  # factorises on the first solve only
         self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
         values = solution.getDenseArray().copy()
         for petsc_object in (rhs, solution):

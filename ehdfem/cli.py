@@ -159,8 +159,9 @@ def _numerics_arguments(num) -> None:
         choices=TANGENTIAL_MODELS,
         default="couette",
         help="film model of the tangential motion (oblique impacts): 'couette' (the source's "
-        "shear only) or 'lubrication' (the sliding film: mode-1 pressure on both deformed "
-        "surfaces, docs/tangential.md)",
+        "shear only), 'lubrication' (the sliding film: mode-1 pressure on both deformed "
+        "surfaces), or the reduced 'gcb' (rigid-sphere logarithms at the thinnest film) and "
+        "'flat' (Couette over the Hertz disk); docs/tangential.md",
     )
     num.add_argument(
         "--sliding-deformation",

@@ -20,6 +20,11 @@ Two film models (docs/tangential.md derives them):
 
   integrated exactly (U + k a Omega is conserved and u_s decays as
   exp(-(1 + 1/k) (delta/(3 St)) int J dT), with int J dT by the trapezoid rule).
+- ``gcb`` and ``flat``, reduced models of the kind DEM codes use, both linear resistances R(T)
+  on (U, a Omega) integrated like Couette (:func:`integrate_resistance`): ``gcb`` a rigid
+  sphere's leading logarithmic resistances at the normal solution's thinnest film
+  (:func:`gcb_resistance`); ``flat`` the Couette shear of a uniform film, the central
+  thickness, over the Hertz contact disk of the normal force (:func:`flat_contact`).
 - ``lubrication`` (beyond the source): the sliding film. The sphere's sliding and rolling drive
   an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.ModeOneFilm`, unit
   (U0/V0) sqrt(delta) mu V0 a / x0^2), which deforms the solids (mode-1 compliance,
@@ -62,7 +67,7 @@ from .compliance import ModeOneCompliance
 from .film import Film, ModeOneFilm
 from .normal import NormalResult, NormalSolverError
 
-MODELS = ("couette", "lubrication")
+MODELS = ("couette", "lubrication", "gcb", "flat")
 DEFORMATIONS = ("none", "gap", "full")
 _BDF2_GROWTH = 1.0 + np.sqrt(2.0)  # largest step ratio for which variable-step BDF2 is stable
 BREAKDOWN_TILT = 1.0  # a linearisation tilt (gap_tilt, viscosity_tilt) at which it fails
@@ -118,7 +123,8 @@ class TangentialResult:
     ``e_t`` = U / U0 and ``spin_change`` = a (Omega - Omega0) / U0, at exit for a rebounding
     sphere, or when the normal motion stopped for a sticking one (``at`` = "exit" or "stop").
     Both are None for a head-on impact (U0 = 0). Histories at the normal solution's steps:
-    ``velocity`` U/U0, ``spin`` a Omega/U0, ``slip`` u_s/U0, ``force`` F_t, ``shear`` J(T).
+    ``velocity`` U/U0, ``spin`` a Omega/U0, ``slip`` u_s/U0, ``force`` F_t, ``shear`` J(T) (for
+    the reduced models the J with the same translational resistance, 3 R_11 / delta).
     ``deformation``: the mode-1 deformation of the lubrication model ("none" for Couette);
     ``energy``: its balance (:class:`TangentialEnergy`, None for Couette);
     ``mode_one_pressure``: q and ``mode_one_gap``: H1 at the steps and film nodes (by
@@ -220,30 +226,79 @@ def solve_tangential(
     checks.choice("deformation", deformation, DEFORMATIONS)
     if model == "lubrication":
         return _SlidingFilm(normal, mode_one, surface_sum, deformation).solve(unloaded)
-    return _couette(normal)
+    return {"couette": _couette, "gcb": _gcb, "flat": _flat}[model](normal)
 
 
 def _couette(normal: NormalResult) -> TangentialResult:
-    """The Couette model, integrated exactly for each step's mean J (module docstring)."""
-    params = normal.params
-    hist = normal.history
+    """The Couette model (module docstring): the resistance (delta/3) J(T) on the slip."""
     shear = film_integrals(normal)
-    k, St, delta = params.inertia_factor, params.St, params.delta
-    spin0 = _initial_spin(params)
-    shear_m = 0.5 * (shear[1:] + shear[:-1])
-    rate = delta / (3 * St) * np.diff(hist.time) * shear_m
-    # d(U, a Omega)/dT = rate [[-1, 1], [1/k, -1/k]] (U, a Omega): eigenvalues 0, -(1 + 1/k)
-    decay = np.exp(-(1.0 + 1.0 / k) * rate)
-    states = np.empty((len(hist.time), 2))
-    states[0] = (1.0, spin0)
-    for i, factor in enumerate(decay):
-        slip = (states[i, 0] - states[i, 1]) * factor
-        momentum = k * states[i, 1] + states[i, 0]  # conserved: U + k a Omega
-        states[i + 1] = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
+    slip = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    return _resisted(normal, "couette", normal.params.delta / 3.0 * shear[:, None, None] * slip)
+
+
+def gcb_resistance(delta: float, min_film) -> np.ndarray:
+    """Goldman, Cox & Brenner's (1967) leading logarithmic resistances of a rigid sphere
+    translating and rotating next to a plane, at the thinnest film h = H_min x0 (``min_film``
+    H_min, any shape), L = ln(a/h) = -ln(delta H_min):
+
+        R = delta L [[8/15, -2/15], [-2/15, 8/15]]
+
+    on (U, a Omega) (force by 6 pi mu a^2 U0 / x0, torque over a likewise; shape (..., 2, 2));
+    the O(1) terms of the expansions are left out."""
+    logarithm = -np.log(delta * np.asarray(min_film, dtype=float))
+    return delta * logarithm[..., None, None] * (np.array([[8.0, -2.0], [-2.0, 8.0]]) / 15.0)
+
+
+def _gcb(normal: NormalResult) -> TangentialResult:
+    """The rigid-sphere model: :func:`gcb_resistance` at the normal solution's thinnest film."""
+    resistance = gcb_resistance(normal.params.delta, normal.history.min_film)
+    return _resisted(normal, "gcb", resistance)
+
+
+def flat_contact(params, force, film_thickness):
+    """(C, J): the Hertz contact radius C = (9 pi^2 eps F / 8)^(1/3) of the scaled force F (by
+    6 pi mu V0 a^2 / x0; radius by sqrt(a x0)) and the Couette integral J = C^2 / (2 H_c) of a
+    uniform film H_c (by x0) over that disk (Kantak & Davis 2004, Joseph & Hunt 2004: the
+    contact as a flat gap)."""
+    radius = np.cbrt(9 * np.pi**2 * params.eps * np.maximum(force, 0.0) / 8)
+    return radius, radius**2 / (2 * np.asarray(film_thickness))
+
+
+def _flat(normal: NormalResult) -> TangentialResult:
+    """The flat-gap model: the Couette resistance (delta/3) J of a uniform film, the central
+    thickness H(0, T), over the Hertz contact disk of the normal force (:func:`flat_contact`);
+    no shear outside it."""
+    hist = normal.history
+    _, shear = flat_contact(normal.params, np.asarray(hist.force), hist.film_thickness[:, 0])
+    slip = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    return _resisted(normal, "flat", normal.params.delta / 3.0 * shear[:, None, None] * slip)
+
+
+def integrate_resistance(time, resistance, St: float, k: float, start) -> np.ndarray:
+    """(U, a Omega) at the instants ``time`` (by x0/V0) under a linear resistance R(T)
+    (``resistance`` (steps, 2, 2), symmetric non-negative, force by 6 pi mu a^2 U0 / x0):
+    St dU/dT = -(R (U, a Omega))_1, k St d(a Omega)/dT = -(R (U, a Omega))_2, from ``start``
+    (by U0). Each step takes the exact exponential of its mean R (trapezoid): exact when the
+    R(T) commute (the Couette models), second order otherwise, and never gaining energy."""
+    inverse_mass = np.diag([1.0 / St, 1.0 / (k * St)])
+    means = 0.5 * (resistance[1:] + resistance[:-1]) * np.diff(time)[:, None, None]
+    states = np.empty((len(time), 2))
+    states[0] = start
+    for i, mean in enumerate(means):
+        states[i + 1] = scipy.linalg.expm(-inverse_mass @ mean) @ states[i]
+    return states
+
+
+def _resisted(normal: NormalResult, model: str, resistance: np.ndarray) -> TangentialResult:
+    """The result of a resistance model (:func:`integrate_resistance`) on the normal solution."""
+    params, hist = normal.params, normal.history
+    states = integrate_resistance(
+        hist.time, resistance, params.St, params.inertia_factor, (1.0, _initial_spin(params))
+    )
     velocity, spin = states.T
-    slip = velocity - spin
-    force = -delta / 3.0 * shear * slip
-    return _result(normal, "couette", "none", (velocity, spin, shear, force), None)
+    force = -np.einsum("ij,ij->i", resistance[:, 0], states)
+    shear = 3.0 * resistance[:, 0, 0] / params.delta
+    return _result(normal, model, "none", (velocity, spin, shear, force), None)
 
 
 def _initial_spin(params) -> float:

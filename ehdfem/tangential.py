@@ -20,11 +20,11 @@ Two film models (docs/tangential.md derives them):
 
   integrated exactly (U + k a Omega is conserved and u_s decays as
   exp(-(1 + 1/k) (delta/(3 St)) int J dT), with int J dT by the trapezoid rule).
-- ``gcb`` and ``flat``, reduced models of the kind DEM codes use, both linear resistances R(T)
-  on (U, a Omega) integrated like Couette (:func:`integrate_resistance`): ``gcb`` a rigid
-  sphere's leading logarithmic resistances at the normal solution's thinnest film
-  (:func:`gcb_resistance`); ``flat`` the Couette shear of a uniform film, the central
-  thickness, over the Hertz contact disk of the normal force (:func:`flat_contact`).
+- ``gcb`` and ``flat``, reduced models of the kind DEM codes use: ``gcb`` a rigid sphere's
+  leading logarithmic resistances on (U, a Omega) at the normal solution's thinnest film
+  (:func:`gcb_resistance`, integrated by :func:`integrate_resistance`); ``flat`` the Couette
+  model with the shear of a uniform film, the central thickness, over the Hertz contact disk
+  of the normal force (:func:`flat_contact`).
 - ``lubrication`` (beyond the source): the sliding film. The sphere's sliding and rolling drive
   an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.ModeOneFilm`, unit
   (U0/V0) sqrt(delta) mu V0 a / x0^2), which deforms the solids (mode-1 compliance,
@@ -230,10 +230,30 @@ def solve_tangential(
 
 
 def _couette(normal: NormalResult) -> TangentialResult:
-    """The Couette model (module docstring): the resistance (delta/3) J(T) on the slip."""
-    shear = film_integrals(normal)
-    slip = np.array([[1.0, -1.0], [-1.0, 1.0]])
-    return _resisted(normal, "couette", normal.params.delta / 3.0 * shear[:, None, None] * slip)
+    """The Couette model (module docstring): the film's Couette integral J(T) on the slip."""
+    return _sheared(normal, "couette", film_integrals(normal))
+
+
+def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialResult:
+    """The motion under a Couette shear J(T) on the slip (the ``couette`` and ``flat`` models),
+    integrated exactly for each step's mean J: St dU/dT = -(delta/3) J u_s = -k St d(a Omega)/dT
+    conserves U + k a Omega and makes u_s decay by exp(-(1 + 1/k) delta/(3 St) int J dT) (so
+    an overflowing J, a frozen piezoviscous film, rolls the sphere at once)."""
+    params = normal.params
+    hist = normal.history
+    k, St, delta = params.inertia_factor, params.St, params.delta
+    shear_m = 0.5 * (shear[1:] + shear[:-1])
+    rate = delta / (3 * St) * np.diff(hist.time) * shear_m
+    decay = np.exp(-(1.0 + 1.0 / k) * rate)
+    states = np.empty((len(hist.time), 2))
+    states[0] = (1.0, _initial_spin(params))
+    for i, factor in enumerate(decay):
+        slip = (states[i, 0] - states[i, 1]) * factor
+        momentum = k * states[i, 1] + states[i, 0]  # conserved: U + k a Omega
+        states[i + 1] = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
+    velocity, spin = states.T
+    force = -delta / 3.0 * shear * (velocity - spin)
+    return _result(normal, model, "none", (velocity, spin, shear, force), None)
 
 
 def gcb_resistance(delta: float, min_film) -> np.ndarray:
@@ -265,21 +285,19 @@ def flat_contact(params, force, film_thickness):
 
 
 def _flat(normal: NormalResult) -> TangentialResult:
-    """The flat-gap model: the Couette resistance (delta/3) J of a uniform film, the central
-    thickness H(0, T), over the Hertz contact disk of the normal force (:func:`flat_contact`);
-    no shear outside it."""
+    """The flat-gap model: the Couette shear of a uniform film, the central thickness H(0, T),
+    over the Hertz contact disk of the normal force (:func:`flat_contact`); none outside it."""
     hist = normal.history
     _, shear = flat_contact(normal.params, np.asarray(hist.force), hist.film_thickness[:, 0])
-    slip = np.array([[1.0, -1.0], [-1.0, 1.0]])
-    return _resisted(normal, "flat", normal.params.delta / 3.0 * shear[:, None, None] * slip)
+    return _sheared(normal, "flat", shear)
 
 
 def integrate_resistance(time, resistance, St: float, k: float, start) -> np.ndarray:
     """(U, a Omega) at the instants ``time`` (by x0/V0) under a linear resistance R(T)
     (``resistance`` (steps, 2, 2), symmetric non-negative, force by 6 pi mu a^2 U0 / x0):
     St dU/dT = -(R (U, a Omega))_1, k St d(a Omega)/dT = -(R (U, a Omega))_2, from ``start``
-    (by U0). Each step takes the exact exponential of its mean R (trapezoid): exact when the
-    R(T) commute (the Couette models), second order otherwise, and never gaining energy."""
+    (by U0). Each step takes the exact exponential of its mean R (trapezoid): second order,
+    exact for a constant R, and never gaining energy."""
     inverse_mass = np.diag([1.0 / St, 1.0 / (k * St)])
     means = 0.5 * (resistance[1:] + resistance[:-1]) * np.diff(time)[:, None, None]
     states = np.empty((len(time), 2))

@@ -48,7 +48,13 @@ from .closedform import legendre
 from .collision import DEFAULT_NODES, collide, film_radii
 from .compliance import RigidSolids
 from .presets import Liquid, Material, body
-from .scales import ATMOSPHERE, PhysicalCollision
+from .scales import (
+    ATMOSPHERE,
+    PhysicalCollision,
+    elastic_theta,
+    elasticity_parameter,
+    stokes_number,
+)
 from .timestepping import IntegratorOptions
 from .version import __version__
 
@@ -222,17 +228,20 @@ class BounceInputs:
         return 2.0 * self.radius
 
     @property
+    def volume(self) -> float:
+        """The sphere's volume 4/3 pi a^3 [m^3]."""
+        return 4.0 / 3.0 * math.pi * self.radius**3
+
+    @property
     def theta(self) -> float:
         """theta = sum (1 - nu^2) / (pi E) of sphere and wall [1/Pa]."""
-        return sum(
-            (1.0 - s.poisson_ratio**2) / (math.pi * s.young_modulus)
-            for s in (self.sphere, self.wall)
-        )
+        return elastic_theta(self.sphere, self.wall)
 
     def stokes_number(self, speed: float) -> float:
         """St = m |v| / (6 pi mu a^2) = rho_p D |v| / (9 mu), the sphere's own mass (the
         experiments' convention, Gondret et al. 2002; no added mass)."""
-        return self.sphere.density * self.diameter * speed / (9.0 * self.liquid.viscosity)
+        mass = self.sphere.density * self.volume
+        return stokes_number(mass, speed, self.liquid.viscosity, self.radius)
 
     def time_scale(self) -> float:
         """sqrt(D / g) [s], the time unit of the experiments' trajectories."""
@@ -269,9 +278,8 @@ class FarField:
         self.inputs = inputs
         self.handover_jump, self.ehd_multiple = handover_jump, ehd_multiple
         a, liquid = inputs.radius, inputs.liquid
-        volume = 4.0 / 3.0 * math.pi * a**3
-        self.mass = volume * inputs.sphere.density
-        self.fluid_mass = volume * liquid.density
+        self.mass = inputs.volume * inputs.sphere.density
+        self.fluid_mass = inputs.volume * liquid.density
         self.effective_mass = self.mass + inputs.added_mass * self.fluid_mass
         self.net_weight = (self.mass - self.fluid_mass) * inputs.gravity
         self.stokes = 6.0 * math.pi * liquid.viscosity * a
@@ -318,10 +326,13 @@ class FarField:
         )
 
     def ehd_gap(self, speed: float) -> float:
-        """h_EHD = (4 theta mu |v| a^(3/2))^(2/5) [m], the gap x0 at which eps = 1."""
+        """h_EHD = (4 theta mu |v| a^(3/2))^(2/5) [m], the gap x0 at which eps = 1 (eps at
+        x0 = 1 m, to the power 2/5)."""
         inputs = self.inputs
-        scale = 4.0 * inputs.theta * inputs.liquid.viscosity * abs(speed) * inputs.radius**1.5
-        return scale**0.4
+        eps = elasticity_parameter(
+            inputs.theta, inputs.liquid.viscosity, abs(speed), inputs.radius, 1.0
+        )
+        return eps**0.4
 
     def handover_margin(self, gap: float, velocity: float) -> float:
         """Positive above the hand-over gap, zero at it, negative inside: the smaller of
@@ -486,10 +497,9 @@ class BounceResult:
 
     def trajectory_rows(self) -> list[dict]:
         """The trajectory as rows (dicts of TRAJECTORY_COLUMNS), e.g. for a CSV table."""
-        t = self.trajectory
-        return [
-            {name: _plain(t[name][i]) for name in TRAJECTORY_COLUMNS} for i in range(len(t["time"]))
-        ]
+        columns = [np.asarray(self.trajectory[name]).tolist() for name in TRAJECTORY_COLUMNS]
+        rows = zip(*columns, strict=True)
+        return [dict(zip(TRAJECTORY_COLUMNS, row, strict=True)) for row in rows]
 
     def contact_rows(self) -> list[dict]:
         """The contacts as rows (dicts of the :class:`Contact` fields, numbered from 1)."""
@@ -526,11 +536,6 @@ class BounceResult:
         with St_L including the added mass (:func:`ehdfem.closedform.legendre`)."""
         ratio = self.inputs.liquid.density / self.inputs.sphere.density
         return float(legendre(St, self.inputs.e_dry, ratio))
-
-
-def _plain(value):
-    """A numpy scalar as a Python one (for CSV and JSON)."""
-    return value.item() if isinstance(value, np.generic) else value
 
 
 def bounce(

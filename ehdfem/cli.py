@@ -676,7 +676,7 @@ def _write_json(data: dict, target: str | None) -> None:
         sys.stdout.flush()
     else:
         Path(target).parent.mkdir(parents=True, exist_ok=True)
-        Path(target).write_text(text + "\n")
+        _write_atomic(Path(target), text + "\n")
 
 
 def fit_command(args) -> int:
@@ -832,13 +832,13 @@ def bounce_command(args) -> int:
     _write_json(summary, args.json)
     if args.out:
         out = Path(args.out)
+        _write_json(summary, str(out / "bounce.json"))
         wrote = [
             write_csv(out / "trajectory.csv", result.trajectory_rows()),
             write_csv(out / "contacts.csv", result.contact_rows()),
             out / "bounce.json",
             viz.plot_bounce(result, out / "bounce.png"),
         ]
-        _write_atomic(wrote[2], json.dumps(_json_ready(summary), indent=2, allow_nan=False) + "\n")
         for path in wrote:
             print(f"  wrote {path}", file=report)
     return 0

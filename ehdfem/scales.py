@@ -39,6 +39,12 @@ def stokes_number(mass: float, speed: float, viscosity: float, radius: float) ->
     return mass * speed / (6.0 * math.pi * viscosity * radius**2)
 
 
+def elastic_theta(*solids) -> float:
+    """theta = sum (1 - nu^2)/(pi E) over ``solids`` (each with young_modulus [Pa] and
+    poisson_ratio) [1/Pa]."""
+    return sum((1 - s.poisson_ratio**2) / (math.pi * s.young_modulus) for s in solids)
+
+
 def elasticity_parameter(theta, viscosity, speed, radius, layer_thickness) -> float:
     """eps = 4 theta mu V0 a^(3/2) / x0^(5/2) (SI inputs, theta in 1/Pa)."""
     return 4.0 * theta * viscosity * speed * radius**1.5 / layer_thickness**2.5
@@ -252,10 +258,8 @@ class PhysicalCollision:
 
     @property
     def theta(self) -> float:
-        """theta = sum (1 - nu^2)/(pi E) [1/Pa]."""
-        return sum(
-            (1 - s.poisson_ratio**2) / (math.pi * s.young_modulus) for s in (self.sphere, self.wall)
-        )
+        """theta = sum (1 - nu^2)/(pi E) of sphere and wall [1/Pa] (:func:`elastic_theta`)."""
+        return elastic_theta(self.sphere, self.wall)
 
     @property
     def alpha(self) -> float:

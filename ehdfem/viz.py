@@ -134,10 +134,10 @@ def plot_tangential(collision, path: Path) -> Path:
     return _save(fig, path)
 
 
-def plot_bounce(result, path: Path, measured=None) -> Path:
+def plot_bounce(result, path: Path) -> Path:
     """A bounce (:class:`ehdfem.bounce.BounceResult`) as in the experiments: gap / D against
     t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St marked at
-    its apex. ``measured``: optional (t [s], gap [m]) of an experiment, time 0 at its impact."""
+    its apex."""
     inputs = result.inputs
     diameter, unit = inputs.diameter, inputs.time_scale()
     trajectory = result.trajectory
@@ -150,16 +150,6 @@ def plot_bounce(result, path: Path, measured=None) -> Path:
         lw=1.4,
         label=f"ehdfem bounce ({result.model}, {inputs.drag})",
     )
-    if measured is not None:
-        ax.plot(
-            np.asarray(measured[0]) / unit,
-            np.asarray(measured[1]) / diameter,
-            "o",
-            mfc="none",
-            color="k",
-            ms=4,
-            label="experiment",
-        )
     for c in result.contacts:
         if c.apex_time is not None:
             ax.annotate(

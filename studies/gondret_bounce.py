@@ -188,6 +188,21 @@ def model_time_origin(traj) -> float:
     return float(traj["time"][np.flatnonzero(traj["phase"] == "contact")[0]])
 
 
+def plot_digitised(ax, points, unit, diameter):
+    """The digitised experiment ``points`` (time [s], gap [m]; None: none) on ``ax``, by
+    sqrt(D/g) ``unit`` [s] and D ``diameter`` [m]."""
+    if points is not None:
+        ax.plot(
+            points[0] / unit,
+            points[1] / diameter,
+            "o",
+            mfc="none",
+            color="k",
+            ms=4,
+            label="experiment (digitised)",
+        )
+
+
 def plot_case(run, row, data):
     inputs = case_inputs(run)
     unit, diameter = inputs.time_scale(), inputs.diameter
@@ -200,11 +215,7 @@ def plot_case(run, row, data):
         lw=1.4,
         label=f"ehdfem bounce: e = {float(row['e']):.3f} at St = {float(row['St']):.0f}",
     )
-    if run.label in data:
-        t, h = data[run.label]
-        ax.plot(
-            t / unit, h / diameter, "o", mfc="none", color="k", ms=4, label="experiment (digitised)"
-        )
+    plot_digitised(ax, data.get(run.label), unit, diameter)
     after = traj["time"] > origin  # the bounces set the scale, not the release
     highest = max([traj["gap"][after].max(), *data.get(run.label, ([], [0.0]))[1]])
     ax.set_xlim(-0.5, (traj["time"][-1] - origin) / unit)
@@ -239,11 +250,7 @@ def plot_choices(run, rows, data):
             lw=1.1,
             label=f"{variant}: e = {float(row['e']):.3f}",
         )
-    if run.label in data:
-        t, h = data[run.label]
-        ax.plot(
-            t / unit, h / diameter, "o", mfc="none", color="k", ms=4, label="experiment (digitised)"
-        )
+    plot_digitised(ax, data.get(run.label), unit, diameter)
     ax.set_xlim(-1, 12 if run.label == "St152" else 4)
     ax.set_ylim(0, 4.0 if run.label == "St152" else 0.5)
     ax.set_xlabel(r"$t/\sqrt{D/g}$")

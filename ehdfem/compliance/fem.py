@@ -345,7 +345,9 @@ class FESolids:
     def profile_values(self, faces) -> np.ndarray:
         """The owned entries (rows, columns) of the P2 traction profiles with nodal values
         ``faces`` = (upper, lower), each (N, columns) at the film nodes (linear between them,
-        zero beyond the last; :meth:`film_pressure`), on the two contact faces, zero elsewhere."""
+        zero beyond the last; :meth:`film_pressure`), on the two contact faces, zero elsewhere;
+        in the units of the nodal values (the film pressure unit mu V0 a / x0^2 for the films'
+        loads)."""
         values = np.zeros((self._profile_space.dofmap.index_map.size_local, faces[0].shape[1]))
         for (dofs, r), nodal in zip(self._profile_rows, faces, strict=True):
             for k in range(nodal.shape[1]):
@@ -354,7 +356,8 @@ class FESolids:
 
     def traction_loads(self, matrix, values: np.ndarray) -> np.ndarray:
         """The owned rows of ``matrix`` (unknowns x P2 profile dofs) times the owned profile
-        entries ``values`` (:meth:`profile_values`), as a dense array (rows, columns)."""
+        entries ``values`` (:meth:`profile_values`), as a dense array (rows, columns): load
+        vectors int t . v r ds with lengths by a, in the unit of ``values`` times a^2."""
         from petsc4py import PETSc
 
         index_map = self._profile_space.dofmap.index_map

@@ -28,7 +28,7 @@ import numpy as np
 from . import cavitation, checks, viz
 from .bounce import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, BounceInputs, bounce
 from .bounce import MODELS as BOUNCE_MODELS
-from .closedform import GROUPED, fit_table
+from .closedform import GROUPED, describe_ranges, fit_table, model_labels, python_source
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
 from .compliance.fem import LOWER_BODIES
 from .exports import field_snapshots, write_fields
@@ -309,6 +309,11 @@ def _parser() -> argparse.ArgumentParser:
     f = command("fit", "closed-form fits (and DEM formulas) against a sweep table")
     f.add_argument("table", help="CSV table written by ehdfem sweep")
     f.add_argument("--json", metavar="FILE", help="write the fits as JSON ('-': stdout)")
+    f.add_argument(
+        "--python",
+        metavar="FILE",
+        help="write the closed forms for DEM (e_n, e_t, spin change) as a Python module to copy",
+    )
 
     p = command("presets", "list the material and liquid presets: values (SI) and sources")
     p.add_argument("--json", metavar="FILE", help="write the presets as JSON ('-': stdout)")
@@ -684,7 +689,8 @@ def fit_command(args) -> int:
     if not path.is_file():
         raise checks.InputError(f"table {args.table!r} does not exist")
     with path.open() as f:
-        fits = fit_table(list(csv.DictReader(f)))
+        rows = list(csv.DictReader(f))
+    fits = fit_table(rows)
     report = _report_stream(args)
     for group in fits["normal"]:
         print(
@@ -693,19 +699,36 @@ def fit_command(args) -> int:
             f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}",
             file=report,
         )
-    laws = [(f"St_c ({_labels(law['model'])})", law) for law in fits["critical_stokes_laws"]]
-    laws += [(name, fits[name]) for name in ("tangential_loss", "spin_change") if name in fits]
-    for name, law in laws:
-        terms = " ".join(f"{k}^{v:.4g}" for k, v in law.items() if k in ("St", "eps"))
+    for law in fits["critical_stokes_laws"]:
         print(
-            f"{name}: {law['coefficient']:.4g} {terms}"
+            f"St_c ({_labels(law['model'])}): {law['coefficient']:.4g} eps^{law['eps']:.4g}"
             f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}",
             file=report,
         )
+    forms = fits.get("closed_forms")
+    if forms is not None:
+        print(f"closed forms for DEM over {describe_ranges(forms['ranges'])}:", file=report)
+        for name in ("normal", "tangential_loss", "spin_change"):
+            form = forms[name]
+            relative = form.get("max_relative_error")
+            print(
+                f"  {form['form']}\n    max error {form['max_error']:.3g}, rms "
+                f"{form['rms_error']:.3g}"
+                + ("" if relative is None else f", max relative error {relative:.3g}"),
+                file=report,
+            )
+    elif args.python:
+        raise checks.InputError(f"--python: {fits['closed_forms_skipped']}")
     for name, errors in fits["dem_formulas"].items():
         error, rms = errors["max_error"], errors["rms_error"]
         print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
     _write_json(fits, args.json)
+    if args.python:
+        rows = [r for r in rows if str(r["status"]).startswith("ok")]
+        model = ", ".join(f"{k} {v}" for k, v in model_labels(rows).items())
+        source = python_source(forms, path.name, model, len(rows), __version__)
+        _write_atomic(Path(args.python), source)
+        print(f"wrote {args.python}", file=report)
     return 0
 
 

@@ -11,11 +11,11 @@ sphere) and converts it to the convention of its source:
 - Exponential form with a free critical number (LIGGGHTS-style): e = e_max exp(-St_c / St).
 
 Fits (`fit_table`): the normal restitution per (eps, delta, layer, P_cav, cavitation model,
-viscosity law, alpha) group to
-e_n = e_inf (1 - St_c/St), St_c against eps as a power law St_c = A eps^B (for each model), and
-the tangential
-loss 1 - e_t = delta A St^B eps^C (and likewise the spin change), with the maximum and rms error
-over the rebounding points.
+viscosity law, alpha) group to e_n = e_inf (1 - St_c/St), St_c against eps as a power law
+St_c = A eps^B (for each model), with the maximum and rms error over the rebounding points; and,
+for tables with e_t, the closed forms for DEM of `fit_closed_forms`: e_n, e_t and the spin
+change as functions of (St, eps, delta, P_cav), with their errors and ranges, which
+`python_source` writes out as a module a particle code can copy.
 """
 
 from __future__ import annotations
@@ -145,21 +145,16 @@ def fit_table(rows: list[dict]) -> dict:
     out["critical_stokes_laws"] = laws
     if len(laws) == 1:  # a table of one model (the usual case)
         out["critical_stokes_law"] = laws[0]
-    rebound = [r for r in ok if r.get("e_t") not in (None, "", "None") and num(r, "e_n") > 0]
-    if len(rebound) >= 4:
-        features = {k: np.array([num(r, k) for r in rebound]) for k in ("St", "eps")}
-        delta = np.array([num(r, "delta") for r in rebound])
-        for name, target in (
-            ("tangential_loss", [1 - num(r, "e_t") for r in rebound]),
-            ("spin_change", [num(r, "spin_change") for r in rebound]),
-        ):
-            target = np.array(target)
-            law = fit_power_law(features, target / delta)
-            out[name] = {
-                "form": f"{name} = delta * coefficient * St^St * eps^eps",
-                **law,
-                **_errors(delta * power_law(law, **features), target),
-            }
+    if any(r.get("e_t") not in (None, "", "None") for r in ok):
+        mixed = [k for k, values in _labels_taken(ok).items() if len(values) > 1]
+        if mixed:
+            out["closed_forms_skipped"] = (
+                f"no closed forms: the table mixes {', '.join(mixed)} (fit one model at a time)"
+            )
+        else:
+            out["closed_forms"] = fit_closed_forms(
+                [r for r in ok if r.get("e_t") not in (None, "", "None")]
+            )
     St_all = np.array([num(r, "St") for r in ok])
     e_all = np.array([num(r, "e_n") for r in ok])
     out["dem_formulas"] = {
@@ -167,6 +162,25 @@ def fit_table(rows: list[dict]) -> dict:
         "exponential_fitted": _exponential_errors(St_all, e_all),
     }
     return out
+
+
+# the labels of one model, besides the closed forms' inputs (delta and P_cav are inputs)
+MODEL_LABELS = (*((k, d) for k, d in GROUPED if k != "p_cav"), ("tangential", "couette"))
+
+
+def _labels_taken(rows) -> dict:
+    """{label: the set of its values in ``rows``} for the MODEL_LABELS."""
+    return {k: {str(r.get(k) or d) for r in rows} for k, d in MODEL_LABELS}
+
+
+def model_labels(rows) -> dict:
+    """The model of a table whose rows share one: {label: value} over MODEL_LABELS."""
+    return {k: values.pop() for k, values in _labels_taken(rows).items() if len(values) == 1}
+
+
+def describe_ranges(ranges: dict) -> str:
+    """ "St in [lo, hi], ..." for a form's ranges."""
+    return ", ".join(f"{k} in [{lo:.3g}, {hi:.3g}]" for k, (lo, hi) in ranges.items())
 
 
 def _exponential_errors(St, e_n) -> dict:
@@ -177,4 +191,256 @@ def _exponential_errors(St, e_n) -> dict:
         "St_c": float(St_c),
         "e_max": float(e_max),
         **_errors(exponential(St, St_c, e_max), e_n),
+    }
+
+
+# --- Closed forms for DEM -------------------------------------------------------------------
+# Every group q(St, eps, P_cav) below is exp of a full quadratic in the logarithms of the
+# inputs that vary in the fitted table (ln St, ln eps, ln |P_cav|): the quadratic terms carry
+# the curvature in log St that a single power law misses.
+
+LOG_INPUTS = ("St", "eps", "p_cav")
+"""The inputs of the closed forms by name (P_cav enters by its magnitude, the suction limit)."""
+
+
+def _logs(values: dict, names) -> np.ndarray:
+    """Columns ln|x| of ``values[name]`` for ``names``."""
+    return np.column_stack([np.log(np.abs(np.asarray(values[n], dtype=float))) for n in names])
+
+
+def _quadratic_design(logs: np.ndarray) -> np.ndarray:
+    """[1, x_i, x_i x_j (i <= j)] for the columns x of ``logs``."""
+    n = logs.shape[1]
+    cross = [logs[:, i] * logs[:, j] for i in range(n) for j in range(i, n)]
+    return np.column_stack([np.ones(len(logs)), logs, *cross])
+
+
+def log_quadratic(form: dict, **inputs):
+    """exp(quadratic in the logs) of a fitted ``form`` ({"inputs": names, "coefficients"}) at
+    ``inputs`` (arrays or numbers, by name)."""
+    logs = _logs(inputs, form["inputs"]) if form["inputs"] else np.zeros((1, 0))
+    return np.exp(_quadratic_design(logs) @ np.asarray(form["coefficients"]))
+
+
+def _fit_log_quadratic(inputs: dict, target) -> dict:
+    """Least squares of ln target on a quadratic in the logs of ``inputs``."""
+    names = tuple(inputs)
+    design = _quadratic_design(_logs(inputs, names))
+    coefficients, *_ = np.linalg.lstsq(design, np.log(target), rcond=None)
+    return {"inputs": names, "coefficients": coefficients.tolist()}
+
+
+def normal_closed_form(forms: dict, St, eps, p_cav):
+    """e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0 (pure EHD; multiply by e_dry), with
+    St_c, e_inf / (1 - e_inf) and m each exp(quadratic in ln eps, ln |P_cav|)."""
+    inputs = {"eps": eps, "p_cav": p_cav}
+    St_c, odds, m = (log_quadratic(forms[k], **inputs) for k in ("St_c", "e_inf_odds", "m"))
+    ratio = np.clip(St_c / np.asarray(St, dtype=float), 0.0, 1.0)
+    return odds / (1.0 + odds) * (1.0 - ratio**m)
+
+
+def _varying(rows, names) -> tuple:
+    """Those of ``names`` that take more than one value in ``rows`` (the others are held fixed
+    by the table and left out of the forms)."""
+    return tuple(n for n in names if len({float(r[n]) for r in rows}) > 1)
+
+
+def fit_closed_forms(rows: list[dict]) -> dict:
+    """Closed forms for DEM fitted to the successful rows of a table with e_n, e_t and the spin
+    change (dimensionless; spin change a DeltaOmega/U0):
+
+    - e_n = e_inf (1 - (St_c/St)^m), 0 below St_c (:func:`normal_closed_form`): first per
+      (eps, P_cav) group, then St_c, the odds e_inf/(1 - e_inf) and m as exp(quadratic in
+      ln eps, ln |P_cav|), then all coefficients together on every point (sticking ones
+      included, where the form must give 0);
+    - 1 - e_t = delta exp(Q) and spin change = delta exp(Q), Q quadratic in ln St, ln eps,
+      ln |P_cav| (least squares in the logs, rebounds only).
+
+    Inputs held fixed by the table are left out. Each form carries its maximum and rms error
+    (absolute, in e_n, e_t, spin change) and the ranges it was fitted over."""
+    num = lambda r, k: float(r[k])  # noqa: E731
+    varying = _varying(rows, ("eps", "p_cav"))
+    columns = {k: np.array([num(r, k) for r in rows]) for k in ("St", "eps", "p_cav", "delta")}
+    e_n = np.array([num(r, "e_n") for r in rows])
+    ranges = {k: [float(v.min()), float(v.max())] for k, v in columns.items()}
+    normal = _fit_normal_form(columns, e_n, varying)
+    out = {"ranges": ranges, "normal": normal}
+    rebound = e_n > 0
+    inputs = {k: columns[k][rebound] for k in ("St", *varying)}
+    delta = columns["delta"][rebound]
+    for name, target in (
+        ("tangential_loss", 1 - np.array([num(r, "e_t") for r in rows])[rebound]),
+        ("spin_change", np.array([num(r, "spin_change") for r in rows])[rebound]),
+    ):
+        form = _fit_log_quadratic(inputs, target / delta)
+        predicted = delta * log_quadratic(form, **inputs)
+        out[name] = {
+            **form,
+            "form": f"{name} = delta exp(Q(ln St, ln eps, ln |P_cav|)), rebounds only",
+            **_errors(predicted, target),
+            "max_relative_error": float(np.max(np.abs(predicted / target - 1))),
+        }
+    return out
+
+
+NORMAL_FORMS = ("St_c", "e_inf_odds", "m")
+
+
+def _constant_forms(logs) -> dict:
+    """The e_n forms with no inputs: St_c, the odds and m = exp(``logs``)."""
+    return {n: {"inputs": (), "coefficients": [c]} for n, c in zip(NORMAL_FORMS, logs, strict=True)}
+
+
+def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
+    """The e_n closed form (see :func:`fit_closed_forms`)."""
+    keys = [tuple(columns[k][i] for k in varying) for i in range(len(e_n))]
+    groups = defaultdict(list)
+    for i, key in enumerate(keys):
+        groups[key].append(i)
+    per_group = {}
+    for key, members in groups.items():
+        St, target = columns["St"][members], e_n[members]
+        if (target > 0).sum() < 3:
+            continue
+        start = [np.log(0.95 * St[target > 0].min()), np.log(10.0), 0.0]
+        result = least_squares(
+            lambda p, St=St, target=target: (
+                normal_closed_form(_constant_forms(p), St, 1.0, 1.0) - target
+            ),
+            start,
+            bounds=([-10, -5, -3], [10, 10, 3]),
+            xtol=1e-15,
+            ftol=1e-15,
+        )
+        per_group[key] = result.x
+    if len(per_group) < 1:
+        raise checks.InputError("the closed form of e_n needs a group with 3 rebounding points")
+    group_inputs = {k: np.array([key[i] for key in per_group]) for i, k in enumerate(varying)}
+    forms = {
+        name: _fit_log_quadratic(group_inputs, np.exp([p[j] for p in per_group.values()]))
+        for j, name in enumerate(NORMAL_FORMS)
+    }
+    sizes = [len(f["coefficients"]) for f in forms.values()]
+    at = {k: columns[k] for k in ("St", "eps", "p_cav")}
+
+    def residual(flat):
+        split = np.split(flat, np.cumsum(sizes)[:-1])
+        trial = {
+            n: {"inputs": varying, "coefficients": c}
+            for n, c in zip(NORMAL_FORMS, split, strict=True)
+        }
+        return normal_closed_form(trial, **at) - e_n
+
+    flat = np.concatenate([f["coefficients"] for f in forms.values()])
+    flat = least_squares(residual, flat, xtol=1e-15, ftol=1e-15, gtol=1e-15).x
+    for form, coefficients in zip(
+        forms.values(), np.split(flat, np.cumsum(sizes)[:-1]), strict=True
+    ):
+        form["coefficients"] = coefficients.tolist()
+    predicted = residual(flat) + e_n
+    return {
+        **forms,
+        "form": "e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0; St_c, e_inf/(1 - e_inf) and "
+        "m = exp(Q(ln eps, ln |P_cav|))",
+        **_errors(predicted, e_n),
+    }
+
+
+_MODULE = '''"""Closed forms for wet collisions of a sphere on a wall through a thin liquid
+layer, fitted by ehdfem {version} (`ehdfem fit`) to {table}: {points} collisions of the
+{model} model.
+
+All inputs and outputs are dimensionless (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu
+a^2), eps = 4 theta mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu
+V0 a) < 0, with V0 the normal impact speed and x0 the layer thickness (dimensionless_groups
+computes them from SI inputs). e_n is the pure EHD value: multiply by the dry restitution.
+The spin change is a DeltaOmega/U0 (U0 the tangential impact speed).
+
+Fitted over {ranges}.
+Errors against the table (absolute): e_n max {normal_max:.2g} (rms {normal_rms:.2g}); e_t max
+{loss_max:.2g} (relative to 1 - e_t {loss_rel:.2g}); spin change max {spin_max:.2g} (relative
+{spin_rel:.2g}). Outside these ranges the forms are extrapolations.
+"""
+
+import math
+
+FORMS = {forms!r}
+
+
+def _fitted(name, **inputs):
+    """exp of the quadratic in the logarithms of the form's inputs (|x| for P_cav)."""
+    form = FORMS[name]
+    logs = [math.log(abs(inputs[key])) for key in form["inputs"]]
+    terms = [1.0, *logs]
+    terms += [logs[i] * logs[j] for i in range(len(logs)) for j in range(i, len(logs))]
+    return math.exp(sum(c * t for c, t in zip(form["coefficients"], terms)))
+
+
+def critical_stokes(eps, p_cav):
+    """St_c: no rebound below it."""
+    return _fitted("St_c", eps=eps, p_cav=p_cav)
+
+
+def normal_restitution(St, eps, p_cav):
+    """e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0 (pure EHD)."""
+    St_c = critical_stokes(eps, p_cav)
+    if St <= St_c:
+        return 0.0
+    odds = _fitted("e_inf_odds", eps=eps, p_cav=p_cav)
+    return odds / (1.0 + odds) * (1.0 - (St_c / St) ** _fitted("m", eps=eps, p_cav=p_cav))
+
+
+def tangential_restitution(St, eps, delta, p_cav):
+    """e_t = 1 - delta exp(Q(ln St, ln eps, ln |P_cav|)), for a rebounding sphere."""
+    return 1.0 - delta * _fitted("tangential_loss", St=St, eps=eps, p_cav=p_cav)
+
+
+def spin_change(St, eps, delta, p_cav):
+    """a DeltaOmega/U0 = delta exp(Q(ln St, ln eps, ln |P_cav|)), for a rebounding sphere."""
+    return delta * _fitted("spin_change", St=St, eps=eps, p_cav=p_cav)
+
+
+def dimensionless_groups(
+    radius, density, normal_speed, viscosity, theta, layer_thickness, cavitation_pressure,
+    ambient_pressure=101325.0,
+):
+    """(St, eps, delta, P_cav) of a solid sphere (SI inputs: m, kg/m^3, m/s, Pa s; theta =
+    sum (1 - nu^2)/(pi E) of sphere and wall in 1/Pa; pressures absolute in Pa)."""
+    mass = 4.0 / 3.0 * math.pi * radius**3 * density
+    St = mass * normal_speed / (6.0 * math.pi * viscosity * radius**2)
+    eps = 4.0 * theta * viscosity * normal_speed * radius**1.5 / layer_thickness**2.5
+    scale = viscosity * normal_speed * radius / layer_thickness**2
+    return St, eps, layer_thickness / radius, (cavitation_pressure - ambient_pressure) / scale
+'''
+
+
+def python_source(fits: dict, table: str, model: str, points: int, version: str) -> str:
+    """A Python module (text) with the closed forms of :func:`fit_closed_forms` ``fits``: the
+    functions critical_stokes, normal_restitution, tangential_restitution, spin_change and
+    dimensionless_groups, standard library only, for a particle code to copy."""
+    normal, loss, spin = fits["normal"], fits["tangential_loss"], fits["spin_change"]
+    forms = {n: _plain(normal[n]) for n in NORMAL_FORMS}
+    forms.update(tangential_loss=_plain(loss), spin_change=_plain(spin))
+    ranges = describe_ranges(fits["ranges"])
+    return _MODULE.format(
+        version=version,
+        table=table,
+        points=points,
+        model=model,
+        ranges=ranges,
+        forms=forms,
+        normal_max=normal["max_error"],
+        normal_rms=normal["rms_error"],
+        loss_max=loss["max_error"],
+        loss_rel=loss["max_relative_error"],
+        spin_max=spin["max_error"],
+        spin_rel=spin["max_relative_error"],
+    )
+
+
+def _plain(form: dict) -> dict:
+    """A form's inputs and coefficients as plain lists (for the written module)."""
+    return {
+        "inputs": list(form["inputs"]),
+        "coefficients": [float(c) for c in form["coefficients"]],
     }

@@ -320,31 +320,62 @@ def _collide_on(params, compliance, options, sliding, physical, given_mode_one=N
     (tangential model, mode-1 deformation); ``given_mode_one``: a mode-1 compliance at
     params.eps that is not closed here (None: built here when needed, and closed)."""
     normal = solve_normal(params, compliance, options)
-    tangential_result = superposition = None
-    if params.tangential_speed > 0:
-        model, deformation = sliding
-        mode_one = None
-        if model == "lubrication" and deformation != "none":
-            mode_one = given_mode_one
-            if mode_one is None:
-                mode_one = mode_one_elasticity(params, compliance, physical)
-        built = mode_one is not None and given_mode_one is None
-        surface_sum = getattr(compliance, "surface_sum_matrix", None)
-        try:
-            tangential_result = solve_tangential(normal, model, mode_one, surface_sum, deformation)
-            if model == "lubrication":
-                superposition = superposition_validity(
-                    normal,
-                    tangential_result,
-                    lambda unloaded: solve_tangential(
-                        normal, model, mode_one, surface_sum, deformation, unloaded
-                    ),
-                )
-                if superposition.flagged:
-                    warnings.warn(superposition.warning(), SuperpositionWarning, stacklevel=3)
-        finally:
-            if built:
-                mode_one.close()
-    return CollisionResult(
-        params, compliance.model, normal, tangential_result, physical, compliance, superposition
+    result = CollisionResult(params, compliance.model, normal, None, physical, compliance)
+    if params.tangential_speed == 0:
+        return result
+    return _slide(result, sliding, given_mode_one)
+
+
+def with_tangential(
+    result: CollisionResult,
+    tangential: str,
+    mode_one: ModeOneCompliance | None = None,
+    deformation: str = "gap",
+) -> CollisionResult:
+    """The same collision with another tangential film model: the normal motion of ``result``
+    (oblique, with its compliance) is kept and only the tangential motion is solved again, as
+    :func:`collide` would with ``tangential``, ``deformation`` and ``mode_one`` (the mode-1
+    compliance for ``result.compliance``; None: built and closed here when needed). The normal
+    motion does not depend on the tangential one (the decoupling of :mod:`ehdfem.tangential`),
+    so this equals a new :func:`collide` call at a fraction of its cost."""
+    checks.choice("tangential", tangential, TANGENTIAL_MODELS)
+    checks.choice("deformation", deformation, DEFORMATIONS)
+    if result.params.tangential_speed == 0 or result.compliance is None:
+        raise checks.InputError("with_tangential needs an oblique collision with its compliance")
+    if mode_one is not None:
+        _check_mode_one(mode_one, result.compliance)
+        mode_one = mode_one.with_eps(result.params.eps)
+    bare = CollisionResult(
+        result.params, result.model, result.normal, None, result.physical, result.compliance
     )
+    return _slide(bare, (tangential, deformation), mode_one)
+
+
+def _slide(result, sliding, given_mode_one):
+    """``result`` (its normal motion solved) with the tangential motion of ``sliding``
+    (tangential model, mode-1 deformation) added; ``given_mode_one`` as in :func:`_collide_on`."""
+    params, normal, compliance = result.params, result.normal, result.compliance
+    model, deformation = sliding
+    mode_one = None
+    if model == "lubrication" and deformation != "none":
+        mode_one = given_mode_one
+        if mode_one is None:
+            mode_one = mode_one_elasticity(params, compliance, result.physical)
+    built = mode_one is not None and given_mode_one is None
+    surface_sum = getattr(compliance, "surface_sum_matrix", None)
+    try:
+        result.tangential = solve_tangential(normal, model, mode_one, surface_sum, deformation)
+        if model == "lubrication":
+            result.superposition = superposition_validity(
+                normal,
+                result.tangential,
+                lambda unloaded: solve_tangential(
+                    normal, model, mode_one, surface_sum, deformation, unloaded
+                ),
+            )
+            if result.superposition.flagged:
+                warnings.warn(result.superposition.warning(), SuperpositionWarning, stacklevel=4)
+    finally:
+        if built:
+            mode_one.close()
+    return result

@@ -14,7 +14,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem.closedform import davis_rager_good, fit_power_law, legendre, power_law  # noqa: E402
+from ehdfem.closedform import (  # noqa: E402
+    davis_rager_good,
+    fit_power_law,
+    legendre,
+    log_quadratic,
+    power_law,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies" / "results"
@@ -73,13 +79,14 @@ def main():
         )
         ax_s.loglog(St, [float(r["spin_change"]) for r in sel], "o", ms=3, color=colour)
         for ax, name in ((ax_t, "tangential_loss"), (ax_s, "spin_change")):
-            ax.loglog(St, 0.01 * power_law(fits[name], St=St, eps=eps), "-", color=colour, lw=1)
+            form = fits["closed_forms"][name]
+            ax.loglog(St, 0.01 * log_quadratic(form, St=St, eps=eps), "-", color=colour, lw=1)
     ax_t.set_ylabel("1 - e_t")
     ax_s.set_ylabel(r"a$\Delta\Omega/U_0$")
     for ax in (ax_t, ax_s):
         ax.set_xlabel("St")
     ax_t.legend(fontsize=7)
-    fig.suptitle("rebounding spheres; lines: delta A St^B eps^C fits")
+    fig.suptitle("rebounding spheres; lines: the closed forms delta exp(Q(ln St, ln eps))")
     fig.tight_layout()
     fig.savefig(FIGURES / "kantak_davis_tangential.png", dpi=120)
     print(f"wrote {FIGURES}/kantak_davis_normal.png and kantak_davis_tangential.png")

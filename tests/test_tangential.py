@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp, trapezoid
 
-from ehdfem.collision import collide
+from ehdfem.checks import InputError
+from ehdfem.collision import collide, with_tangential
 from ehdfem.compliance import RigidSolids
 from ehdfem.compliance.halfspace import HalfSpaceCompliance
 from ehdfem.film import Film, radial_grid
@@ -194,3 +195,24 @@ def test_reduced_models_lose_energy_and_keep_their_balance(model):
         end = t.time <= result.normal.contact_time
         impulse = trapezoid(t.force[end], t.time[end]) / St
         assert 1 + impulse == pytest.approx(t.velocity[end][-1], abs=1e-3 * (1 - t.e_t))
+
+
+def test_another_tangential_model_on_the_same_normal_motion():
+    """with_tangential keeps the normal motion and solves only the tangential one: for every
+    model its e_t, spin change and histories equal a new collide call's exactly (same
+    arithmetic), and the normal result is the same object."""
+    params = CollisionParameters(**PARAMS)
+    first = collide(params, nodes=80)
+    for model in ("lubrication", "gcb", "flat", "couette"):
+        again = with_tangential(first, model)
+        direct = collide(params, nodes=80, tangential=model)
+        assert again.normal is first.normal and again.tangential.model == model
+        assert again.tangential.e_t == direct.tangential.e_t
+        assert again.tangential.spin_change == direct.tangential.spin_change
+        np.testing.assert_array_equal(again.tangential.velocity, direct.tangential.velocity)
+    assert first.tangential.model == "couette"  # the first result is left as it was
+    with pytest.raises(InputError, match="tangential"):
+        with_tangential(first, "coulomb")
+    head_on = collide(CollisionParameters(**{**PARAMS, "angle": 0.0}), nodes=80)
+    with pytest.raises(InputError, match="oblique"):
+        with_tangential(head_on, "gcb")

@@ -9,6 +9,10 @@
 #   lint     ruff check and ruff format --check
 #   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
+#   claims   the source's tangential claims along physical sweeps (studies/source_claims.py,
+#            2 ranks; its verdicts go into docs/validation.md with `validate`)
+#   closed-forms  the closed forms for DEM: the table on 2 ranks, then ehdfem fit (JSON and a
+#            Python module to copy, studies/results/dem_closed_forms*.{json,py})
 #   validate the validation report docs/validation.md (both models against published results)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -89,6 +93,11 @@ case "$job" in
         "$PY" benchmarks/accuracy.py
         mpirun -n 2 "$PY" benchmarks/fem_collision.py "$@" ;;
     study) setup; run_study ;;
+    claims) setup; mpirun -n 2 "$PY" studies/source_claims.py ;;
+    closed-forms) setup
+        mpirun -n 2 "$VENV/bin/ehdfem" sweep studies/dem_closed_forms.toml
+        "$VENV/bin/ehdfem" fit studies/results/dem_closed_forms.csv \
+            --json studies/results/dem_closed_forms_fit.json --python studies/results/dem_closed_forms.py ;;
     validate) setup; "$PY" studies/validation.py ;;
-    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|validate [args]" >&2; exit 2 ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate [args]" >&2; exit 2 ;;
 esac

@@ -1,9 +1,13 @@
 """Closed-form restitution models: conventions and fits that recover known coefficients."""
 
+import csv
+import json
+
 import numpy as np
 import pytest
 
 from ehdfem import closedform as cf
+from ehdfem.cli import main
 from ehdfem.presets import EXAMPLE
 from ehdfem.scales import elastic_theta, from_presets
 
@@ -183,3 +187,35 @@ def test_closed_forms_need_one_model():
     rows += [{**r, "tangential": "couette"} for r in rows]
     fit = cf.fit_table(rows)
     assert "closed_forms" not in fit and "tangential" in fit["closed_forms_skipped"]
+
+
+def _write_table(path, rows):
+    with path.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def test_fit_command_writes_the_closed_forms_module(tmp_path, capsys):
+    """`ehdfem fit TABLE --json --python` writes the fits and a module whose functions give
+    the table's e_t; a table of two models is refused with the reason."""
+    table = tmp_path / "table.csv"
+    _write_table(table, _curved_table())
+    module_path, fits = tmp_path / "forms.py", tmp_path / "fit.json"
+    assert main(["fit", str(table), "--json", str(fits), "--python", str(module_path)]) == 0
+    assert "closed forms for DEM" in capsys.readouterr().out
+    written = json.loads(fits.read_text())["closed_forms"]
+    module = {}
+    exec(compile(module_path.read_text(), str(module_path), "exec"), module)  # noqa: S102
+    assert module["FORMS"]["tangential_loss"]["coefficients"] == pytest.approx(
+        written["tangential_loss"]["coefficients"], rel=1e-15
+    )
+    row = _curved_table()[100]
+    assert module["tangential_restitution"](
+        row["St"], row["eps"], row["delta"], row["p_cav"]
+    ) == pytest.approx(row["e_t"], rel=1e-12)
+    mixed = _curved_table()
+    mixed += [{**r, "tangential": "couette"} for r in mixed]
+    _write_table(table, mixed)
+    assert main(["fit", str(table), "--python", str(module_path)]) == 2
+    assert "mixes tangential" in capsys.readouterr().err

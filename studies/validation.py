@@ -331,8 +331,10 @@ def report(critical, gondret, dry, St_c, e_n, e_t):
         "several groups together. A cell says 'holds' when every curve of that "
         "parameterisation goes the claimed way, 'opposite' when every one goes the other way, "
         "and otherwise how the curves go (steps of less than 1 % in ln e_n, ln(1 - e_t) or "
-        "ln(spin change) count as level). Six models: Couette and sliding film on half-spaces "
-        "and on FE solids, and the reduced models gcb and flat.",
+        "ln(spin change) count as level). The last three rows give spreads: max/min - 1 of "
+        "1 - e_t over the angles, and of (1 - e_t)/delta over delta = 0.003-0.1. Six models: "
+        "Couette and sliding film on half-spaces and on FE solids, and the reduced models gcb "
+        "and flat.",
         "",
         *claim_lines(),
         "",
@@ -346,7 +348,11 @@ def report(critical, gondret, dry, St_c, e_n, e_t):
         "falls over most of the sweep, as the abstract says for large compliance. The spin change "
         "mirrors e_t throughout. The abstract's trends are therefore those of physical sweeps "
         "(speed, layer), not of one group at a time; which sweep the source used we cannot "
-        "tell without its full text.",
+        "tell without its full text. e_t does not depend on the angle, exactly, and 1 - e_t is "
+        "linear in delta to leading order: the 3.5-3.7 % fall of (1 - e_t)/delta up to "
+        "delta = 0.1 on half-spaces is the exponential decay of the slip (for Couette "
+        "k/(1 + k) (1 - exp(-(1 + 1/k) c delta)) gives 3.6 %); on FE solids the sphere's "
+        "curvature and the finite solids at delta = 0.1 add about 7 %.",
         "",
         "## Summary",
         "",
@@ -356,15 +362,16 @@ def report(critical, gondret, dry, St_c, e_n, e_t):
         "normal restitution (both models, straight and oblique), and e_t close to 1.",
         "- **Depends on the parameterisation:** the trends of e_t and the spin change with eps "
         "and St reported by Kantak & Davis 2006 hold along physical sweeps of the layer "
-        "thickness and the impact speed, and are reversed at fixed dimensionless groups (see "
-        "above).",
+        "thickness and the impact speed; at fixed dimensionless groups the trends with the "
+        "compliance and the large-compliance trend with St are reversed (see above).",
         f"- **Disagreement:** thin-layer St_c of {thin_range} against the ~10 of experiments, "
         "which the physics the model leaves out explains in the right direction: roughness "
         "stops the approach before the EHD region (Gondret reports roughness of 1e-4 R, as "
         "quoted by Biegert et al. 2017), e_dry losses lower every rebound, and a weaker "
         "cavitation limit than P_cav = -10 adds suction.",
         "- **Not testable here:** every measured e against St, the St_c and e_dry of the "
-        "experiments, and the source's closed-form fits; the list is below.",
+        "experiments, and the source's closed-form fits (ours, fitted to the sliding film, are "
+        "in docs/studies.md); the list is below.",
         "",
         "## Sources whose numbers could not be obtained",
         "",

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
+from itertools import product
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -195,9 +196,10 @@ def _exponential_errors(St, e_n) -> dict:
 
 
 # --- Closed forms for DEM -------------------------------------------------------------------
-# Every group q(St, eps, P_cav) below is exp of a full quadratic in the logarithms of the
-# inputs that vary in the fitted table (ln St, ln eps, ln |P_cav|): the quadratic terms carry
-# the curvature in log St that a single power law misses.
+# Every group q(St, eps, P_cav) below is exp of a full polynomial in the logarithms of the
+# inputs that vary in the fitted table (ln St, ln eps, ln |P_cav|), cubic (NORMAL_DEGREE,
+# DEGREE): for St_c and the exponent m of e_n, and for the tangential loss and the spin
+# change, whose higher terms carry the curvature in log St that a single power law misses.
 
 LOG_INPUTS = ("St", "eps", "p_cav")
 """The inputs of the closed forms by name (P_cav enters by its magnitude, the suction limit)."""
@@ -205,38 +207,49 @@ LOG_INPUTS = ("St", "eps", "p_cav")
 
 def _logs(values: dict, names) -> np.ndarray:
     """Columns ln|x| of ``values[name]`` for ``names``."""
-    return np.column_stack([np.log(np.abs(np.asarray(values[n], dtype=float))) for n in names])
+    columns = np.broadcast_arrays(*(np.asarray(values[n], dtype=float) for n in names))
+    return np.column_stack([np.log(np.abs(np.ravel(c))) for c in columns])
 
 
-def _quadratic_design(logs: np.ndarray) -> np.ndarray:
-    """[1, x_i, x_i x_j (i <= j)] for the columns x of ``logs``."""
-    n = logs.shape[1]
-    cross = [logs[:, i] * logs[:, j] for i in range(n) for j in range(i, n)]
-    return np.column_stack([np.ones(len(logs)), logs, *cross])
+def _powers(logs: np.ndarray, degree: int) -> list[tuple]:
+    """The monomials of total degree <= ``degree`` in the columns of ``logs`` as exponent
+    tuples, each column's power below its number of distinct values (a column of three values
+    gets at most its square: higher powers would not be determined)."""
+    distinct = [len(np.unique(column)) for column in logs.T]
+    return [
+        powers
+        for powers in product(*(range(min(degree, n - 1) + 1) for n in distinct))
+        if sum(powers) <= degree
+    ]
 
 
-def log_quadratic(form: dict, **inputs):
-    """exp(quadratic in the logs) of a fitted ``form`` ({"inputs": names, "coefficients"}) at
-    ``inputs`` (arrays or numbers, by name)."""
+def _design(logs: np.ndarray, powers) -> np.ndarray:
+    """Columns prod_i x_i^p_i for every exponent tuple p of ``powers``."""
+    return np.column_stack([np.prod(logs ** np.array(p), axis=1) for p in powers])
+
+
+def log_polynomial(form: dict, **inputs):
+    """exp(polynomial in the logs) of a fitted ``form`` ({"inputs": names, "powers": exponent
+    tuples, "coefficients"}) at ``inputs`` (arrays or numbers, by name)."""
     logs = _logs(inputs, form["inputs"]) if form["inputs"] else np.zeros((1, 0))
-    return np.exp(_quadratic_design(logs) @ np.asarray(form["coefficients"]))
+    return np.exp(_design(logs, form["powers"]) @ np.asarray(form["coefficients"]))
 
 
-def _fit_log_quadratic(inputs: dict, target) -> dict:
-    """Least squares of ln target on a quadratic in the logs of ``inputs``."""
+def _fit_log_polynomial(inputs: dict, target, degree: int) -> dict:
+    """Least squares of ln target on a polynomial of ``degree`` in the logs of ``inputs``."""
     names = tuple(inputs)
-    design = _quadratic_design(_logs(inputs, names))
-    coefficients, *_ = np.linalg.lstsq(design, np.log(target), rcond=None)
-    return {"inputs": names, "coefficients": coefficients.tolist()}
+    logs = _logs(inputs, names)
+    powers = _powers(logs, degree)
+    coefficients, *_ = np.linalg.lstsq(_design(logs, powers), np.log(target), rcond=None)
+    return {"inputs": names, "powers": powers, "coefficients": coefficients.tolist()}
 
 
 def normal_closed_form(forms: dict, St, eps, p_cav):
-    """e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0 (pure EHD; multiply by e_dry), with
-    St_c, e_inf / (1 - e_inf) and m each exp(quadratic in ln eps, ln |P_cav|)."""
+    """e_n = 1 - (St_c/St)^m above St_c, else 0 (pure EHD, which tends to 1 at large St;
+    multiply by e_dry), with St_c and m each exp(cubic in ln eps, ln |P_cav|)."""
     inputs = {"eps": eps, "p_cav": p_cav}
-    St_c, odds, m = (log_quadratic(forms[k], **inputs) for k in ("St_c", "e_inf_odds", "m"))
-    ratio = np.clip(St_c / np.asarray(St, dtype=float), 0.0, 1.0)
-    return odds / (1.0 + odds) * (1.0 - ratio**m)
+    St_c, m = (log_polynomial(forms[k], **inputs) for k in NORMAL_FORMS)
+    return 1.0 - np.clip(St_c / np.asarray(St, dtype=float), 0.0, 1.0) ** m
 
 
 def _varying(rows, names) -> tuple:
@@ -249,12 +262,14 @@ def fit_closed_forms(rows: list[dict]) -> dict:
     """Closed forms for DEM fitted to the successful rows of a table with e_n, e_t and the spin
     change (dimensionless; spin change a DeltaOmega/U0):
 
-    - e_n = e_inf (1 - (St_c/St)^m), 0 below St_c (:func:`normal_closed_form`): first per
-      (eps, P_cav) group, then St_c, the odds e_inf/(1 - e_inf) and m as exp(quadratic in
-      ln eps, ln |P_cav|), then all coefficients together on every point (sticking ones
-      included, where the form must give 0);
-    - 1 - e_t = delta exp(Q) and spin change = delta exp(Q), Q quadratic in ln St, ln eps,
-      ln |P_cav| (least squares in the logs, rebounds only).
+    - e_n = 1 - (St_c/St)^m, 0 below St_c (:func:`normal_closed_form`): first per
+      (eps, P_cav) group, then St_c and m as exp(cubic in ln eps, ln |P_cav|), then all
+      coefficients together on every point (sticking ones included, where the form must
+      give 0);
+    - 1 - e_t = delta exp(Q) and spin change = delta exp(Q), Q cubic in ln St, ln eps,
+      ln |P_cav| (least squares in the logs), over the clear rebounds, e_n >= CLEAR_REBOUND.
+      Just above St_c the contact lasts much longer and 1 - e_t rises steeply; those rebounds
+      are outside the forms' range, and their largest error is reported apart.
 
     Inputs held fixed by the table are left out. Each form carries its maximum and rms error
     (absolute, in e_n, e_t, spin change) and the ranges it was fitted over."""
@@ -265,30 +280,38 @@ def fit_closed_forms(rows: list[dict]) -> dict:
     ranges = {k: [float(v.min()), float(v.max())] for k, v in columns.items()}
     normal = _fit_normal_form(columns, e_n, varying)
     out = {"ranges": ranges, "normal": normal}
-    rebound = e_n > 0
-    inputs = {k: columns[k][rebound] for k in ("St", *varying)}
-    delta = columns["delta"][rebound]
+    clear, near = e_n >= CLEAR_REBOUND, (e_n > 0) & (e_n < CLEAR_REBOUND)
     for name, target in (
-        ("tangential_loss", 1 - np.array([num(r, "e_t") for r in rows])[rebound]),
-        ("spin_change", np.array([num(r, "spin_change") for r in rows])[rebound]),
+        ("tangential_loss", 1 - np.array([num(r, "e_t") for r in rows])),
+        ("spin_change", np.array([num(r, "spin_change") for r in rows])),
     ):
-        form = _fit_log_quadratic(inputs, target / delta)
-        predicted = delta * log_quadratic(form, **inputs)
+        inputs = {k: columns[k][clear] for k in ("St", *varying)}
+        form = _fit_log_polynomial(inputs, target[clear] / columns["delta"][clear], DEGREE)
+        predicted = columns["delta"] * log_polynomial(form, **{k: columns[k] for k in inputs})
+        relative = np.abs(predicted / np.where(e_n > 0, target, 1.0) - 1)
         out[name] = {
             **form,
-            "form": f"{name} = delta exp(Q(ln St, ln eps, ln |P_cav|)), rebounds only",
-            **_errors(predicted, target),
-            "max_relative_error": float(np.max(np.abs(predicted / target - 1))),
+            "form": f"{name} = delta exp(Q(ln St, ln eps, ln |P_cav|)), Q cubic, for e_n >= "
+            f"{CLEAR_REBOUND}",
+            **_errors(predicted[clear], target[clear]),
+            "max_relative_error": float(relative[clear].max()),
+            "near_threshold_max_relative_error": float(relative[near].max(initial=0.0)),
         }
     return out
 
 
-NORMAL_FORMS = ("St_c", "e_inf_odds", "m")
+NORMAL_FORMS = ("St_c", "m")
+NORMAL_DEGREE = DEGREE = 3  # of the polynomials in the logs: St_c and m; 1 - e_t and spin
+CLEAR_REBOUND = 0.3
+"""The smallest e_n of the rebounds the tangential closed forms are fitted to and valid for."""
 
 
 def _constant_forms(logs) -> dict:
-    """The e_n forms with no inputs: St_c, the odds and m = exp(``logs``)."""
-    return {n: {"inputs": (), "coefficients": [c]} for n, c in zip(NORMAL_FORMS, logs, strict=True)}
+    """The e_n forms with no inputs: St_c and m = exp(``logs``)."""
+    return {
+        n: {"inputs": (), "powers": [()], "coefficients": [c]}
+        for n, c in zip(NORMAL_FORMS, logs, strict=True)
+    }
 
 
 def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
@@ -302,13 +325,13 @@ def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
         St, target = columns["St"][members], e_n[members]
         if (target > 0).sum() < 3:
             continue
-        start = [np.log(0.95 * St[target > 0].min()), np.log(10.0), 0.0]
+        start = [np.log(0.95 * St[target > 0].min()), 0.0]
         result = least_squares(
             lambda p, St=St, target=target: (
                 normal_closed_form(_constant_forms(p), St, 1.0, 1.0) - target
             ),
             start,
-            bounds=([-10, -5, -3], [10, 10, 3]),
+            bounds=([-10, -3], [10, 3]),
             xtol=1e-15,
             ftol=1e-15,
         )
@@ -317,7 +340,9 @@ def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
         raise checks.InputError("the closed form of e_n needs a group with 3 rebounding points")
     group_inputs = {k: np.array([key[i] for key in per_group]) for i, k in enumerate(varying)}
     forms = {
-        name: _fit_log_quadratic(group_inputs, np.exp([p[j] for p in per_group.values()]))
+        name: _fit_log_polynomial(
+            group_inputs, np.exp([p[j] for p in per_group.values()]), NORMAL_DEGREE
+        )
         for j, name in enumerate(NORMAL_FORMS)
     }
     sizes = [len(f["coefficients"]) for f in forms.values()]
@@ -326,8 +351,7 @@ def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
     def residual(flat):
         split = np.split(flat, np.cumsum(sizes)[:-1])
         trial = {
-            n: {"inputs": varying, "coefficients": c}
-            for n, c in zip(NORMAL_FORMS, split, strict=True)
+            n: {**forms[n], "coefficients": c} for n, c in zip(NORMAL_FORMS, split, strict=True)
         }
         return normal_closed_form(trial, **at) - e_n
 
@@ -340,9 +364,10 @@ def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
     predicted = residual(flat) + e_n
     return {
         **forms,
-        "form": "e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0; St_c, e_inf/(1 - e_inf) and "
-        "m = exp(Q(ln eps, ln |P_cav|))",
+        "form": "e_n = 1 - (St_c/St)^m above St_c, else 0; St_c and m = exp(Q(ln eps, "
+        "ln |P_cav|)), Q cubic",
         **_errors(predicted, e_n),
+        "clear_rebound_max_error": float(np.abs(predicted - e_n)[e_n >= CLEAR_REBOUND].max()),
     }
 
 
@@ -357,9 +382,12 @@ computes them from SI inputs). e_n is the pure EHD value: multiply by the dry re
 The spin change is a DeltaOmega/U0 (U0 the tangential impact speed).
 
 Fitted over {ranges}.
-Errors against the table (absolute): e_n max {normal_max:.2g} (rms {normal_rms:.2g}); e_t max
-{loss_max:.2g} (relative to 1 - e_t {loss_rel:.2g}); spin change max {spin_max:.2g} (relative
-{spin_rel:.2g}). Outside these ranges the forms are extrapolations.
+Errors against the table: e_n max {normal_max:.2g} (rms {normal_rms:.2g}) over every point,
+max {normal_clear:.2g} where e_n >= {clear}.
+For rebounds with e_n >= {clear} (the range of e_t and the spin change): e_t max {loss_max:.2g}
+(relative to 1 - e_t {loss_rel:.2g}), spin change max {spin_max:.2g} (relative {spin_rel:.2g}).
+Just above St_c (0 < e_n < {clear}) 1 - e_t and the spin change are off by up to
+{near_rel:.0%}. Outside these ranges the forms are extrapolations.
 """
 
 import math
@@ -368,11 +396,10 @@ FORMS = {forms!r}
 
 
 def _fitted(name, **inputs):
-    """exp of the quadratic in the logarithms of the form's inputs (|x| for P_cav)."""
+    """exp of the polynomial in the logarithms of the form's inputs (|x| for P_cav)."""
     form = FORMS[name]
     logs = [math.log(abs(inputs[key])) for key in form["inputs"]]
-    terms = [1.0, *logs]
-    terms += [logs[i] * logs[j] for i in range(len(logs)) for j in range(i, len(logs))]
+    terms = [math.prod(x**p for x, p in zip(logs, powers)) for powers in form["powers"]]
     return math.exp(sum(c * t for c, t in zip(form["coefficients"], terms)))
 
 
@@ -382,21 +409,20 @@ def critical_stokes(eps, p_cav):
 
 
 def normal_restitution(St, eps, p_cav):
-    """e_n = e_inf (1 - (St_c/St)^m) above St_c, else 0 (pure EHD)."""
+    """e_n = 1 - (St_c/St)^m above St_c, else 0 (pure EHD)."""
     St_c = critical_stokes(eps, p_cav)
     if St <= St_c:
         return 0.0
-    odds = _fitted("e_inf_odds", eps=eps, p_cav=p_cav)
-    return odds / (1.0 + odds) * (1.0 - (St_c / St) ** _fitted("m", eps=eps, p_cav=p_cav))
+    return 1.0 - (St_c / St) ** _fitted("m", eps=eps, p_cav=p_cav)
 
 
 def tangential_restitution(St, eps, delta, p_cav):
-    """e_t = 1 - delta exp(Q(ln St, ln eps, ln |P_cav|)), for a rebounding sphere."""
+    """e_t = 1 - delta exp(Q(ln St, ln eps, ln |P_cav|)), Q cubic, for a rebounding sphere."""
     return 1.0 - delta * _fitted("tangential_loss", St=St, eps=eps, p_cav=p_cav)
 
 
 def spin_change(St, eps, delta, p_cav):
-    """a DeltaOmega/U0 = delta exp(Q(ln St, ln eps, ln |P_cav|)), for a rebounding sphere."""
+    """a DeltaOmega/U0 = delta exp(Q(ln St, ln eps, ln |P_cav|)), Q cubic, for a rebound."""
     return delta * _fitted("spin_change", St=St, eps=eps, p_cav=p_cav)
 
 
@@ -431,10 +457,13 @@ def python_source(fits: dict, table: str, model: str, points: int, version: str)
         forms=forms,
         normal_max=normal["max_error"],
         normal_rms=normal["rms_error"],
+        normal_clear=normal["clear_rebound_max_error"],
         loss_max=loss["max_error"],
         loss_rel=loss["max_relative_error"],
         spin_max=spin["max_error"],
         spin_rel=spin["max_relative_error"],
+        clear=CLEAR_REBOUND,
+        near_rel=max(f["near_threshold_max_relative_error"] for f in (loss, spin)),
     )
 
 
@@ -442,5 +471,6 @@ def _plain(form: dict) -> dict:
     """A form's inputs and coefficients as plain lists (for the written module)."""
     return {
         "inputs": list(form["inputs"]),
+        "powers": [list(p) for p in form["powers"]],
         "coefficients": [float(c) for c in form["coefficients"]],
     }

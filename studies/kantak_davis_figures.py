@@ -18,7 +18,7 @@ from ehdfem.closedform import (  # noqa: E402
     davis_rager_good,
     fit_power_law,
     legendre,
-    log_quadratic,
+    log_polynomial,
     power_law,
 )
 
@@ -80,7 +80,7 @@ def main():
         ax_s.loglog(St, [float(r["spin_change"]) for r in sel], "o", ms=3, color=colour)
         for ax, name in ((ax_t, "tangential_loss"), (ax_s, "spin_change")):
             form = fits["closed_forms"][name]
-            ax.loglog(St, 0.01 * log_quadratic(form, St=St, eps=eps), "-", color=colour, lw=1)
+            ax.loglog(St, 0.01 * log_polynomial(form, St=St, eps=eps), "-", color=colour, lw=1)
     ax_t.set_ylabel("1 - e_t")
     ax_s.set_ylabel(r"a$\Delta\Omega/U_0$")
     for ax in (ax_t, ax_s):

@@ -104,7 +104,8 @@ TANGENTIAL_TRENDS = Claim(
     "reverse trends",
     None,
     None,
-    "trends only, reported (not asserted): our Couette model gives e_t falling with eps",
+    "trends: tested along physical sweeps and one group at a time by studies/source_claims.py "
+    "(verdicts in docs/validation.md)",
 )
 
 CLAIMS = (

@@ -28,7 +28,7 @@ import numpy as np
 from . import cavitation, checks, viz
 from .bounce import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, BounceInputs, bounce
 from .bounce import MODELS as BOUNCE_MODELS
-from .closedform import GROUPED, describe_ranges, fit_table, model_labels, python_source
+from .closedform import GROUPED, describe_ranges, fit_table, python_source
 from .collision import DEFAULT_NODES, MODELS, TANGENTIAL_MODELS, collide
 from .compliance.fem import LOWER_BODIES
 from .exports import field_snapshots, write_fields
@@ -689,8 +689,7 @@ def fit_command(args) -> int:
     if not path.is_file():
         raise checks.InputError(f"table {args.table!r} does not exist")
     with path.open() as f:
-        rows = list(csv.DictReader(f))
-    fits = fit_table(rows)
+        fits = fit_table(list(csv.DictReader(f)))
     report = _report_stream(args)
     for group in fits["normal"]:
         print(
@@ -724,10 +723,7 @@ def fit_command(args) -> int:
         print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
     _write_json(fits, args.json)
     if args.python:
-        rows = [r for r in rows if str(r["status"]).startswith("ok")]
-        model = ", ".join(f"{k} {v}" for k, v in model_labels(rows).items())
-        source = python_source(forms, path.name, model, len(rows), __version__)
-        _write_atomic(Path(args.python), source)
+        _write_atomic(Path(args.python), python_source(forms, path.name, __version__))
         print(f"wrote {args.python}", file=report)
     return 0
 

@@ -146,16 +146,19 @@ def fit_table(rows: list[dict]) -> dict:
     out["critical_stokes_laws"] = laws
     if len(laws) == 1:  # a table of one model (the usual case)
         out["critical_stokes_law"] = laws[0]
-    if any(r.get("e_t") not in (None, "", "None") for r in ok):
-        mixed = [k for k, values in _labels_taken(ok).items() if len(values) > 1]
+    oblique = [r for r in ok if r.get("e_t") not in (None, "", "None")]
+    if oblique:
+        labels = {k: {str(r.get(k) or d) for r in oblique} for k, d in MODEL_LABELS}
+        mixed = [k for k, values in labels.items() if len(values) > 1]
         if mixed:
             out["closed_forms_skipped"] = (
                 f"no closed forms: the table mixes {', '.join(mixed)} (fit one model at a time)"
             )
         else:
-            out["closed_forms"] = fit_closed_forms(
-                [r for r in ok if r.get("e_t") not in (None, "", "None")]
-            )
+            out["closed_forms"] = {
+                **fit_closed_forms(oblique),
+                "model": {k: values.pop() for k, values in labels.items()},
+            }
     St_all = np.array([num(r, "St") for r in ok])
     e_all = np.array([num(r, "e_n") for r in ok])
     out["dem_formulas"] = {
@@ -167,16 +170,6 @@ def fit_table(rows: list[dict]) -> dict:
 
 # the labels of one model, besides the closed forms' inputs (delta and P_cav are inputs)
 MODEL_LABELS = (*((k, d) for k, d in GROUPED if k != "p_cav"), ("tangential", "couette"))
-
-
-def _labels_taken(rows) -> dict:
-    """{label: the set of its values in ``rows``} for the MODEL_LABELS."""
-    return {k: {str(r.get(k) or d) for r in rows} for k, d in MODEL_LABELS}
-
-
-def model_labels(rows) -> dict:
-    """The model of a table whose rows share one: {label: value} over MODEL_LABELS."""
-    return {k: values.pop() for k, values in _labels_taken(rows).items() if len(values) == 1}
 
 
 def describe_ranges(ranges: dict) -> str:
@@ -200,9 +193,6 @@ def _exponential_errors(St, e_n) -> dict:
 # inputs that vary in the fitted table (ln St, ln eps, ln |P_cav|), cubic (NORMAL_DEGREE,
 # DEGREE): for St_c and the exponent m of e_n, and for the tangential loss and the spin
 # change, whose higher terms carry the curvature in log St that a single power law misses.
-
-LOG_INPUTS = ("St", "eps", "p_cav")
-"""The inputs of the closed forms by name (P_cav enters by its magnitude, the suction limit)."""
 
 
 def _logs(values: dict, names) -> np.ndarray:
@@ -272,14 +262,15 @@ def fit_closed_forms(rows: list[dict]) -> dict:
       are outside the forms' range, and their largest error is reported apart.
 
     Inputs held fixed by the table are left out. Each form carries its maximum and rms error
-    (absolute, in e_n, e_t, spin change) and the ranges it was fitted over."""
+    (absolute, in e_n, e_t, spin change); the result also has the number of points and the
+    ranges it was fitted over."""
     num = lambda r, k: float(r[k])  # noqa: E731
     varying = _varying(rows, ("eps", "p_cav"))
     columns = {k: np.array([num(r, k) for r in rows]) for k in ("St", "eps", "p_cav", "delta")}
     e_n = np.array([num(r, "e_n") for r in rows])
     ranges = {k: [float(v.min()), float(v.max())] for k, v in columns.items()}
     normal = _fit_normal_form(columns, e_n, varying)
-    out = {"ranges": ranges, "normal": normal}
+    out = {"points": len(rows), "ranges": ranges, "normal": normal}
     clear, near = e_n >= CLEAR_REBOUND, (e_n > 0) & (e_n < CLEAR_REBOUND)
     for name, target in (
         ("tangential_loss", 1 - np.array([num(r, "e_t") for r in rows])),
@@ -440,10 +431,11 @@ def dimensionless_groups(
 '''
 
 
-def python_source(fits: dict, table: str, model: str, points: int, version: str) -> str:
-    """A Python module (text) with the closed forms of :func:`fit_closed_forms` ``fits``: the
-    functions critical_stokes, normal_restitution, tangential_restitution, spin_change and
-    dimensionless_groups, standard library only, for a particle code to copy."""
+def python_source(fits: dict, table: str, version: str) -> str:
+    """A Python module (text) with the closed forms ``fits`` of :func:`fit_table` (its
+    "closed_forms", fitted to the table named ``table``): the functions critical_stokes,
+    normal_restitution, tangential_restitution, spin_change and dimensionless_groups, standard
+    library only, for a particle code to copy."""
     normal, loss, spin = fits["normal"], fits["tangential_loss"], fits["spin_change"]
     forms = {n: _plain(normal[n]) for n in NORMAL_FORMS}
     forms.update(tangential_loss=_plain(loss), spin_change=_plain(spin))
@@ -451,8 +443,8 @@ def python_source(fits: dict, table: str, model: str, points: int, version: str)
     return _MODULE.format(
         version=version,
         table=table,
-        points=points,
-        model=model,
+        points=fits["points"],
+        model=", ".join(f"{k} {v}" for k, v in fits["model"].items()),
         ranges=ranges,
         forms=forms,
         normal_max=normal["max_error"],

@@ -9,7 +9,7 @@ motion (:mod:`ehdfem.normal`) and, for an oblique impact, the tangential motion
 from __future__ import annotations
 
 import warnings
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -277,9 +277,7 @@ def collide(
     sliding = (tangential, deformation)
     nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
     checks.integer("refinements", refinements, lower=0, upper=4)
-    if mode_one is not None:
-        _check_mode_one(mode_one, compliance)
-        mode_one = mode_one.with_eps(params.eps)
+    mode_one = _mode_one_at(mode_one, compliance, params.eps)
     if compliance is not None:
         return _collide_on(
             params, compliance.with_eps(params.eps), options, sliding, physical, mode_one
@@ -294,8 +292,11 @@ def collide(
                 raise
 
 
-def _check_mode_one(mode_one, compliance):
-    """Refuse a mode-1 compliance without ``compliance`` or not matching it (model, nodes)."""
+def _mode_one_at(mode_one, compliance, eps):
+    """A given mode-1 compliance at ``eps`` (None stays None); refused without ``compliance`` or
+    not matching it (model, nodes)."""
+    if mode_one is None:
+        return None
     if not isinstance(mode_one, ModeOneCompliance):
         raise checks.InputError(
             f"mode_one must be a ModeOneCompliance, got {type(mode_one).__name__}"
@@ -313,6 +314,7 @@ def _check_mode_one(mode_one, compliance):
         raise checks.InputError(
             "mode_one and compliance must be on the same film nodes (radii differ)"
         )
+    return mode_one.with_eps(eps)
 
 
 def _collide_on(params, compliance, options, sliding, physical, given_mode_one=None):
@@ -342,12 +344,8 @@ def with_tangential(
     checks.choice("deformation", deformation, DEFORMATIONS)
     if result.params.tangential_speed == 0 or result.compliance is None:
         raise checks.InputError("with_tangential needs an oblique collision with its compliance")
-    if mode_one is not None:
-        _check_mode_one(mode_one, result.compliance)
-        mode_one = mode_one.with_eps(result.params.eps)
-    bare = CollisionResult(
-        result.params, result.model, result.normal, None, result.physical, result.compliance
-    )
+    mode_one = _mode_one_at(mode_one, result.compliance, result.params.eps)
+    bare = replace(result, tangential=None, superposition=None)
     return _slide(bare, (tangential, deformation), mode_one)
 
 

@@ -206,13 +206,11 @@ class Compliances:
         if isinstance(widest.inputs, PhysicalCollision):
             physical = widest.inputs
         radii = film_radii(params, NODES)
-        start = time.perf_counter()
         self.built = {}
         for model in ("halfspace", "fem"):
             solids = {"comm": MPI.COMM_SELF} if model == "fem" else None
             compliance = elasticity(params, radii, model, physical, solids)
             self.built[model] = (compliance, mode_one_elasticity(params, compliance, physical))
-        self.seconds = time.perf_counter() - start
 
     def close(self):
         for compliance, mode_one in self.built.values():
@@ -276,7 +274,7 @@ def point_rows(point: Point, compliances: Compliances) -> list[dict]:
 
 def run_group(name: str, points: list[Point]) -> None:
     """Compute the group's missing points into its CSV (resumable)."""
-    table = ResultTable(GROUPS / f"{name.replace(' ', '_')}.csv", ("key", "model"))
+    table = _group_table(name)
     missing = [p for p in points if table.get(key=p.key, model="couette") is None]
     if not missing:
         return
@@ -290,6 +288,11 @@ def run_group(name: str, points: list[Point]) -> None:
             print(f"[rank {MPI.COMM_WORLD.rank}] {point.key}: {e_t}", flush=True)
     finally:
         compliances.close()
+
+
+def _group_table(name: str) -> ResultTable:
+    """The finished rows of a group, in studies/results/source_claims/<group>.csv."""
+    return ResultTable(GROUPS / f"{name.replace(' ', '_')}.csv", ("key", "model"))
 
 
 def run() -> list[dict]:
@@ -314,7 +317,7 @@ def run() -> list[dict]:
         return None
     rows = []
     for name in everything:
-        rows += ResultTable(GROUPS / f"{name.replace(' ', '_')}.csv", ("key", "model")).rows
+        rows += _group_table(name).rows
     write_csv(TABLE, rows)
     return rows
 
@@ -323,15 +326,9 @@ def number(value) -> float:
     return float(value) if value not in (None, "", "None") else math.nan
 
 
-def curve(rows, sweep, line, model, quantity, rebounds_only=True):
-    """(abscissae, values) of one model along one line, sorted, rebounds only by default."""
-    sel = [
-        r
-        for r in rows
-        if r["sweep"] == sweep and r["line"] == line and r["model"] == model and r["status"] == "ok"
-        and (r["rebound"] == "True" or not rebounds_only)
-    ]  # fmt: skip
-    sel.sort(key=lambda r: float(r["value"]))
+def curve(rows, sweep, line, model, quantity):
+    """(abscissae, values) of one model's rebounds along one line, sorted."""
+    sel = sorted(_lines(rows, sweep, model).get(line, []), key=lambda r: float(r["value"]))
     return (
         np.array([float(r["value"]) for r in sel]),
         np.array([number(r[quantity]) for r in sel]),
@@ -392,6 +389,7 @@ def plot(rows, figure):
 # --- Verdicts: each claim of the source's abstract along each parameterisation ---------------
 
 COLUMNS = ("couette", "sliding film", "FE couette", "FE sliding film", "gcb", "flat")
+FULL = "FE sliding film"  # the fullest model, which the others are compared with
 FLAT_STEP = 0.01  # steps of ln(1 - e_t), ln(spin change) or ln e_n smaller than this are level
 QUANTITIES = {  # the variable whose trend is the quantity's (rising with it)
     "e_n": lambda r: math.log(number(r["e_n"])),
@@ -531,12 +529,12 @@ def spread_verdicts(rows) -> list[dict]:
 def reduced_against_full(rows) -> list[dict]:
     """Per sweep, the largest |relative difference| of 1 - e_t and of the spin change of each
     model from the FE sliding film (the fullest model), over the rebounds."""
-    full = {r["key"]: r for r in rows if r["model"] == "FE sliding film" and r["rebound"] == "True"}
+    full = {r["key"]: r for r in rows if r["model"] == FULL and r["rebound"] == "True"}
     out = []
     for sweep in ("speed", "layer", "stiffness", "St"):
         row = {"sweep": sweep}
-        for model in COLUMNS[:-1] + ("flat",):
-            if model == "FE sliding film":
+        for model in COLUMNS:
+            if model == FULL:
                 continue
             worst = [0.0, 0.0]
             for r in rows:
@@ -565,7 +563,7 @@ def markdown(rows) -> list[str]:
             + " | ".join(v[m] or "-" for m in COLUMNS)
             + " |"
         )
-    others = [m for m in COLUMNS if m != "FE sliding film"]
+    others = [m for m in COLUMNS if m != FULL]
     lines += [
         "",
         "Largest difference from the FE sliding film over each sweep's rebounds, 1 - e_t / "

@@ -153,8 +153,9 @@ def test_closed_forms_recover_curvature_and_suction_limit():
 def test_written_module_evaluates_the_fitted_forms():
     """The module python_source writes (standard library only) gives the fitted forms' values
     to 1e-13, 0 below St_c, and the dimensionless groups of PhysicalCollision."""
-    forms = cf.fit_closed_forms(_curved_table())
-    source = cf.python_source(forms, "table.csv", "half-space, lubrication", 168, "test")
+    forms = cf.fit_table(_curved_table())["closed_forms"]
+    source = cf.python_source(forms, "table.csv", "test")
+    assert "168 collisions of the" in source and "tangential lubrication model" in source
     module = {}
     exec(compile(source, "closed_forms.py", "exec"), module)  # noqa: S102
     rng = np.random.default_rng(0)

@@ -220,7 +220,8 @@ def _design(logs: np.ndarray, powers) -> np.ndarray:
 
 def log_polynomial(form: dict, **inputs):
     """exp(polynomial in the logs) of a fitted ``form`` ({"inputs": names, "powers": exponent
-    tuples, "coefficients"}) at ``inputs`` (arrays or numbers, by name)."""
+    tuples, "coefficients"}) at ``inputs`` (arrays or numbers, by name; dimensionless, on the
+    scales of the table it was fitted to, e.g. St, eps and P_cav on DSH scales)."""
     logs = _logs(inputs, form["inputs"]) if form["inputs"] else np.zeros((1, 0))
     return np.exp(_design(logs, form["powers"]) @ np.asarray(form["coefficients"]))
 
@@ -236,7 +237,8 @@ def _fit_log_polynomial(inputs: dict, target, degree: int) -> dict:
 
 def normal_closed_form(forms: dict, St, eps, p_cav):
     """e_n = 1 - (St_c/St)^m above St_c, else 0 (pure EHD, which tends to 1 at large St;
-    multiply by e_dry), with St_c and m each exp(cubic in ln eps, ln |P_cav|)."""
+    multiply by e_dry), with St_c and m each exp(cubic in ln eps, ln |P_cav|). St, eps and
+    P_cav are dimensionless (DSH scales, :mod:`ehdfem.scales`)."""
     inputs = {"eps": eps, "p_cav": p_cav}
     St_c, m = (log_polynomial(forms[k], **inputs) for k in NORMAL_FORMS)
     return 1.0 - np.clip(St_c / np.asarray(St, dtype=float), 0.0, 1.0) ** m

@@ -339,7 +339,8 @@ def with_tangential(
     :func:`collide` would with ``tangential``, ``deformation`` and ``mode_one`` (the mode-1
     compliance for ``result.compliance``; None: built and closed here when needed). The normal
     motion does not depend on the tangential one (the decoupling of :mod:`ehdfem.tangential`),
-    so this equals a new :func:`collide` call at a fraction of its cost."""
+    so this equals a new :func:`collide` call at a fraction of its cost. Results are
+    dimensionless (DSH scales), as those of :func:`collide`."""
     checks.choice("tangential", tangential, TANGENTIAL_MODELS)
     checks.choice("deformation", deformation, DEFORMATIONS)
     if result.params.tangential_speed == 0 or result.compliance is None:

@@ -253,7 +253,7 @@ def test_cached_compliance_is_the_computed_one(tmp_path, monkeypatch):
     def fail(*_):
         raise AssertionError("solved although cached")
 
-    monkeypatch.setattr(FESolids, "_unit_matrices", fail)
+    monkeypatch.setattr(FESolids, "_condensed", fail)
     monkeypatch.setattr(FEModeOne, "_condense", fail)
     again = FESolids(1e-3, radii)
     cached = again.compliance(1.0, shear=True), FEModeOne(again, 1.0)

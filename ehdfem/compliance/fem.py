@@ -3,16 +3,16 @@
 The upper sphere and the lower body (a wall block, a coated wall block, or a second sphere)
 are meshed in (r, z) with gmsh (meshes/contact.py through :mod:`ehdfem.compliance.fem_mesh`,
 lengths by the (reduced) radius a) and solved with P2 Lagrange elements in the r-weighted
-axisymmetric form (strain with the hoop term u_r / r). The stiffness is factorised once (Cholesky);
-one solve per film node j, with the hat pressure phi_j acting normally on both contact faces,
-gives the gap opening at every film node i,
+axisymmetric form (strain with the hoop term u_r / r). The hat pressure phi_j of film node j,
+acting normally on both contact faces, gives the gap opening at every film node i,
 
     W_i = (u_z^upper(r_i) - c_upper) - (u_z^lower(r_i) - c_lower),
 
-the column j of the compliance matrix. A sphere is a free :class:`Body`: its film load is
-balanced by a uniform d'Alembert body force, its far pole is pinned (u_z) to make the problem
-definite, and c is its centre-of-mass displacement. A wall is clamped at its base, 40 radii
-below (c = 0).
+the column j of the compliance matrix. All columns come from one factorisation condensed onto
+the contact faces (:mod:`ehdfem.compliance.condensation`), on one process. A sphere is a free
+:class:`Body`: its film load is balanced by a uniform d'Alembert body force, its far pole is
+pinned (u_z) to make the problem definite, and c is its centre-of-mass displacement. A wall
+is clamped at its base, 40 radii below (c = 0).
 
 Scales: stresses in units of E_ref (the upper sphere's modulus) make u come out in units of
 a p / E_ref; the film pressure unit mu V0 a / x0^2 and the gap unit x0 turn this into the
@@ -40,13 +40,9 @@ from functools import cached_property
 import numpy as np
 
 from .. import checks
-from ..progress import progress
 from . import LinearCompliance, dolfinx_compat
+from .condensation import condensed
 from .fem_mesh import cached_matrices, contact_mesh
-
-BLOCK = (
-    48  # right-hand sides per multiple-RHS solve of the condensation (memory: 8 B x dofs x BLOCK)
-)
 
 LOWER_BODIES = ("wall", "coated", "sphere")
 
@@ -109,6 +105,37 @@ def solids_of(compliance, purpose: str) -> FESolids:
     return solids
 
 
+def interpolation_matrix(nodes, points):
+    """The sparse (len(points), len(nodes)) matrix of linear interpolation from values at the
+    increasing ``nodes`` to ``points`` (the same length unit): constant before the first node,
+    zero beyond the last (as ``np.interp(points, nodes, values, right=0.0)``). Its columns are
+    the hat functions of the nodes at the points."""
+    import scipy.sparse
+
+    nodes, points = np.asarray(nodes, dtype=float), np.asarray(points, dtype=float)
+    right = np.clip(np.searchsorted(nodes, points, side="right"), 1, len(nodes) - 1)
+    weight = np.clip((points - nodes[right - 1]) / (nodes[right] - nodes[right - 1]), 0.0, 1.0)
+    inside = points <= nodes[-1]
+    rows = np.flatnonzero(inside)
+    return scipy.sparse.csr_matrix(
+        (
+            np.concatenate([1 - weight[inside], weight[inside]]),
+            (np.concatenate([rows, rows]), np.concatenate([right[inside] - 1, right[inside]])),
+        ),
+        shape=(len(points), len(nodes)),
+    )
+
+
+def _scipy_matrix(matrix):
+    """The owned rows of the PETSc AIJ ``matrix`` as a scipy CSR matrix (global columns)."""
+    import scipy.sparse
+
+    indptr, indices, data = matrix.getValuesCSR()
+    return scipy.sparse.csr_matrix(
+        (data, indices, indptr), shape=(len(indptr) - 1, matrix.getSize()[1])
+    )
+
+
 def _read_only(array: np.ndarray) -> np.ndarray:
     """``array``, no longer writeable (shared between deformations)."""
     array.setflags(write=False)
@@ -163,6 +190,18 @@ class FESolids:
             (1 + ratio, 1 + 1 / ratio) if lower == "sphere" else (1.0, None)
         )
         self.comm = comm or MPI.COMM_WORLD
+        self._inputs = dict(
+            delta=delta,
+            radii=radii,
+            sphere=sphere,
+            wall=wall,
+            lower=lower,
+            coating=coating,
+            coating_thickness=coating_thickness,
+            radius_ratio=radius_ratio,
+            size=size,
+            degree=degree,
+        )
         self.radii = np.asarray(radii, dtype=float)
         limit = 0.7 * min(self.radius_upper, self.radius_lower or math.inf)
         if self.radii[-1] * math.sqrt(self.delta) >= limit:
@@ -328,19 +367,21 @@ class FESolids:
         marker.destroy()
 
     @cached_property
-    def _profile_rows(self):
-        """Per contact face (upper, lower): the owned dofs of the P2 traction profile space on
-        it and their r (by a)."""
+    def _face_hats(self):
+        """Per contact face (upper, lower): the sparse (owned P2 traction profile dofs, N) matrix
+        of the film nodes' hat functions at the dofs on that face (zero elsewhere)."""
+        import scipy.sparse
         from dolfinx import fem
 
         space = self._profile_space
-        coordinates = space.tabulate_dof_coordinates()
-        out = []
-        for tag in (self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT):
+        owned = space.dofmap.index_map.size_local
+        r = space.tabulate_dof_coordinates()[:owned, 0]
+        hats = []
+        for tag in self._contact_tags:
             dofs = fem.locate_dofs_topological(space, 1, self._facet_tags.find(tag))
-            dofs = dofs[dofs < space.dofmap.index_map.size_local]
-            out.append((dofs, coordinates[dofs, 0]))
-        return out
+            on_face = scipy.sparse.diags(np.isin(np.arange(owned), dofs).astype(float))
+            hats.append(on_face @ interpolation_matrix(self.radii_a, r))
+        return hats
 
     def profile_values(self, faces) -> np.ndarray:
         """The owned entries (rows, columns) of the P2 traction profiles with nodal values
@@ -348,11 +389,7 @@ class FESolids:
         zero beyond the last; :meth:`film_pressure`), on the two contact faces, zero elsewhere;
         in the units of the nodal values (the film pressure unit mu V0 a / x0^2 for the films'
         loads)."""
-        values = np.zeros((self._profile_space.dofmap.index_map.size_local, faces[0].shape[1]))
-        for (dofs, r), nodal in zip(self._profile_rows, faces, strict=True):
-            for k in range(nodal.shape[1]):
-                values[dofs, k] = self.film_pressure(nodal[:, k])(r)
-        return values
+        return sum(hats @ nodal for hats, nodal in zip(self._face_hats, faces, strict=True))
 
     def traction_loads(self, matrix, values: np.ndarray) -> np.ndarray:
         """The owned rows of ``matrix`` (unknowns x P2 profile dofs) times the owned profile
@@ -475,52 +512,96 @@ class FESolids:
         """The film compliance in the units of the half-space kernel; with ``shear`` also the
         gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
         pressure unit, :meth:`ehdfem.film.Film.squeeze_shear`) on both faces. The unit loads
-        (hat pressures, then hat shear tractions) are built from the traction matrices and
-        solved in blocks of BLOCK right-hand sides on the one factorisation."""
+        (hat pressures, then hat shear tractions) are condensed onto the contact faces on one
+        process (:meth:`on_one_process`, :meth:`_condensed`)."""
         n = len(self.radii)
         arrays = cached_matrices(
             self.comm,
             ("axisymmetric", *self.cache_arguments, shear),
             self.cache_sources,
-            lambda: self._unit_matrices(shear),
+            lambda: self.on_one_process(lambda solids: solids._condensed(shear)),
         )
         return FECompliance(
             self, arrays["gap"][:, :n], eps, arrays.get("shear"), arrays["surface_sum"]
         )
 
-    def _unit_matrices(self, shear: bool) -> dict:
-        """{"gap", "surface_sum"[, "shear"]}: the (N, N) unit matrices of :meth:`compliance`,
-        computed on the factorisation."""
+    def on_one_process(self, compute):
+        """``compute(solids)`` for these solids on one process: on themselves when serial;
+        otherwise rank 0 builds the same solids on its own (MPI.COMM_SELF, the mesh from its
+        cache) and broadcasts the result. Collective; an error on rank 0 is raised on all."""
+        if self.comm.size == 1:
+            return compute(self)
+        result = error = None
+        if self.comm.rank == 0:
+            from mpi4py import MPI
+
+            alone = FESolids(**self._inputs, comm=MPI.COMM_SELF)
+            try:
+                result = compute(alone)
+            except Exception as err:  # noqa: BLE001 -- re-raised on every rank below
+                error = err
+            finally:
+                alone.close()
+        result, error = self.comm.bcast((result, error))
+        if error is not None:
+            raise error
+        return result
+
+    def _condensed(self, shear: bool) -> dict:
+        """{"gap", "surface_sum"[, "shear"]}: the (N, N) unit matrices of :meth:`compliance` (in
+        units of a p/E_ref per unit nodal load), on one process, from the stiffness condensed
+        onto (:func:`ehdfem.compliance.condensation.condensed`) the loads (the hat pressures,
+        then the hat shear tractions, on both faces), the read-outs (u_z of each face at the
+        film nodes) and each free body's uniform d'Alembert body force w (its centre weights,
+        which also read out its centre of mass: w . u)."""
+        import scipy.sparse
+
         n = len(self.radii)
-        kinds = ("pressure", "shear") if shear else ("pressure",)
-        blocks = [(kind, start) for kind in kinds for start in range(0, n, BLOCK)]
-        parts = []
-        for kind, start in progress(blocks, desc="FE compliance"):
-            hats = np.eye(n)[:, start : start + BLOCK]
-            loads = (hats, None) if kind == "pressure" else (0 * hats, math.sqrt(self.delta) * hats)
-            parts.append(self._gap_openings(self._solve(self._film_loads(*loads))))
-        gap, surface_sum = (np.hstack(columns) for columns in zip(*parts, strict=True))
+        both_faces = self._face_hats[0] + self._face_hats[1]
+        kinds = {"pressure": 1.0, "shear": math.sqrt(self.delta)} if shear else {"pressure": 1.0}
+        loads = [
+            scale * (_scipy_matrix(self._tractions[kind]) @ both_faces)
+            for kind, scale in kinds.items()
+        ]
+        read_outs = [self._face_read_out(tag) for tag in self._contact_tags]
+        weights = scipy.sparse.csr_matrix(np.column_stack(self._centre_weights))
+        columns = scipy.sparse.hstack([*loads, *read_outs, weights]).tolil()
+        columns[self._constrained] = 0.0
+        matrix = condensed(_scipy_matrix(self._stiffness), columns.tocsr())
+        # blocks of K^-1 between the column groups: loads L, read-outs R, body weights W
+        m = len(kinds) * n
+        load, read, weight = slice(0, m), slice(m, m + 2 * n), slice(m + 2 * n, None)
+        resultant = np.zeros(m)
+        resultant[:n] = self._resultant @ both_faces
+        directions = np.array([body.direction for body in self.bodies])
+        # total load of column k: l_k + sum_b direction_b w_b resultant_k
+        response = matrix[:, load] + np.outer(matrix[:, weight] @ directions, resultant)
+        centres = [*response[weight], np.zeros(m)][:2]
+        upper, lower = (response[read][k * n : (k + 1) * n] - centres[k] for k in range(2))
+        gap, surface_sum = upper - lower, upper + lower
         arrays = {"gap": gap[:, :n], "surface_sum": surface_sum[:, :n]}
         if shear:
             arrays["shear"] = gap[:, n:]
         return arrays
 
-    def _gap_openings(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The gap opening W and the sum of the two faces' u_z (in units of a p/E_ref, each
-        free body's centre motion removed) at the film nodes, one column per column of the
-        owned solution rows ``values``."""
-        columns = values.shape[1]
-        centres = [self.comm.allreduce(weights @ values) for weights in self._centre_weights]
-        upper, lower = [*centres, np.zeros(columns)][:2]
-        r_up, u_up = self._owned_surface(self._geometry.SPHERE_CONTACT, values)
-        r_lo, u_lo = self._owned_surface(self._geometry.LOWER_CONTACT, values)
-        faces = [
-            np.column_stack(
-                [np.interp(self.radii_a, r, u[:, k]) - centre[k] for k in range(columns)]
-            )
-            for r, u, centre in ((r_up, u_up, upper), (r_lo, u_lo, lower))
-        ]
-        return faces[0] - faces[1], faces[0] + faces[1]
+    @property
+    def _contact_tags(self):
+        """The facet tags of the upper and the lower contact face."""
+        return self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT
+
+    def _face_read_out(self, tag):
+        """The sparse (owned unknowns, N) columns whose products with a displacement are its
+        u_z at the film nodes on the contact face ``tag`` (linear between the face's dofs)."""
+        import scipy.sparse
+
+        rows, r = self._surface_rows[tag]
+        r, first = np.unique(r, return_index=True)
+        interpolation = interpolation_matrix(r, self.radii_a).T.tocoo()
+        owned = self._space.dofmap.index_map.size_local * self._space.dofmap.index_map_bs
+        return scipy.sparse.csr_matrix(
+            (interpolation.data, (rows[first][interpolation.row], interpolation.col)),
+            shape=(owned, len(self.radii)),
+        )
 
     @cached_property
     def _centre_weights(self):
@@ -534,14 +615,6 @@ class FESolids:
             weights.append(vector.getArray() / volume)
         return weights
 
-    def _owned_surface(self, tag, values):
-        """(r, u_z rows) on a contact face from the owned rows ``values`` of a dense block of
-        solutions, gathered from all ranks and sorted by r."""
-        rows, r = self._surface_rows[tag]
-        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, values[rows]])))
-        r, index = np.unique(pairs[:, 0], return_index=True)
-        return r, pairs[index, 1:]
-
     @cached_property
     def _surface_rows(self):
         """Per contact face tag: the owned u_z rows of the solution vector and their r."""
@@ -551,7 +624,7 @@ class FESolids:
         V1, _ = space.sub(1).collapse()
         owned = space.dofmap.index_map.size_local * space.dofmap.index_map_bs
         out = {}
-        for tag in (self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT):
+        for tag in self._contact_tags:
             parent, child = fem.locate_dofs_topological(
                 (space.sub(1), V1), 1, self._facet_tags.find(tag)
             )

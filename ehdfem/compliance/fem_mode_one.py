@@ -52,10 +52,11 @@ import numpy as np
 from .. import checks
 from ..progress import progress
 from . import MODE_ONE_LOADS, ModeOneCompliance, dolfinx_compat
-from .fem import BLOCK, FESolids
+from .fem import FESolids
 from .fem_mesh import cached_matrices
 
 DEGREE = 2  # of the Lagrange elements
+BLOCK = 48  # right-hand sides per multiple-RHS solve (memory: 8 B x unknowns x BLOCK)
 TRACTIONS = ("pressure", "radial", "hoop")
 """The load kinds of one solve: the same nodal profile (or each face its own) on both faces."""
 

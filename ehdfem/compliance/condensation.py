@@ -1,0 +1,104 @@
+"""Condensation of a stiffness onto a few loads and read-outs: a bordered Schur complement.
+
+The film compliance is a set of numbers b_i . K^-1 f_j: the read-outs b_i (a displacement at a
+film node, a centre-of-mass motion) of the loads f_j (a hat pressure, a body force). With the
+loads and read-outs as the columns of G (unknowns x m), the stiffness bordered by them,
+
+    A = [[K, G], [G^T, 0]],
+
+has the Schur complement of its last m unknowns 0 - G^T K^-1 G: every b_i . K^-1 f_j at once.
+MUMPS forms it while it factorises K (the border unknowns are eliminated last and never
+pivoted on), so the whole compliance costs about one factorisation instead of one sparse
+triangular solve per load on the whole mesh.
+
+PETSc 3.18's MUMPS interface computes Schur complements on one process only, and petsc4py
+3.18 does not wrap MatFactorSetSchurIS and MatFactorCreateSchurComplement, so this module
+calls them in the PETSc library through ctypes. Nothing here knows about scales: the result
+carries the units of the stiffness and the columns it is given.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import scipy.sparse
+
+
+@cache
+def _petsc_library():
+    """The PETSc shared library that petsc4py is linked against (for the calls it lacks)."""
+    import petsc4py
+
+    directory = Path(petsc4py.get_config()["PETSC_DIR"]) / "lib"
+    for path in [*sorted(directory.glob("libpetsc*.so*")), ctypes.util.find_library("petsc")]:
+        if path is not None:
+            library = ctypes.CDLL(str(path))
+            if hasattr(library, "MatFactorSetSchurIS"):
+                return library
+    raise RuntimeError(f"no PETSc library with MatFactorSetSchurIS in {directory}")
+
+
+def _call(name: str, *arguments) -> None:
+    """Call the PETSc function ``name``; a nonzero error code raises."""
+    code = getattr(_petsc_library(), name)(*arguments)
+    if code != 0:
+        raise RuntimeError(f"PETSc {name} failed with error code {code}")
+
+
+def condensed(stiffness, columns) -> np.ndarray:
+    """G^T K^-1 G (m x m, dense) for the symmetric positive definite ``stiffness`` K (scipy
+    sparse, n x n; Dirichlet rows and columns already identities) and the sparse ``columns``
+    G (n x m, zero on the Dirichlet rows), on this process: the Schur complement of the
+    bordered matrix (module docstring), from one MUMPS factorisation of K."""
+    from petsc4py import PETSc
+
+    unknowns, m = columns.shape
+    bordered = scipy.sparse.bmat([[stiffness, columns], [columns.T, None]], format="csr")
+    bordered.sort_indices()
+    matrix = PETSc.Mat().createAIJ(
+        size=bordered.shape,
+        csr=(
+            bordered.indptr.astype(PETSc.IntType),
+            bordered.indices.astype(PETSc.IntType),
+            bordered.data,
+        ),
+        comm=PETSc.COMM_SELF,
+    )
+    # Cholesky of K: the border is the Schur block, which MUMPS does not factorise
+    matrix.setOption(PETSc.Mat.Option.SPD, True)
+    border = PETSc.IS().createGeneral(
+        np.arange(unknowns, unknowns + m, dtype=PETSc.IntType), comm=PETSc.COMM_SELF
+    )
+    ksp = PETSc.KSP().create(PETSc.COMM_SELF)
+    try:
+        ksp.setOperators(matrix)
+        ksp.setType("preonly")
+        pc = ksp.getPC()
+        pc.setType("cholesky")
+        pc.setFactorSolverType("mumps")
+        pc.setFactorSetUpSolverType()
+        factor = ctypes.c_void_p(pc.getFactorMatrix().handle)
+        _call("MatFactorSetSchurIS", factor, ctypes.c_void_p(border.handle))
+        ksp.setUp()
+        return -_schur_complement(factor, m)
+    finally:
+        for petsc_object in (ksp, border, matrix):
+            petsc_object.destroy()
+
+
+def _schur_complement(factor, size: int) -> np.ndarray:
+    """A copy of the dense (size x size) Schur complement of the factorisation ``factor``."""
+    schur, status = ctypes.c_void_p(), ctypes.c_int()
+    _call("MatFactorCreateSchurComplement", factor, ctypes.byref(schur), ctypes.byref(status))
+    values = ctypes.POINTER(ctypes.c_double)()
+    try:
+        _call("MatDenseGetArray", schur, ctypes.byref(values))
+        dense = np.ctypeslib.as_array(values, shape=(size, size)).T.copy()  # column-major
+        _call("MatDenseRestoreArray", schur, ctypes.byref(values))
+    finally:
+        _call("MatDestroy", ctypes.byref(schur))
+    return dense

@@ -33,7 +33,7 @@ from .film import Film, FilmError
 from .gap import Paraboloid, default_gap, gap_geometry
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed
-from .timestepping import BDFStepper, IntegratorOptions, latest
+from .timestepping import BDFStepper, IntegratorOptions, crossing, extrapolate, latest, peak
 
 if TYPE_CHECKING:
     from .compliance import Compliance
@@ -65,6 +65,8 @@ class NormalResult:
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
     at the end (meaningful without cavitation). ``status``: "rebound", "stick"
     or "stalled".
+    Exit, the stop and the extremes are located on the dense output between accepted steps
+    (the interpolating polynomials of the BDF history; :func:`ehdfem.timestepping.peak`).
     ``rtol`` and ``film_control``: the time-step control used (docs/model.md says what the
     default guarantees; ``energy_error`` is the achieved accuracy of the balance).
     ``gap``: the undeformed gap used (:mod:`ehdfem.gap`; ``gap.name`` says which).
@@ -220,17 +222,21 @@ class _NormalIntegration:
         new_rate = self.film.dissipation_rate(solution.state, solution.pressure)
         dissipated = self.hist.dissipated[-1] + 0.5 * step * (self.dissipation_rate + new_rate)
         self.dissipation_rate = new_rate
-        old_x, old_v = self.gap, self.velocity
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         self.rebounding = self.rebounding or self.velocity > 0
-        if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, interpolated
-            fraction = (1.0 - old_x) / (self.gap - old_x)
-            self.exit_time = t_old + fraction * step
-            self.exit_velocity = old_v + fraction * (self.velocity - old_v)
+        if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, on the dense output
+            times = latest(self.hist.time, 3)
+            self.exit_time = crossing(times, latest(self.hist.gap, 3), 1.0)
+            self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.exit_time)
             return "rebound"
-        if (self.rebounding and self.velocity <= 0) or abs(self.velocity) < REST_VELOCITY:
+        if self.rebounding and self.velocity <= 0:  # the stop: V back to 0, on the dense output
+            times = latest(self.hist.time, 3)
+            self.exit_time = crossing(times, latest(self.hist.velocity, 3), 0.0)
+            return "stick"
+        if abs(self.velocity) < REST_VELOCITY:
+            self.exit_time = t_new
             return "stick"
         if t_new > self.options.max_time:
             return "stalled"
@@ -250,11 +256,11 @@ class _NormalIntegration:
             status=status,
             exit_velocity=float(self.exit_velocity) if rebound else 0.0,
             e_n=params.e_dry * float(self.exit_velocity) if rebound else 0.0,
-            max_rebound_velocity=float(max(hist.velocity.max(), 0.0)),
-            min_film_thickness=float(hist.min_film.min()),
-            max_force=float(hist.force.max()),
-            contact_time=float(self.exit_time if rebound else hist.time[-1]),
-            max_compression=float(-hist.gap.min()),
+            max_rebound_velocity=max(peak(hist.time, hist.velocity)[1], 0.0),
+            min_film_thickness=-peak(hist.time, -hist.min_film)[1],
+            max_force=peak(hist.time, hist.force)[1],
+            contact_time=float(self.exit_time if status != "stalled" else hist.time[-1]),
+            max_compression=peak(hist.time, -hist.gap)[1],
             energy_error=float(abs(kinetic0 - balance) / kinetic0),
             steps=len(hist.time) - 1,
             rejected_steps=self.rejected,

@@ -1,0 +1,46 @@
+"""The BDF formulas and the dense output of the time stepper (exact on polynomials)."""
+
+import numpy as np
+import pytest
+
+from ehdfem.timestepping import crossing, derivative_weights, extrapolate, peak
+
+pytestmark = pytest.mark.serial
+
+
+def test_bdf_weights_differentiate_polynomials_of_their_order_exactly():
+    """Variable-step BDF-q is exact for polynomials of degree q (to rounding)."""
+    nodes = [1.0, 0.9, 0.75, 0.7]
+    for q in (1, 2, 3):
+        weights = derivative_weights(nodes[: q + 1])
+        values = [t**q for t in nodes[: q + 1]]
+        assert weights @ values == pytest.approx(q * nodes[0] ** (q - 1), rel=1e-12)
+
+
+def test_peak_is_the_vertex_of_a_sampled_parabola():
+    """On unequal steps the refined peak of y = 2 - 3 (t - 0.537)^2 is the vertex (1e-14);
+    the largest sample alone misses it by O(step^2)."""
+    times = np.array([0.0, 0.2, 0.45, 0.6, 0.9, 1.0])
+    values = 2 - 3 * (times - 0.537) ** 2
+    time, value = peak(times, values)
+    assert time == pytest.approx(0.537, abs=1e-14) and value == pytest.approx(2.0, abs=1e-14)
+    assert values.max() < 2.0 - 1e-3
+
+
+def test_peak_keeps_a_sample_at_the_end_or_a_kink():
+    """At the first or last sample, or where the neighbours do not bracket a maximum, the
+    largest sample is the peak."""
+    times = np.array([0.0, 1.0, 2.0, 3.0])
+    assert peak(times, np.array([0.0, 1.0, 2.0, 3.0])) == (3.0, 3.0)
+    assert peak(times, np.array([0.0, 1.0, 1.0, 0.0]))[1] >= 1.0
+
+
+def test_crossing_is_the_root_of_the_interpolating_polynomial():
+    """X(t) = 1 + (t - 0.73)(t + 0.2) crosses 1 at t = 0.73 between the two newest samples of
+    three; the dense output finds it to rounding and reads V there from its own polynomial."""
+    nodes = [0.8, 0.7, 0.55]  # newest first
+    gap = [1 + (t - 0.73) * (t + 0.2) for t in nodes]
+    time = crossing(nodes, gap, 1.0)
+    assert time == pytest.approx(0.73, abs=1e-14)
+    velocity = [2 * t - 0.53 for t in nodes]
+    assert extrapolate(nodes, velocity, time) == pytest.approx(2 * 0.73 - 0.53, abs=1e-14)

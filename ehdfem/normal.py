@@ -132,7 +132,7 @@ class _NormalIntegration:
         self.dissipation_rate = self.shear_work = 0.0
         self.rejected = self.iterations = 0
         self.rebounding = False
-        self.exit_time = self.exit_velocity = np.nan
+        self.end_time = self.exit_velocity = np.nan
         h, opening = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(h, self.pressure)
         self._record(0.0, np.ones(n), (h, opening), state, 0.0)
@@ -228,15 +228,15 @@ class _NormalIntegration:
         self.rebounding = self.rebounding or self.velocity > 0
         if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, on the dense output
             times = latest(self.hist.time, 3)
-            self.exit_time = crossing(times, latest(self.hist.gap, 3), 1.0)
-            self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.exit_time)
+            self.end_time = crossing(times, latest(self.hist.gap, 3), 1.0)
+            self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.end_time)
             return "rebound"
         if self.rebounding and self.velocity <= 0:  # the stop: V back to 0, on the dense output
             times = latest(self.hist.time, 3)
-            self.exit_time = crossing(times, latest(self.hist.velocity, 3), 0.0)
+            self.end_time = crossing(times, latest(self.hist.velocity, 3), 0.0)
             return "stick"
+        self.end_time = t_new  # at rest or stalled: the end is this step
         if abs(self.velocity) < REST_VELOCITY:
-            self.exit_time = t_new
             return "stick"
         if t_new > self.options.max_time:
             return "stalled"
@@ -259,7 +259,7 @@ class _NormalIntegration:
             max_rebound_velocity=max(peak(hist.time, hist.velocity)[1], 0.0),
             min_film_thickness=-peak(hist.time, -hist.min_film)[1],
             max_force=peak(hist.time, hist.force)[1],
-            contact_time=float(self.exit_time if status != "stalled" else hist.time[-1]),
+            contact_time=float(self.end_time),
             max_compression=peak(hist.time, -hist.gap)[1],
             energy_error=float(abs(kinetic0 - balance) / kinetic0),
             steps=len(hist.time) - 1,

@@ -472,14 +472,8 @@ class FESolids:
 
     def _surface(self, tag):
         """(r, u_z) at the dofs of a contact face, gathered from all ranks and sorted by r."""
-        from dolfinx import fem
-
-        V1, _ = self._space.sub(1).collapse()
-        parent, child = fem.locate_dofs_topological(
-            (self._space.sub(1), V1), 1, self._facet_tags.find(tag)
-        )
-        r = V1.tabulate_dof_coordinates()[child, 0]
-        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, self._u.x.array[parent]])))
+        rows, r = self._surface_rows[tag]
+        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, self._u.x.array[rows]])))
         r, index = np.unique(pairs[:, 0], return_index=True)
         return r, pairs[index, 1]
 
@@ -506,7 +500,13 @@ class FESolids:
     def film_pressure(self, nodal):
         """The film pressure with values ``nodal`` at the film nodes (by mu V0 a / x0^2), linear
         between them and zero beyond the last, as a callable of r (by a)."""
-        return lambda r: np.interp(r / math.sqrt(self.delta), self.radii, nodal, right=0.0)
+        nodal = np.asarray(nodal, dtype=float)
+
+        def pressure(r):
+            r = np.asarray(r, dtype=float)
+            return (interpolation_matrix(self.radii_a, r.ravel()) @ nodal).reshape(r.shape)[()]
+
+        return pressure
 
     def compliance(self, eps: float, shear: bool = False) -> FECompliance:
         """The film compliance in the units of the half-space kernel; with ``shear`` also the
@@ -590,8 +590,9 @@ class FESolids:
         return self._geometry.SPHERE_CONTACT, self._geometry.LOWER_CONTACT
 
     def _face_read_out(self, tag):
-        """The sparse (owned unknowns, N) columns whose products with a displacement are its
-        u_z at the film nodes on the contact face ``tag`` (linear between the face's dofs)."""
+        """The sparse (unknowns, N) columns whose products with a displacement are its u_z at
+        the film nodes on the contact face ``tag`` (linear between the face's dofs); on one
+        process (a rank's own face dofs would not bracket every film node)."""
         import scipy.sparse
 
         rows, r = self._surface_rows[tag]

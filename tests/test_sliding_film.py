@@ -15,6 +15,7 @@ from ehdfem.film import radial_grid
 from ehdfem.normal import solve_normal
 from ehdfem.scales import CollisionParameters
 from ehdfem.tangential import SlidingFilmError, solve_tangential, viscosity_tilt
+from ehdfem.timestepping import IntegratorOptions
 
 pytestmark = pytest.mark.serial
 
@@ -67,8 +68,12 @@ def test_a_rigid_mode_one_film_on_deformed_solids_gains_its_energy_from_x():
     """The inconsistency found in review: the mode-1 film of rigid solids on the flattened
     film (deformation "none" at eps = 0.1, St = 1000) leaves with e_t > 1. The balance shows
     the cause: the exchange X with the normal motion (from the elastic opening W0' of the
-    axisymmetric film, with no mode-1 elasticity to cancel it) exceeds the dissipation."""
-    tangential = collide(thin(0.1, 1000.0), deformation="none", **FAST).tangential
+    axisymmetric film, with no mode-1 elasticity to cancel it) exceeds the dissipation. The
+    balance's power integrals are trapezoidal in time, so it closes only as the steps shrink
+    (7.1e-3 at the default rtol 2e-4, 2.5e-3 at 2e-5, 7.9e-4 at 2e-6) while e_t is within 5e-4
+    of its converged value at any of them: the run uses rtol 2e-5 to resolve the balance."""
+    options = IntegratorOptions(rtol=2e-5)
+    tangential = collide(thin(0.1, 1000.0), deformation="none", options=options, **FAST).tangential
     assert tangential.e_t > 1.0
     assert tangential.energy.exchanged[-1] > tangential.energy.dissipated[-1]
     assert tangential.energy.balance_error < 5e-3

@@ -11,7 +11,7 @@ and the spin change are measured too. Writes benchmarks/results/accuracy.json (p
 output the relative error, per case the cost ratios; the largest of each) and prints the table
 of docs/performance.md. Resumable: the converged runs, the expensive part, are kept in
 benchmarks/results/accuracy_references.csv; the default and old runs are redone each time.
-Run: .venv/bin/python benchmarks/accuracy.py   (about 1 hour from scratch, 5 minutes after)
+Run: .venv/bin/python benchmarks/accuracy.py   (2 hours or more from scratch, 5 minutes after)
 """
 
 import os

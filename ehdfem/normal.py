@@ -129,13 +129,13 @@ class _NormalIntegration:
         n = len(self.radii)
         self.pressure, self.gap, self.velocity = np.zeros(n), 1.0, -1.0
         self.cavitated = np.zeros(n, bool)
-        self.full = np.ones(n, bool)
         self.dissipation_rate = self.shear_work = 0.0
         self.rejected = self.iterations = 0
         self.rebounding = False
         self.end_time = self.exit_velocity = np.nan
         h, opening = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(h, self.pressure)
+        self.full = self._full(self.pressure, state)
         self._record(0.0, np.ones(n), (h, opening), state, 0.0)
 
     def _record(self, time, fill, thickness, state, dissipated):

@@ -16,7 +16,7 @@ import numpy as np
 from . import cavitation, checks
 from .compliance import Compliance, ModeOneCompliance
 from .compliance.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from .film import radial_grid
+from .film import contact_grid
 from .normal import FilmClosedError, NormalResult, solve_normal
 from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .superposition import SuperpositionValidity, SuperpositionWarning, superposition_validity
@@ -31,20 +31,24 @@ IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is
 
 
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)).
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.contact_grid`, graded to
+    the rim of the largest contact the sphere can reach.
 
-    The fine zone covers the contact radius at the largest approach the sphere can reach, the
-    dry Hertz compression (an upper bound, since the film dissipates), and never less than
-    eps^(1/5), the radius where elastic flattening starts (gap ~ eps^(2/5)). A thin layer ends
-    where the wetted edge can reach, sqrt(2 (1 + compression)), plus 5 %.
+    That rim is the dry Hertz contact radius at the impact's energy (an upper bound, since the
+    film dissipates), and never less than eps^(1/5), the radius where elastic flattening
+    starts (gap ~ eps^(2/5)). A thin layer ends where the wetted edge can reach,
+    sqrt(2 (1 + compression)), plus 5 % (so at least 1.48 times the rim, to which eps^(1/5)
+    is cut at tiny St and large eps); an immersed one at
+    IMMERSED_OUTER_RADIUS, with a node at the sphere's radius 1/sqrt(delta), where the film's
+    shear integrals end.
     """
     compression = hertz_max_compression(params.eps, params.St)
-    fine = max(np.sqrt(compression), params.eps**0.2)
+    rim = max(np.sqrt(compression), params.eps**0.2)
     if params.layer == "thin":
-        outer = 1.05 * np.sqrt(2.0 * (1.0 + compression))
-    else:
-        outer = max(IMMERSED_OUTER_RADIUS, 10.0 * fine)
-    return radial_grid(nodes, min(fine, 0.5 * outer), outer)
+        outer = 1.05 * np.sqrt(2.0 * (1.0 + compression))  # > 1.48 sqrt(compression)
+        return contact_grid(nodes, min(rim, outer / 1.48), outer)
+    outer = max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
+    return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
 
 
 def elasticity(

@@ -61,6 +61,84 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
     return radii
 
 
+# The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
+# contact_grid): knots (rho, spacing) and the slope beyond the last knot.
+_CONTACT_SPACING_KNOTS = ((0.0, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.35), (1.5, 4.35))
+_CONTACT_SPACING_SLOPE = 5.0
+
+
+def contact_grid(
+    n: int, rim_radius: float, outer_radius: float, node_at: float | None = None
+) -> np.ndarray:
+    """Film nodes graded to a contact rim R_c, by sqrt(a x0).
+
+    The spacing is c s(R/R_c), s piecewise linear: 1 in the contact up to 0.78 R_c, down to
+    0.35 at the rim (where a hard impact's exit constriction makes the film thinnest), up to
+    4.35 at 1.5 R_c and growing by 5 per R_c beyond, so the far field grows geometrically and
+    costs a logarithmic number of nodes. The nodes sit at equal steps of int dR / s(R/R_c),
+    with c set by n. ``node_at``: a radius given a node of its own if it lies inside the grid
+    (the sphere's radius, where the immersed film's shear integrals end).
+    """
+    n = checks.integer("n (film nodes)", n, lower=8)
+    rim_radius = checks.positive("rim_radius", rim_radius)
+    outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
+    end = outer_radius / rim_radius
+    knots = [(rho, s) for rho, s in _CONTACT_SPACING_KNOTS if rho < end]
+    last_rho, last_s = _CONTACT_SPACING_KNOTS[len(knots) - 1]
+    slope = _CONTACT_SPACING_SLOPE
+    if len(knots) < len(_CONTACT_SPACING_KNOTS):
+        slope = (_CONTACT_SPACING_KNOTS[len(knots)][1] - last_s) / (
+            _CONTACT_SPACING_KNOTS[len(knots)][0] - last_rho
+        )
+    rho = np.array([k[0] for k in knots] + [end])
+    spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
+    pieces = _SpacingPieces(rho, spacing)
+    share = np.linspace(0.0, 1.0, n)
+    if node_at is not None and rim_radius < node_at < outer_radius:
+        at = pieces.share(node_at / rim_radius)
+        k = min(max(round(at * (n - 1)), 1), n - 2)
+        share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
+    radii = rim_radius * pieces.position(share)
+    radii[0], radii[-1] = 0.0, outer_radius
+    if node_at is not None and rim_radius < node_at < outer_radius:
+        radii[k] = node_at
+    return radii
+
+
+class _SpacingPieces:
+    """A spacing s(rho) linear between knots and the exact share of the nodes up to rho,
+    int_0^rho d rho' / s over the total, and its inverse."""
+
+    def __init__(self, rho: np.ndarray, spacing: np.ndarray):
+        self.rho, self.spacing = rho, spacing
+        self.slope = np.diff(spacing) / np.diff(rho)
+        self.cumulative = np.concatenate([[0.0], np.cumsum(self._integral(np.diff(rho)))])
+
+    def _integral(self, width, piece=slice(None)):
+        """int d rho / s over ``width`` from the start of each piece."""
+        s0, m = self.spacing[:-1][piece], self.slope[piece]
+        flat = np.abs(m) < 1e-12
+        return np.where(flat, width / s0, np.log1p(m * width / s0) / np.where(flat, 1.0, m))
+
+    def share(self, rho: float) -> float:
+        """The share of the nodes inside rho."""
+        i = min(int(np.searchsorted(self.rho, rho, side="right")) - 1, len(self.slope) - 1)
+        partial = self._integral(np.array([rho - self.rho[i]]), slice(i, i + 1))[0]
+        return float((self.cumulative[i] + partial) / self.cumulative[-1])
+
+    def position(self, share: np.ndarray) -> np.ndarray:
+        """rho at the given shares of the nodes (the inverse of :meth:`share`)."""
+        target = np.asarray(share) * self.cumulative[-1]
+        i = np.clip(
+            np.searchsorted(self.cumulative, target, side="right") - 1, 0, len(self.slope) - 1
+        )
+        left = target - self.cumulative[i]
+        s0, m = self.spacing[:-1][i], self.slope[i]
+        flat = np.abs(m) < 1e-12
+        grown = np.expm1(m * left) / np.where(flat, 1.0, m)
+        return self.rho[i] + s0 * np.where(flat, left, grown)
+
+
 def _ascending_mass(left, right):
     """int over [left, right] of the hat that rises from 0 to 1, times R."""
     return (right - left) * (left + 2.0 * right) / 6.0
@@ -367,7 +445,10 @@ class Film:
         return weights, tail
 
     def _inner_elements(self, film_thickness: np.ndarray, outer_radius: float) -> _Elements:
-        """The wetted elements that start inside ``outer_radius``."""
+        """The wetted elements that start inside ``outer_radius``: the integrals end at the
+        first node at or beyond it, so a grid should have a node there (:func:`contact_grid`'s
+        ``node_at``; an element across it would count whole and move the integral with the
+        grid, about 1 % of the spin change at delta = 0.01 on the previous sinh grid)."""
         _, _, el = self._elements(film_thickness)
         inside = self.radii[el.left] < outer_radius
         return _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))

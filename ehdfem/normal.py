@@ -41,6 +41,7 @@ if TYPE_CHECKING:
 
 REST_VELOCITY = 1e-10  # |V| below which the sphere is at rest (scaled by V0)
 CLOSED_FILM = 1e-8  # film thickness (by x0) taken as closed when a step then fails
+NEAR_THINNEST = 1.1  # the thinnest node's film is checked within this factor of the thinnest yet
 
 
 class NormalSolverError(RuntimeError):
@@ -136,6 +137,7 @@ class _NormalIntegration:
         h, opening = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(h, self.pressure)
         self.full = self._full(self.pressure, state)
+        self.thinnest = float(np.min(h))  # the thinnest film of the accepted steps
         self._record(0.0, np.ones(n), (h, opening), state, 0.0)
 
     def _record(self, time, fill, thickness, state, dissipated):
@@ -195,10 +197,13 @@ class _NormalIntegration:
 
     def _error(self, t_new, order, solution, film_thickness) -> float:
         """The step's estimated local error over rtol: the largest of |dX| / H_min, |dV|
-        and, with film control, |dH / H| at the thinnest node and the root mean square of
-        dH / H over the nodes whose film is full (wet, above P_cav) before and after the step.
-        The mean square, as in DASSL and CVODE, lets one node's kink, when it cavitates or the
-        contact rim passes it, cost a short step instead of a run of rejected ones."""
+        and, with film control, the root mean square of dH / H over the nodes whose film is
+        full (wet, above P_cav) before and after the step and |dH / H| at the thinnest node
+        while its film is within NEAR_THINNEST of the thinnest yet (where the reported minimum
+        can still form; a rebound's thickening film, resolved in the mean square, costs 20-30 %
+        fewer steps at hard impacts without it). The mean square, as in DASSL and CVODE, lets
+        one node's kink, when it cavitates or the contact rim passes it, cost a short step
+        instead of a run of rejected ones."""
         hist, stepper = self.hist, self.stepper
         share = stepper.error_share(t_new, order)
         if share is None:
@@ -213,7 +218,8 @@ class _NormalIntegration:
             film = stepper.correction(t_new, order, hist.film_thickness, film_thickness)
             relative = film / film_thickness
             full = self.full & self._full(solution.pressure, solution.state)
-            errors.append(abs(relative[thinnest]))
+            if film_thickness[thinnest] <= NEAR_THINNEST * min(self.thinnest, h_min):
+                errors.append(abs(relative[thinnest]))
             if full.any():
                 errors.append(np.sqrt(np.mean(relative[full] ** 2)))
         return share * max(errors) / self.options.rtol
@@ -250,6 +256,7 @@ class _NormalIntegration:
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
         self.full = self._full(solution.pressure, solution.state)
+        self.thinnest = min(self.thinnest, float(np.min(thickness[0])))
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         self.rebounding = self.rebounding or self.velocity > 0
         if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, on the dense output

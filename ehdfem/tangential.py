@@ -238,7 +238,8 @@ def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialR
     """The motion under a Couette shear J(T) on the slip (the ``couette`` and ``flat`` models),
     integrated exactly for each step's mean J: St dU/dT = -(delta/3) J u_s = -k St d(a Omega)/dT
     conserves U + k a Omega and makes u_s decay by exp(-(1 + 1/k) delta/(3 St) int J dT) (so
-    an overflowing J, a frozen piezoviscous film, rolls the sphere at once)."""
+    an overflowing J, a frozen piezoviscous film, rolls the sphere at once), also from the
+    last step to the exit."""
     params = normal.params
     hist = normal.history
     k, St, delta = params.inertia_factor, params.St, params.delta
@@ -253,7 +254,12 @@ def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialR
         states[i + 1] = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
     velocity, spin = states.T
     force = -delta / 3.0 * shear * (velocity - spin)
-    return _result(normal, model, "none", (velocity, spin, shear, force), None)
+    end = _end_index(normal)  # the end inside step i: its share of the step's decay
+    i = min(int(end), len(decay) - 1)
+    slip = (velocity[i] - spin[i]) * decay[i] ** (end - i) if len(decay) else 0.0
+    momentum = k * spin[0] + velocity[0]
+    at_end = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
+    return _result(normal, model, "none", (velocity, spin, shear, force), None, at_end=at_end)
 
 
 def gcb_resistance(delta: float, min_film) -> np.ndarray:
@@ -325,20 +331,22 @@ def _initial_spin(params) -> float:
     return 0.0 if tangential == 0.0 else params.spin / tangential
 
 
-def _result(normal, model, deformation, histories, energy, mode_one=(None, None)):
+def _result(normal, model, deformation, histories, energy, mode_one=(None, None), at_end=None):
     """The TangentialResult from the histories (U, a Omega, J, F_t) at the steps and, for the
-    sliding film, (q, H1) at the steps."""
+    sliding film, (q, H1) at the steps. ``at_end``: (U, a Omega) at the end of the collision
+    if the model knows them between its steps (None: interpolated linearly)."""
     params, hist = normal.params, normal.history
     velocity, spin, shear, force = histories
     head_on = params.tangential_speed == 0.0
-    end = _end_index(normal)
-    steps = np.arange(len(velocity))
+    if at_end is None:
+        end, steps = _end_index(normal), np.arange(len(velocity))
+        at_end = (np.interp(end, steps, velocity), np.interp(end, steps, spin))
     return TangentialResult(
         model=model,
         deformation=deformation,
         at="exit" if normal.rebound else "stop",
-        e_t=None if head_on else float(np.interp(end, steps, velocity)),
-        spin_change=None if head_on else float(np.interp(end, steps, spin) - spin[0]),
+        e_t=None if head_on else float(at_end[0]),
+        spin_change=None if head_on else float(at_end[1] - spin[0]),
         time=hist.time,
         shear=shear,
         velocity=velocity,

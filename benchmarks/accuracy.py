@@ -14,7 +14,8 @@ relative error, per case the cost ratios; the largest of each; "cases_done" of "
 prints the table of docs/performance.md. Resumable: the converged runs, the expensive part, are
 kept in benchmarks/results/accuracy_references.csv, keyed by the case and their film grid (a
 change of the grid recomputes them); the default and old runs are redone each time.
-Run: .venv/bin/python benchmarks/accuracy.py   (2 hours or more from scratch, 5 minutes after)
+Run: .venv/bin/python benchmarks/accuracy.py   (2 hours or more from scratch, 5 minutes after;
+--stored: only the cases whose reference is stored)
 """
 
 import os
@@ -22,6 +23,7 @@ import os
 os.environ["OPENBLAS_NUM_THREADS"] = os.environ["OMP_NUM_THREADS"] = "1"
 
 import json  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 from statistics import median  # noqa: E402
@@ -124,12 +126,13 @@ def relative_errors(values, exact):
     return errors
 
 
-def reference(table, name, params, model):
-    """The converged run of case ``name`` (computed once, then read from ``table``), with its
-    own time error: the largest relative change of an output at a ten times looser rtol."""
+def reference(table, name, params, model, compute=True):
+    """The converged run of case ``name`` (computed once, then read from ``table``; None if
+    it is not stored and not ``compute``), with its own time error: the largest relative
+    change of an output at a ten times looser rtol."""
     grid = grid_key(film_radii(params, 2 * DEFAULT_NODES))
     row = table.get(case=name, grid=grid)
-    if row is None:
+    if row is None and compute:
         converged, _, _ = timed(params, model, 2 * DEFAULT_NODES, CONVERGED)
         looser, _, _ = timed(params, model, 2 * DEFAULT_NODES, CONVERGED_CHECK)
         errors = [e for e in relative_errors(looser, converged).values() if e != ""]
@@ -144,10 +147,13 @@ def reference(table, name, params, model):
     return row
 
 
-def run_case(references, name, layer, film, St, eps, options):
+def run_case(references, name, layer, film, St, eps, options, compute=True):
+    """The row of one case (None if its reference is not stored and not ``compute``)."""
     model = "fem" if name.startswith("fem") else "halfspace"
     params = parameters(layer, St, eps, options, model)
-    exact = reference(references, name, params, model)
+    exact = reference(references, name, params, model, compute)
+    if exact is None:
+        return None
     default, seconds, tried = timed(params, model, DEFAULT_NODES, IntegratorOptions(), 2)
     _, old_seconds, old_tried = timed(params, model, DEFAULT_NODES, OLD, 2, old_radii(params))
     row = {"case": name, "St": params.St, "status": default["status"]}
@@ -157,16 +163,21 @@ def run_case(references, name, layer, film, St, eps, options):
     return row
 
 
-def main():
+def main(stored_only=False):
+    """Every case, or with ``stored_only`` (--stored) only those whose reference is stored:
+    the cheap runs alone, e.g. to time them again on an idle machine."""
     RESULTS.mkdir(exist_ok=True)
     references = ResultTable(RESULTS / "accuracy_references.csv", ("case", "grid"))
     rows, grid = [], cases()
     for case in grid:
         print(case[0], flush=True)
         try:
-            rows.append(run_case(references, *case))
+            row = run_case(references, *case, compute=not stored_only)
         except NormalSolverError as err:  # recorded, and left out of the figures
-            rows.append({"case": case[0], "status": f"failed: {err}"})
+            row = {"case": case[0], "status": f"failed: {err}"}
+        if row is None:
+            continue
+        rows.append(row)
         summary = summarise(rows, len(grid))
         _write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
     print_table(summary)
@@ -208,4 +219,4 @@ def print_table(summary):
 
 
 if __name__ == "__main__":
-    main()
+    main(stored_only="--stored" in sys.argv[1:])

@@ -18,7 +18,8 @@ O(sqrt(delta)) of the pressure's), so the simplified Newton still contracts whil
 holds it in full. The Jacobian is dense (the compliance couples all nodes). It is
 factorised only when needed (simplified Newton): the LU (:class:`ehdfem.reusable_lu.ReusableLU`)
 is reused across iterations and steps while a0/dt has moved by less than 30 % and the
-iteration contracts fast enough, and rows of nodes that become dry, wet or cavitated are
+iteration contracts fast enough; rows of nodes that become dry, wet or cavitated, and the
+columns of nodes whose unknown switches between P and theta at a mass-conserving cavity, are
 swapped in by the Woodbury identity.
 """
 
@@ -116,8 +117,7 @@ class ImplicitStep:
             it, cavitated, fill = self._residual(
                 pressure, gap, velocity, fill, cavitated, step, a0, past
             )
-            stale = self.factor is None or self.factor.columns != it.sets[2]
-            if refresh or stale or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
+            if refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
                 self._factorise(it, step, a0, fill)
                 refresh = False
             update = self._newton_update(it, step, a0, fill)
@@ -181,8 +181,12 @@ class ImplicitStep:
         rows = partial(
             self._rows, it.state, step=step, a0=a0, fill=fill, theta_nodes=it.theta_nodes
         )
+
+        def columns(indices):
+            return self._newton_matrix(it, step, a0, fill)[:, indices]
+
         try:
-            update = self.factor.solve(it.rhs, it.fixed, rows)
+            update = self.factor.solve(it.rhs, it.fixed, rows, it.theta_nodes, columns)
         except TooManyChanges:
             self._factorise(it, step, a0, fill)
             update = self.factor.solve(it.rhs, it.fixed, None)
@@ -209,15 +213,20 @@ class ImplicitStep:
         diagonal = state.conductance[1]
         return state.mass * a0 * h / (step * np.where(diagonal > 0, diagonal, 1.0))
 
-    def _factorise(self, it: _Iterate, step, a0, fill):
-        """A new LU of the Jacobian; at mass-conserving cavities the unknown is theta, whose
-        column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
+    def _newton_matrix(self, it: _Iterate, step, a0, fill):
+        """The Jacobian in the Newton unknowns: at mass-conserving cavities the unknown is
+        theta, whose column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
         jacobian = self._jacobian(it.state, it.fixed, step, a0, fill)
         nodes = np.flatnonzero(it.theta_nodes)
         jacobian[:, nodes] = 0.0
         jacobian[nodes, nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
+        return jacobian
+
+    def _factorise(self, it: _Iterate, step, a0, fill):
+        """A new LU of the Newton matrix (:meth:`_newton_matrix`)."""
+        jacobian = self._newton_matrix(it, step, a0, fill)
         try:
-            self.factor = ReusableLU(jacobian, it.fixed, a0 / step, it.theta_nodes.tobytes())
+            self.factor = ReusableLU(jacobian, it.fixed, a0 / step, it.theta_nodes)
         except SingularMatrix as err:
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1

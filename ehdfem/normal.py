@@ -42,6 +42,10 @@ if TYPE_CHECKING:
 REST_VELOCITY = 1e-10  # |V| below which the sphere is at rest (scaled by V0)
 CLOSED_FILM = 1e-8  # film thickness (by x0) taken as closed when a step then fails
 NEAR_THINNEST = 1.1  # the thinnest node's film is checked within this factor of the thinnest yet
+# With film control, the error weights of X (relative to the thinnest film) and of the thinnest
+# node's film: e_n near St_c (through X at exit) and the thinnest film are the outputs most
+# sensitive to the time step (docs/model.md, "Time").
+GAP_WEIGHT, THINNEST_WEIGHT = 3.0, 2.0
 
 
 class NormalSolverError(RuntimeError):
@@ -201,25 +205,29 @@ class _NormalIntegration:
         full (wet, above P_cav) before and after the step and |dH / H| at the thinnest node
         while its film is within NEAR_THINNEST of the thinnest yet (where the reported minimum
         can still form; a rebound's thickening film, resolved in the mean square, costs 20-30 %
-        fewer steps at hard impacts without it). The mean square, as in DASSL and CVODE, lets
-        one node's kink, when it cavitates or the contact rim passes it, cost a short step
-        instead of a run of rejected ones."""
+        fewer steps at hard impacts without it); with film control |dX| / H_min and the
+        thinnest node weigh GAP_WEIGHT and THINNEST_WEIGHT times. The mean square, as in DASSL
+        and CVODE, lets one node's kink, when it cavitates or the contact rim passes it, cost a
+        short step instead of a run of rejected ones."""
         hist, stepper = self.hist, self.stepper
         share = stepper.error_share(t_new, order)
         if share is None:
             return 0.0
         thinnest = int(np.argmin(film_thickness))
         h_min = max(min(hist.min_film[-1], film_thickness[thinnest]), 1e-12)
+        control = self.options.film_control
         errors = [
-            abs(stepper.correction(t_new, order, hist.gap, solution.gap)) / h_min,
+            abs(stepper.correction(t_new, order, hist.gap, solution.gap))
+            / h_min
+            * (GAP_WEIGHT if control else 1.0),
             abs(stepper.correction(t_new, order, hist.velocity, solution.velocity)),
         ]
-        if self.options.film_control:
+        if control:
             film = stepper.correction(t_new, order, hist.film_thickness, film_thickness)
             relative = film / film_thickness
             full = self.full & self._full(solution.pressure, solution.state)
             if film_thickness[thinnest] <= NEAR_THINNEST * min(self.thinnest, h_min):
-                errors.append(abs(relative[thinnest]))
+                errors.append(THINNEST_WEIGHT * abs(relative[thinnest]))
             if full.any():
                 errors.append(np.sqrt(np.mean(relative[full] ** 2)))
         return share * max(errors) / self.options.rtol

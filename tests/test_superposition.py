@@ -71,12 +71,13 @@ def test_two_dimensional_film_is_the_superposition_without_suction():
 
 
 def test_superposition_fails_under_suction_and_returns_as_the_sliding_vanishes():
-    """eps = 1e-3, St = 20, P_cav = -1: at the instant of the largest suction overlap the
-    superposed pressure crosses the limit and the 2-D film's moment differs by more than 20 %
-    (measured 36 %); with the sliding amplitude ten times smaller the 2-D film comes back to the
-    superposition within 4 % (measured 2.4 %, the discretisation at centre element size 0.007):
-    the difference is the superposition's, not the mesh's. The cavitation-rule sensitivity of
-    e_t is computed (measured 5e-3) and the collision not flagged."""
+    """eps = 1e-3, St = 20, P_cav = -1: at the step of the largest suction overlap the
+    superposed pressure crosses the limit and the 2-D film's moment differs by more than 10 %
+    and by five times its difference at a ten times smaller sliding amplitude, which is within
+    4 % (measured 17 % and 1.6 %; 36 % and 2.4 % on the steps of the earlier step control, the
+    overlap peaking sharply in time; 1.6 % is the discretisation at centre element size
+    0.007): the difference is the superposition's, not the mesh's. The cavitation-rule
+    sensitivity of e_t is computed (measured 5e-3) and the collision not flagged."""
     result = sliding_collision(1e-3, 20.0, -1.0)
     validity = result.superposition
     step = int(np.argmax(validity.overlap))
@@ -87,7 +88,8 @@ def test_superposition_fails_under_suction_and_returns_as_the_sliding_vanishes()
         for factor in (1.0, 0.1)
     )
     report(f"suction: error {full.moment_error:.2e} at s, {small.moment_error:.2e} at s/10")
-    assert full.moment_error > 0.2
+    assert full.moment_error > 0.1
+    assert full.moment_error > 5 * small.moment_error
     assert full.cavitated_vertices > 0
     assert small.moment_error < 4e-2
 

@@ -37,10 +37,9 @@ from ehdfem import (  # noqa: E402
     critical_stokes,
     study,  # noqa: E402
 )
-from ehdfem.collision import DEFAULT_NODES, IMMERSED_OUTER_RADIUS, elasticity, film_radii  # noqa: E402
+from ehdfem.collision import DEFAULT_NODES, elasticity, film_extent, film_radii  # noqa: E402
 from ehdfem.film import radial_grid  # noqa: E402
 from ehdfem.normal import NormalSolverError  # noqa: E402
-from ehdfem.scales import hertz_max_compression  # noqa: E402
 from ehdfem.study import ResultTable, _write_atomic  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -85,13 +84,8 @@ def parameters(layer, St, eps, options, model):
 
 
 def old_radii(params, nodes=DEFAULT_NODES):
-    """The old default film grid: sinh nodes, uniform inside the rim of ehdfem.film_radii."""
-    compression = hertz_max_compression(params.eps, params.St)
-    rim = max(np.sqrt(compression), params.eps**0.2)
-    if params.layer == "thin":
-        outer = 1.05 * np.sqrt(2.0 * (1.0 + compression))
-    else:
-        outer = max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
+    """The old default film grid: sinh nodes, uniform inside the rim of ehdfem.film_extent."""
+    rim, outer = film_extent(params)
     return radial_grid(nodes, min(rim, 0.5 * outer), outer)
 
 
@@ -156,8 +150,7 @@ def run_case(references, name, layer, film, St, eps, options, compute=True):
     if exact is None:
         return None
     default, seconds, tried = timed(params, model, DEFAULT_NODES, IntegratorOptions(), REPEATS)
-    old = timed(params, model, DEFAULT_NODES, OLD, REPEATS, old_radii(params))
-    _, old_seconds, old_tried = old
+    _, old_seconds, old_tried = timed(params, model, DEFAULT_NODES, OLD, REPEATS, old_radii(params))
     row = {"case": name, "St": params.St, "status": default["status"]}
     row.update(relative_errors(default, exact))
     row["reference_time_error"] = float(exact["time_error"])

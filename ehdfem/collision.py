@@ -30,24 +30,29 @@ DEFAULT_NODES = 240
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
-def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.contact_grid`, graded to
-    the rim of the largest contact the sphere can reach.
-
-    That rim is the dry Hertz contact radius at the impact's energy (an upper bound, since the
-    film dissipates), and never less than eps^(1/5), the radius where elastic flattening
-    starts (gap ~ eps^(2/5)). A thin layer ends where the wetted edge can reach,
-    sqrt(2 (1 + compression)), plus 5 % (so at least 1.48 times the rim, to which eps^(1/5)
-    is cut at tiny St and large eps); an immersed one at
-    IMMERSED_OUTER_RADIUS, with a node at the sphere's radius 1/sqrt(delta), where the film's
-    shear integrals end.
+def film_extent(params: CollisionParameters) -> tuple[float, float]:
+    """(rim, outer) of the film grid, by sqrt(a x0): the rim of the largest contact the sphere
+    can reach, the dry Hertz contact radius at the impact's energy (an upper bound, since the
+    film dissipates) but never less than eps^(1/5), the radius where elastic flattening starts
+    (gap ~ eps^(2/5)); the grid's end, for a thin layer where the wetted edge can reach,
+    sqrt(2 (1 + compression)), plus 5 %, for an immersed one IMMERSED_OUTER_RADIUS (or 10 rims).
     """
     compression = hertz_max_compression(params.eps, params.St)
     rim = max(np.sqrt(compression), params.eps**0.2)
     if params.layer == "thin":
-        outer = 1.05 * np.sqrt(2.0 * (1.0 + compression))  # > 1.48 sqrt(compression)
+        return rim, 1.05 * np.sqrt(2.0 * (1.0 + compression))  # > 1.48 sqrt(compression)
+    return rim, max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
+
+
+def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.contact_grid` graded to
+    the rim of :func:`film_extent`. A thin layer's grid ends at least 1.48 rims out (eps^(1/5)
+    is cut to that at tiny St and large eps); an immersed one has a node at the sphere's radius
+    1/sqrt(delta), where the film's shear integrals end.
+    """
+    rim, outer = film_extent(params)
+    if params.layer == "thin":
         return contact_grid(nodes, min(rim, outer / 1.48), outer)
-    outer = max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
     return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
 
 

@@ -93,15 +93,15 @@ def contact_grid(
     rho = np.array([k[0] for k in knots] + [end])
     spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
     pieces = _SpacingPieces(rho, spacing)
-    share = np.linspace(0.0, 1.0, n)
-    if node_at is not None and rim_radius < node_at < outer_radius:
+    if node_at is None or not rim_radius < node_at < outer_radius:
+        radii = rim_radius * pieces.position(np.linspace(0.0, 1.0, n))
+    else:  # node k at node_at: equal steps of the share on either side of it
         at = pieces.share(node_at / rim_radius)
         k = min(max(round(at * (n - 1)), 1), n - 2)
         share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
-    radii = rim_radius * pieces.position(share)
-    radii[0], radii[-1] = 0.0, outer_radius
-    if node_at is not None and rim_radius < node_at < outer_radius:
+        radii = rim_radius * pieces.position(share)
         radii[k] = node_at
+    radii[0], radii[-1] = 0.0, outer_radius
     return radii
 
 

@@ -248,17 +248,19 @@ def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialR
     decay = np.exp(-(1.0 + 1.0 / k) * rate)
     states = np.empty((len(hist.time), 2))
     states[0] = (1.0, _initial_spin(params))
-    for i, factor in enumerate(decay):
+
+    def decayed(i, factor):  # (U, a Omega) after step i's slip decays by factor
         slip = (states[i, 0] - states[i, 1]) * factor
         momentum = k * states[i, 1] + states[i, 0]  # conserved: U + k a Omega
-        states[i + 1] = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
-    velocity, spin = states.T
-    force = -delta / 3.0 * shear * (velocity - spin)
+        return (momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k)
+
+    for i, factor in enumerate(decay):
+        states[i + 1] = decayed(i, factor)
     end = _end_index(normal)  # the end inside step i: its share of the step's decay
     i = min(int(end), len(decay) - 1)
-    slip = (velocity[i] - spin[i]) * decay[i] ** (end - i) if len(decay) else 0.0
-    momentum = k * spin[0] + velocity[0]
-    at_end = ((momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k))
+    at_end = decayed(i, decay[i] ** (end - i))
+    velocity, spin = states.T
+    force = -delta / 3.0 * shear * (velocity - spin)
     return _result(normal, model, "none", (velocity, spin, shear, force), None, at_end=at_end)
 
 

@@ -24,11 +24,11 @@ class IntegratorOptions:
     ``rtol``: local error per step in X relative to the thinnest film, in V (relative to V0)
     and, with ``film_control``, in the film thickness H relative to itself, at the thinnest
     node near the thinnest film yet and in the root mean square over the nodes whose film is
-    full; with ``film_control`` X and the thinnest node are held to rtol/3 and rtol/2
-    (:mod:`ehdfem.normal`, GAP_WEIGHT and THINNEST_WEIGHT; so the thinnest film
-    and the fast suction phase of the rebound are resolved; without it only X and V are
+    full, so that the thinnest film and the fast suction phase of the rebound are resolved;
+    with ``film_control`` X and the thinnest node are held to rtol/3 and rtol/2
+    (GAP_WEIGHT and THINNEST_WEIGHT of :mod:`ehdfem.normal`). Without it only X and V are
     controlled, which left the minimum film thickness up to 10 % off at the old default rtol
-    5e-5; docs/performance.md). ``order``: the highest BDF order. ``max_growth``: the largest
+    5e-5 (docs/performance.md). ``order``: the highest BDF order. ``max_growth``: the largest
     step growth per step.
     ``newton_tol``: Newton increments relative to the solution size. ``first_step``: initial
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).

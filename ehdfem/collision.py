@@ -174,6 +174,7 @@ class CollisionResult:
             "energy_error": n.energy_error,
             "rtol": n.rtol,
             "film_control": n.film_control,
+            "bdf_order": n.order,
             "film_nodes": len(n.radii),
             "time_steps": n.steps,
             "e_t": None,

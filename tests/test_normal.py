@@ -59,16 +59,18 @@ def test_dry_hertz_limit_of_the_maximum_compression():
 
 def test_energy_balance_without_cavitation():
     """Kinetic + elastic energy lost = viscous dissipation, to discretisation error: in a thin
-    layer the imbalance is below 2e-3 of the impact energy at the defaults and falls with the
-    time step (below 1e-4 at rtol = 2e-7); fully immersed it stays below 1e-3 (the part left at
-    fine steps, 5e-4, is the far field beyond R = 30, whose force is in the dynamics but whose
-    dissipation is not in the balance)."""
+    layer the imbalance is below 1e-3 of the impact energy at the defaults (measured 6.4e-4)
+    and falls with the time step (below 3e-5 at rtol = 2e-7, measured 1.7e-5; the dissipation
+    is integrated on the quadratic through the latest rates, the trapezoidal rule left 2e-3
+    at the defaults); fully immersed it stays below 1e-3 (measured 9.7e-4: the part left at
+    fine steps, 6.3e-4, is the far field beyond R = 30, whose force is in the dynamics but
+    whose dissipation is not in the balance)."""
     thin = CollisionParameters(St=10.0, eps=1e-3, layer="thin")
     errors = [
         collide(thin, options=IntegratorOptions(rtol=r)).normal.energy_error
         for r in (IntegratorOptions.rtol, 2e-6, 2e-7)
     ]
-    assert errors[0] < 2e-3 and errors[2] < 1e-4
+    assert errors[0] < 1e-3 and errors[2] < 3e-5
     assert errors[0] > errors[1] > errors[2]
     immersed = CollisionParameters(St=10.0, eps=1e-3, layer="immersed")
     assert collide(immersed).normal.energy_error < 1e-3
@@ -114,9 +116,9 @@ def test_grid_convergence_of_the_restitution():
 def test_film_control_resolves_the_thinnest_film(case):
     """The thinnest film, reached under the suction on the axis (immersed) or at the rim of a
     hard contact, is within 1 % of the run converged in time (rtol 1e-7, same 80 nodes) at
-    the default step control (0.47 % and 0.34 % measured); controlling X and V alone (the old
-    default) leaves it more than 2 % off (10.8 % and 2.7 % measured), so the film's own error
-    estimate is what resolves it."""
+    the default step control (0.28 % and 0.10 % measured); controlling X and V alone (the old
+    default, BDF up to order 3) leaves it more than 2 % off (7.6 % and 2.8 % measured), so the
+    film's own error estimate is what resolves it."""
     params = CollisionParameters(**case)
 
     def thinnest(options):
@@ -124,4 +126,21 @@ def test_film_control_resolves_the_thinnest_film(case):
 
     converged = thinnest(IntegratorOptions(rtol=1e-7))
     assert abs(thinnest(IntegratorOptions()) / converged - 1) < 1e-2
-    assert abs(thinnest(IntegratorOptions(rtol=5e-5, film_control=False)) / converged - 1) > 2e-2
+    old = IntegratorOptions(rtol=5e-5, film_control=False, order=3)
+    assert abs(thinnest(old) / converged - 1) > 2e-2
+
+
+def test_a_growing_cavity_costs_no_run_of_short_steps():
+    """A soft impact (St = 50, eps = 0.1, 120 nodes) whose mass-conserving cavity grows node by
+    node in the rebound takes no more steps than the same impact without a cavitation limit
+    (measured 73 against 112): the film's mean-square error is left out while the set of
+    full nodes changes within the BDF stencil, where it measures the kink of a switching node
+    instead of the local error. Checked every step, it cost 4 times the steps (898 against
+    216 on the earlier order-3 control)."""
+
+    def steps(**cavitation):
+        params = CollisionParameters(St=50.0, eps=0.1, layer="thin", **cavitation)
+        normal = collide(params, nodes=120).normal
+        return normal.steps + normal.rejected_steps
+
+    assert steps(p_cav=-2.0, cavitation="mass-conserving") < steps()

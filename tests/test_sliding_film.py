@@ -46,12 +46,12 @@ def test_on_rigid_solids_the_sliding_film_only_dissipates():
 def test_on_elastic_half_spaces_no_energy_is_created(eps, St):
     """With the mode-1 gap (the default) the tangential kinetic energy never rises over the
     grid eps 1e-5..0.1, St 20..1000 (P_cav = -10, delta = 0.01), and the balance with the
-    exchange X closes within 1.5e-2 of the energy lost (the time-discretisation error of the
-    default step control, largest at eps = 1e-5, St = 20, where less is lost; it falls to
-    8e-4 at rtol = 5e-7)."""
+    exchange X closes within 1e-2 of the energy lost (the time-discretisation error of the
+    default step control, largest at eps = 1e-5, St = 20, where less is lost: measured 5.1e-3,
+    1.1e-2 on the earlier order-3 steps; it falls to 8e-4 at rtol = 5e-7)."""
     energy = collide(thin(eps, St), **FAST).tangential.energy
     assert np.all(np.diff(energy.kinetic) <= 1e-12 * energy.kinetic[0])
-    assert energy.balance_error < 1.5e-2
+    assert energy.balance_error < 1e-2
 
 
 def test_tangential_displacements_in_the_slip_keep_the_balance():

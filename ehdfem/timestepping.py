@@ -92,7 +92,8 @@ def extrapolate(nodes, values, t):
 def step_integral(nodes, values) -> float:
     """The integral over the latest step [nodes[1], nodes[0]] (nodes newest first) of the
     polynomial through (nodes[j], values[j]), by two-point Gauss-Legendre: exact for the
-    quadratic through three values, so a rate's running integral is third-order accurate."""
+    quadratic through three values, so a rate's running integral is third-order accurate. Any
+    units: the result is in those of values times nodes (scaled time by x0/V0 in the solver)."""
     early, late = nodes[1], nodes[0]
     half, middle = 0.5 * (late - early), 0.5 * (late + early)
     offset = half / np.sqrt(3.0)

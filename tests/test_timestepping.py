@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from ehdfem.timestepping import crossing, derivative_weights, extrapolate, peak
+from ehdfem.timestepping import crossing, derivative_weights, extrapolate, peak, step_integral
 
 pytestmark = pytest.mark.serial
 
@@ -44,3 +44,14 @@ def test_crossing_is_the_root_of_the_interpolating_polynomial():
     assert time == pytest.approx(0.73, abs=1e-14)
     velocity = [2 * t - 0.53 for t in nodes]
     assert extrapolate(nodes, velocity, time) == pytest.approx(2 * 0.73 - 0.53, abs=1e-14)
+
+
+def test_step_integral_is_exact_on_the_interpolating_quadratic():
+    """On unequal steps the integral over the latest step of r(t) = 3 t^2 - t + 2, sampled at
+    three times, equals its antiderivative's difference (0.626) to rounding; from two samples
+    it is the trapezoidal rule."""
+    nodes = [0.9, 0.7, 0.25]  # newest first
+    rates = [3 * t**2 - t + 2 for t in nodes]
+    exact = (0.9**3 - 0.9**2 / 2 + 2 * 0.9) - (0.7**3 - 0.7**2 / 2 + 2 * 0.7)
+    assert step_integral(nodes, rates) == pytest.approx(exact, rel=1e-14)
+    assert step_integral(nodes[:2], rates[:2]) == pytest.approx(0.1 * (rates[0] + rates[1]))

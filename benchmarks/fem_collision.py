@@ -12,7 +12,7 @@ solids (the sliding film's, issue 15: its own Cholesky factorisation and 3N unit
 blocks). ``condensation_error``: the largest difference, relative to its largest value, between
 the gap the built compliances give for a random film load (pressure and shear) and the one a
 solve of the whole (distributed) solids opens. The compliance cache
-(ehdfem.compliance.fem_mesh) points to a new temporary directory, so every build above is
+(ehdfem.solids.fe.mesh) points to a new temporary directory, so every build above is
 computed; the same solids built once more then read their matrices from it (the time a rerun
 pays: mesh from its cache, assembly, and the cached matrices).
 """
@@ -28,13 +28,13 @@ import numpy as np
 from mpi4py import MPI
 
 from ehdfem.collision import DEFAULT_NODES, film_radii
-from ehdfem.compliance import fem_mesh
-from ehdfem.compliance.fem import FESolids
-from ehdfem.compliance.fem_mode_one import FEModeOne
-from ehdfem.compliance.halfspace import HalfSpaceCompliance
-from ehdfem.normal import solve_normal
-from ehdfem.presets import EXAMPLE
-from ehdfem.scales import from_presets
+from ehdfem.inputs.presets import EXAMPLE
+from ehdfem.inputs.scales import from_presets
+from ehdfem.motion.normal import solve_normal
+from ehdfem.solids.fe import mesh as fem_mesh
+from ehdfem.solids.fe.mode_one import FEModeOne
+from ehdfem.solids.fe.solids import FESolids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
 
 
 def main():

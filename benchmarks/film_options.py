@@ -13,8 +13,8 @@ import time
 from pathlib import Path
 
 from ehdfem.collision import collide
-from ehdfem.presets import EXAMPLE
-from ehdfem.scales import CollisionParameters, from_presets
+from ehdfem.inputs.presets import EXAMPLE
+from ehdfem.inputs.scales import CollisionParameters, from_presets
 
 OUT = Path(__file__).resolve().parent / "results" / "film_options.json"
 OPTIONS = [

@@ -16,8 +16,8 @@ import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from ehdfem.collision import DEFAULT_NODES, collide, film_radii  # noqa: E402
-from ehdfem.compliance.halfspace import HalfSpaceCompliance  # noqa: E402
-from ehdfem.scales import CollisionParameters  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
+from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
 
 CASES = {
     "thin St=10 eps=1e-3 P_cav=-2": CollisionParameters(

@@ -1,7 +1,7 @@
 """ehdfem: elastohydrodynamic wet collisions of a sphere with a liquid-covered wall.
 
 The public API (dimensionless inputs on the scales of Davis, Serayssol & Hinch 1986, physical
-inputs in SI; see :mod:`ehdfem.scales`):
+inputs in SI; see :mod:`ehdfem.inputs.scales`):
 
 - :func:`collide`: one collision, normal and tangential, with the half-space or FE solids;
 - :class:`CollisionParameters` (St, eps, delta, P_cav, ...) and :class:`PhysicalCollision`
@@ -14,16 +14,16 @@ inputs in SI; see :mod:`ehdfem.scales`):
 - :func:`bounce` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a liquid and
   bouncing until it rests, each contact an immersed EHD collision (:class:`BounceResult`). The
   function shadows the module's name: import the module's other names with
-  ``from ehdfem.bounce import ...``.
+  ``from ehdfem.bounce.trajectory import ...``.
 """
 
-from .bounce import BounceInputs, BounceResult, bounce
+from .bounce.trajectory import BounceInputs, BounceResult, bounce
 from .collision import CollisionResult, collide, elasticity, film_radii
-from .normal import NormalResult, solve_normal
-from .scales import CollisionParameters, PhysicalCollision, from_presets
-from .study import critical_speed, critical_stokes
-from .tangential import TangentialResult, solve_tangential
-from .timestepping import IntegratorOptions
+from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from .motion.normal import NormalResult, solve_normal
+from .motion.timestepping import IntegratorOptions
+from .study.sweep import critical_speed, critical_stokes
+from .tangential.motion import TangentialResult, solve_tangential
 from .version import __version__
 
 __all__ = [

@@ -2,8 +2,9 @@
 
 ``collide(params)`` picks the film grid for the parameters, builds the elasticity (the
 half-space kernel or the FE solids, unless a compliance is passed in), integrates the normal
-motion (:mod:`ehdfem.normal`) and, for an oblique impact, the tangential motion
-(:mod:`ehdfem.tangential`). Inputs and outputs are dimensionless (see :mod:`ehdfem.scales`).
+motion (:mod:`ehdfem.motion.normal`) and, for an oblique impact, the tangential motion
+(:mod:`ehdfem.tangential.motion`). Inputs and outputs are dimensionless (see
+:mod:`ehdfem.inputs.scales`).
 """
 
 from __future__ import annotations
@@ -13,16 +14,21 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
-from . import cavitation, checks
-from .compliance import Compliance, ModeOneCompliance
-from .compliance.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from .film import contact_grid
-from .normal import FilmClosedError, NormalResult, solve_normal
-from .scales import CollisionParameters, PhysicalCollision, hertz_max_compression
-from .superposition import SuperpositionValidity, SuperpositionWarning, superposition_validity
-from .tangential import DEFORMATIONS, TangentialResult, solve_tangential
-from .tangential import MODELS as TANGENTIAL_MODELS
-from .timestepping import IntegratorOptions
+from .film import cavitation
+from .film.reynolds import contact_grid
+from .inputs import checks
+from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .motion.normal import FilmClosedError, NormalResult, solve_normal
+from .motion.timestepping import IntegratorOptions
+from .solids.compliance import Compliance, ModeOneCompliance
+from .solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
+from .tangential.motion import DEFORMATIONS, TangentialResult, solve_tangential
+from .tangential.motion import MODELS as TANGENTIAL_MODELS
+from .tangential.superposition import (
+    SuperpositionValidity,
+    SuperpositionWarning,
+    superposition_validity,
+)
 from .version import __version__
 
 MODELS = ("halfspace", "fem")
@@ -45,8 +51,8 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
 
 
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.contact_grid` graded to
-    the rim of :func:`film_extent`. A thin layer's grid ends at least 1.48 rims out (eps^(1/5)
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.reynolds.contact_grid` graded
+    to the rim of :func:`film_extent`. A thin layer's grid ends at least 1.48 rims out (eps^(1/5)
     is cut to that at tiny St and large eps); an immersed one has a node at the sphere's radius
     1/sqrt(delta), where the film's shear integrals end.
     """
@@ -60,7 +66,7 @@ def elasticity(
     params: CollisionParameters, radii, model="halfspace", physical=None, solids=None
 ) -> Compliance:
     """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
-    half-spaces, or FE solids (:class:`ehdfem.compliance.fem.FESolids`) built for params.delta.
+    half-spaces, or FE solids (:class:`ehdfem.solids.fe.solids.FESolids`) built for params.delta.
     Materials, as (Young's modulus, Poisson ratio): ``solids["sphere"]`` and ``solids["wall"]``
     if given, else those of the physical inputs, else identical solids with Poisson ratio 0.3
     (the half-space's pressure kernel only sees theta; the FE solids and the shear traction
@@ -77,7 +83,7 @@ def elasticity(
         return HalfSpaceCompliance(
             radii, params.eps, (params.delta, (sphere, wall)) if shear else None, (sphere, wall)
         )
-    from .compliance.fem import FESolids
+    from .solids.fe.solids import FESolids
 
     fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **solids)
     return fe.compliance(params.eps, shear=shear)
@@ -103,20 +109,20 @@ def _materials(physical, solids):
 
 
 def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, physical=None):
-    """The solids' mode-1 compliance (:class:`ehdfem.compliance.ModeOneCompliance`) matching
+    """The solids' mode-1 compliance (:class:`ehdfem.solids.compliance.ModeOneCompliance`) matching
     ``compliance`` at params.eps, for the sliding film: half-spaces of the same materials, or
-    the FE solids' own mesh (:class:`ehdfem.compliance.fem_mode_one.FEModeOne`). None for rigid
+    the FE solids' own mesh (:class:`ehdfem.solids.fe.mode_one.FEModeOne`). None for rigid
     solids. The sliding film's force and torque are derived for a sphere on a wall: a lower
     sphere is refused."""
     if compliance.model == "rigid":
         return None
     if compliance.model == "fem":
-        from .compliance.fem_mode_one import FEModeOne
+        from .solids.fe.mode_one import FEModeOne
 
         if compliance.solids.lower == "sphere":
             raise checks.InputError(_LOWER_SPHERE_SLIDING)
         return FEModeOne(compliance.solids, params.eps)
-    from .compliance.halfspace_mode_one import HalfSpaceModeOne
+    from .solids.halfspace_mode_one import HalfSpaceModeOne
 
     materials = getattr(compliance, "materials", None) or _materials(physical, None)
     return HalfSpaceModeOne(compliance.radii, params.eps, params.delta, materials)
@@ -124,13 +130,14 @@ def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, phy
 
 @dataclass
 class CollisionResult:
-    """A collision's outcome: the normal motion (:class:`ehdfem.normal.NormalResult`), the
-    tangential motion (:class:`ehdfem.tangential.TangentialResult`, None for a head-on impact),
-    the elasticity model used, for physical inputs the inputs (to convert back to SI), and the
-    compliance used (:class:`ehdfem.compliance.Compliance`; an FE compliance keeps its solids,
-    for the fields of :mod:`ehdfem.exports` and the pictures of :mod:`ehdfem.render`), and for
-    the sliding film the validity of its mode-1 superposition
-    (:class:`ehdfem.superposition.SuperpositionValidity`; a flagged one was also warned of)."""
+    """A collision's outcome: the normal motion (:class:`ehdfem.motion.normal.NormalResult`), the
+    tangential motion (:class:`ehdfem.tangential.motion.TangentialResult`, None for a head-on
+    impact), the elasticity model used, for physical inputs the inputs (to convert back to SI), and
+    the compliance used (:class:`ehdfem.solids.compliance.Compliance`; an FE compliance keeps its
+    solids, for the fields of :mod:`ehdfem.outputs.fields` and the pictures of
+    :mod:`ehdfem.outputs.render`), and for the sliding film the validity of its mode-1 superposition
+    (:class:`ehdfem.tangential.superposition.SuperpositionValidity`; a flagged one was also warned
+    of)."""
 
     params: CollisionParameters
     model: str
@@ -254,16 +261,17 @@ def collide(
     the rim of the flattened contact gets thinner than the grid resolves), the collision is
     run again on a grid with twice the nodes, at most ``refinements`` times; the nodes used are
     reported in the result (``film_nodes``). ``tangential``: the film model of the
-    tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential`); it is solved
+    tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential.motion`); it is solved
     when the impact is oblique (angle > 0). ``deformation``: the mode-1 deformation of the
-    lubrication model's solids, "full", "gap" or "none" (:data:`ehdfem.tangential.DEFORMATIONS`;
-    "none" is exact for rigid solids only). ``solids``: for the FE model, arguments of
-    :class:`ehdfem.compliance.fem.FESolids` (e.g. ``lower="coated"``, ``coating=(E, nu)``,
+    lubrication model's solids, "full", "gap" or "none"
+    (:data:`ehdfem.tangential.motion.DEFORMATIONS`; "none" is exact for rigid solids only).
+    ``solids``: for the FE model, arguments of :class:`ehdfem.solids.fe.solids.FESolids` (e.g.
+    ``lower="coated"``, ``coating=(E, nu)``,
     ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``). ``compliance``: an
     elasticity built before (e.g. by :func:`elasticity` for the widest collision of a sweep,
     whose grid then serves every point), used at params.eps on its own grid, without
     refinement; ``model``, ``nodes`` and ``solids`` are then not used. ``mode_one``: the
-    solids' mode-1 compliance (:class:`ehdfem.compliance.ModeOneCompliance`) built before by
+    solids' mode-1 compliance (:class:`ehdfem.solids.compliance.ModeOneCompliance`) built before by
     :func:`mode_one_elasticity` for ``compliance``, at any eps; only with ``compliance`` (the
     same elasticity model on the same film nodes). It is used at params.eps (``with_eps``) by
     the lubrication model with deformation "gap" or "full", where it maps the mode-1 film loads
@@ -348,8 +356,9 @@ def with_tangential(
     (oblique, with its compliance) is kept and only the tangential motion is solved again, as
     :func:`collide` would with ``tangential``, ``deformation`` and ``mode_one`` (the mode-1
     compliance for ``result.compliance``; None: built and closed here when needed). The normal
-    motion does not depend on the tangential one (the decoupling of :mod:`ehdfem.tangential`),
-    so this equals a new :func:`collide` call at a fraction of its cost. Results are
+    motion does not depend on the tangential one (the decoupling of
+    :mod:`ehdfem.tangential.motion`), so this equals a new :func:`collide` call at a fraction of
+    its cost. Results are
     dimensionless (DSH scales), as those of :func:`collide`."""
     checks.choice("tangential", tangential, TANGENTIAL_MODELS)
     checks.choice("deformation", deformation, DEFORMATIONS)

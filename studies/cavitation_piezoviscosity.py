@@ -23,10 +23,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
-from ehdfem.normal import NormalSolverError  # noqa: E402
-from ehdfem.presets import EXAMPLE  # noqa: E402
-from ehdfem.scales import from_presets  # noqa: E402
-from ehdfem.study import ResultTable, critical_speed  # noqa: E402
+from ehdfem.inputs.presets import EXAMPLE  # noqa: E402
+from ehdfem.inputs.scales import from_presets  # noqa: E402
+from ehdfem.motion.normal import NormalSolverError  # noqa: E402
+from ehdfem.study.sweep import ResultTable, critical_speed  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies/results/cavitation_piezoviscosity.csv"

@@ -20,8 +20,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
-from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import study_script  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
+from ehdfem.study.sweep import study_script  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DELTAS = (0.001, 0.003, 0.01, 0.03, 0.1)

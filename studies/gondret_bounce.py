@@ -1,8 +1,9 @@
-"""Gondret, Lance & Petit (2002)'s bouncing steel spheres with ``ehdfem.bounce`` (docs/bounce.md).
+"""Gondret, Lance & Petit (2002)'s bouncing steel spheres with ``ehdfem.bounce.trajectory``
+(docs/bounce.md).
 
 Five runs with their published parameters (sphere diameter and density, liquid density and
-viscosity, impact Reynolds number: ehdfem.literature.GONDRET_RUNS), each released at rest from
-the height at which the drag law's largest approach speed is the published impact speed (or, if
+viscosity, impact Reynolds number: ehdfem.inputs.literature.GONDRET_RUNS), each released at rest
+from the height at which the drag law's largest approach speed is the published impact speed (or, if
 the drag law's terminal velocity is below it, from RELEASE_FAR diameters, where the sphere
 arrives at its terminal velocity), bouncing until it rests. Assumed, not published in what we
 have: the spheres' elastic constants (the steel preset), a glass plate, e_dry = 0.97 (the value
@@ -32,15 +33,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem.bounce import (  # noqa: E402
+from ehdfem.bounce.trajectory import (  # noqa: E402
     BounceInputs,
     FarField,
     bounce,
     release_height_for_speed,
 )
-from ehdfem.closedform import legendre  # noqa: E402
-from ehdfem.literature import GONDRET_RUNS  # noqa: E402
-from ehdfem.study import ResultTable, write_csv  # noqa: E402
+from ehdfem.dem.closedform import legendre  # noqa: E402
+from ehdfem.inputs.literature import GONDRET_RUNS  # noqa: E402
+from ehdfem.study.sweep import ResultTable, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies/results/gondret_bounce"

@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem.closedform import (  # noqa: E402
+from ehdfem.dem.closedform import (  # noqa: E402
     davis_rager_good,
     fit_power_law,
     legendre,

@@ -49,10 +49,10 @@ from ehdfem.collision import (  # noqa: E402
     mode_one_elasticity,
     with_tangential,
 )
-from ehdfem.normal import NormalSolverError  # noqa: E402
-from ehdfem.presets import MATERIALS  # noqa: E402
-from ehdfem.scales import CollisionParameters, PhysicalCollision, from_presets  # noqa: E402
-from ehdfem.study import ResultTable, write_csv  # noqa: E402
+from ehdfem.inputs.presets import MATERIALS  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets  # noqa: E402
+from ehdfem.motion.normal import NormalSolverError  # noqa: E402
+from ehdfem.study.sweep import ResultTable, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies" / "results"

@@ -2,9 +2,9 @@
 
 For eps = 1e-5, 1e-3, 0.1, St = 20, 1000 and no cavitation limit, P_cav = -10, -1 (thin layer,
 delta = 0.01, 30 degrees, the sliding film with the mode-1 gap, 120 film nodes), each collision
-reports its indicators (ehdfem.superposition: cavitation-rule sensitivity, tilt, overlap) and
-the 2-D film is solved at its default instants (largest normal and tangential force, strongest
-suction, largest overlap) on two meshes. One row per instant in
+reports its indicators (ehdfem.tangential.superposition: cavitation-rule sensitivity, tilt,
+overlap) and the 2-D film is solved at its default instants (largest normal and tangential force,
+strongest suction, largest overlap) on two meshes. One row per instant in
 studies/results/superposition_map.csv; docs/figures/superposition_map.png.
 Run: .venv/bin/python studies/superposition_map.py [--plot-only]   (about 10 minutes)
 """
@@ -20,9 +20,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
-from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import study_script  # noqa: E402
-from ehdfem.superposition import SuperpositionWarning, check_superposition  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
+from ehdfem.study.sweep import study_script  # noqa: E402
+from ehdfem.tangential.superposition import SuperpositionWarning, check_superposition  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 ELASTICITY = (1e-5, 1e-3, 1e-1)

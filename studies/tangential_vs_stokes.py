@@ -31,10 +31,10 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity  # noqa: E402
-from ehdfem.compliance.fem import FECompliance  # noqa: E402
-from ehdfem.normal import NormalSolverError  # noqa: E402
-from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import ResultTable, study_script  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
+from ehdfem.motion.normal import NormalSolverError  # noqa: E402
+from ehdfem.solids.fe.solids import FECompliance  # noqa: E402
+from ehdfem.study.sweep import ResultTable, study_script  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "tangential_vs_stokes.csv"

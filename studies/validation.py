@@ -1,4 +1,4 @@
-"""Validation report: both models against the published statements of ehdfem.literature.
+"""Validation report: both models against the published statements of ehdfem.inputs.literature.
 
 Computes every case with the half-space model and, where the FE solids apply (thin layers;
 not the immersed cases, whose film reaches 30 sqrt(a x0) ~ 9.5 a, beyond the sphere), with the
@@ -19,11 +19,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import source_claims  # noqa: E402  (studies/, the directory of this script)
 
-from ehdfem import literature as lit  # noqa: E402
-from ehdfem.closedform import davis_rager_good, fit_normal, fit_power_law, legendre  # noqa: E402
 from ehdfem.collision import collide, elasticity, film_radii  # noqa: E402
-from ehdfem.scales import CollisionParameters  # noqa: E402
-from ehdfem.study import ResultTable, critical_speed, critical_stokes  # noqa: E402
+from ehdfem.dem.closedform import davis_rager_good, fit_normal, fit_power_law, legendre  # noqa: E402
+from ehdfem.inputs import literature as lit  # noqa: E402
+from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
+from ehdfem.study.sweep import ResultTable, critical_speed, critical_stokes  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies/results/validation.csv"

@@ -39,9 +39,9 @@ from ehdfem import (  # noqa: E402
     elasticity,
     film_radii,
 )
-from ehdfem.compliance.fem import FECompliance  # noqa: E402
-from ehdfem.compliance.halfspace import HalfSpaceCompliance  # noqa: E402
-from ehdfem.study import ResultTable  # noqa: E402
+from ehdfem.solids.fe.solids import FECompliance  # noqa: E402
+from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
+from ehdfem.study.sweep import ResultTable  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "validity_map.csv"

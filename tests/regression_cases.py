@@ -13,9 +13,9 @@ from __future__ import annotations
 import json
 import sys
 
-from ehdfem import study
-from ehdfem.presets import EXAMPLE
-from ehdfem.scales import CollisionParameters, from_presets
+from ehdfem.inputs.presets import EXAMPLE
+from ehdfem.inputs.scales import CollisionParameters, from_presets
+from ehdfem.study import sweep as study
 
 OUTPUTS = study.OUTPUTS  # every output of a sweep table row
 
@@ -133,7 +133,7 @@ def cases():
 def run(inputs, keywords):
     """The regression outputs of one case (a dict of floats, None where not defined)."""
     from ehdfem.collision import collide
-    from ehdfem.timestepping import IntegratorOptions
+    from ehdfem.motion.timestepping import IntegratorOptions
 
     keywords = dict(keywords)
     keywords["options"] = IntegratorOptions(**{**BEFORE, **keywords.get("options", {})})

@@ -1,5 +1,6 @@
-"""`ehdfem.bounce`: the flight's force law against exact results (terminal velocity, Brenner's
-wall correction and its limits, the quasi-steady Stokes approach), the energy bookkeeping over a
+"""`ehdfem.bounce.trajectory`: the flight's force law against exact results (terminal velocity,
+Brenner's wall correction and its limits, the quasi-steady Stokes approach), the energy bookkeeping
+over a
 bounce, a rigid sphere that sticks where the rigid theory stops it, and refused inputs."""
 
 import json
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from ehdfem.bounce import (
+from ehdfem.bounce.trajectory import (
     BounceInputs,
     FarField,
     bounce,
@@ -18,8 +19,8 @@ from ehdfem.bounce import (
     drag_factor,
     release_height_for_speed,
 )
-from ehdfem.checks import InputError
-from ehdfem.cli import main
+from ehdfem.cli.main import main
+from ehdfem.inputs.checks import InputError
 
 # steel on glass in a 10 cSt silicone oil: St ~ 50 at the first impact from 3 mm
 OIL_BOUNCE = dict(radius=1.5e-3, sphere="steel", wall="glass", liquid="silicone_oil_10cst")

@@ -5,13 +5,13 @@ through a whole collision, and the reduction to truncation where no cavity forms
 import numpy as np
 import pytest
 
-from ehdfem.cavitation import NO_LIMIT, MassConserving, NoCavitation, cavitation_model
 from ehdfem.collision import collide
-from ehdfem.film import Film, radial_grid
-from ehdfem.implicit_step import ImplicitStep
-from ehdfem.normal import solve_normal
-from ehdfem.scales import CollisionParameters
-from ehdfem.timestepping import IntegratorOptions
+from ehdfem.film.cavitation import NO_LIMIT, MassConserving, NoCavitation, cavitation_model
+from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.implicit_step import ImplicitStep
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
 
 pytestmark = pytest.mark.serial
 

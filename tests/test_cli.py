@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
-from ehdfem.checks import InputError
-from ehdfem.cli import main
+from ehdfem.cli.main import main
+from ehdfem.inputs.checks import InputError
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
@@ -127,8 +127,8 @@ def test_field_instants_include_requested_times():
     """Maximum compression, maximum force, the end, and requested times (pressure linear in T
     between steps); a time outside the collision is refused."""
     from ehdfem.collision import collide
-    from ehdfem.exports import field_snapshots
-    from ehdfem.scales import CollisionParameters
+    from ehdfem.inputs.scales import CollisionParameters
+    from ehdfem.outputs.fields import field_snapshots
 
     normal = collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), nodes=60).normal
     hist = normal.history
@@ -148,7 +148,7 @@ def test_field_instants_include_requested_times():
 def run_ehdfem(*args, env=None, timeout=120):
     """``ehdfem ARGS`` in a fresh process; returns (exit code, stdout, stderr)."""
     done = subprocess.run(
-        [sys.executable, "-m", "ehdfem.cli", *args],
+        [sys.executable, "-m", "ehdfem.cli.main", *args],
         capture_output=True,
         text=True,
         timeout=timeout,

@@ -7,10 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehdfem import closedform as cf
-from ehdfem.cli import main
-from ehdfem.presets import EXAMPLE
-from ehdfem.scales import elastic_theta, from_presets
+from ehdfem.cli.main import main
+from ehdfem.dem import closedform as cf
+from ehdfem.inputs.presets import EXAMPLE
+from ehdfem.inputs.scales import elastic_theta, from_presets
 
 pytestmark = pytest.mark.serial
 

@@ -7,9 +7,9 @@ import pytest
 import scipy.sparse
 from mpi4py import MPI
 
-from ehdfem.compliance.condensation import condensed
-from ehdfem.compliance.fem import FESolids, interpolation_matrix
-from ehdfem.film import radial_grid
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.solids.fe.condensation import condensed
+from ehdfem.solids.fe.solids import FESolids, interpolation_matrix
 
 
 @pytest.mark.serial

@@ -6,15 +6,15 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.compliance import fem_mesh
-from ehdfem.compliance.fem import FESolids
-from ehdfem.compliance.fem_mode_one import FEModeOne
-from ehdfem.compliance.halfspace import HalfSpaceCompliance
-from ehdfem.exports import write_fields
-from ehdfem.film import radial_grid
-from ehdfem.scales import CollisionParameters
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.outputs.fields import write_fields
+from ehdfem.solids.fe import mesh as fem_mesh
+from ehdfem.solids.fe.mode_one import FEModeOne
+from ehdfem.solids.fe.solids import FESolids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
 
 RADII = radial_grid(60, 0.5, 2.0)
 
@@ -111,7 +111,7 @@ def test_fields_are_written_for_paraview(tmp_path):
     given the scales."""
     import meshio
 
-    from ehdfem.scales import Scales
+    from ehdfem.inputs.scales import Scales
 
     comm = MPI.COMM_WORLD
     folder = Path(comm.bcast(str(tmp_path) if comm.rank == 0 else None))

@@ -7,11 +7,11 @@ import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
 
-from ehdfem.checks import InputError
-from ehdfem.compliance import MODE_ONE_LOADS
-from ehdfem.compliance import dolfinx_compat as compat
-from ehdfem.compliance.fem import FESolids
-from ehdfem.compliance.fem_mode_one import (
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs.checks import InputError
+from ehdfem.solids.compliance import MODE_ONE_LOADS
+from ehdfem.solids.fe import dolfinx_compat as compat
+from ehdfem.solids.fe.mode_one import (
     FEModeOne,
     amplitudes,
     axis_conditions,
@@ -22,8 +22,8 @@ from ehdfem.compliance.fem_mode_one import (
     strain,
     stress,
 )
-from ehdfem.compliance.halfspace import HalfSpaceCompliance
-from ehdfem.film import radial_grid
+from ehdfem.solids.fe.solids import FESolids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
 
 NU = 0.3
 SHEAR_MODULUS = 1 / (2 * (1 + NU))  # by E_ref, identical solids (FESolids' default)
@@ -304,7 +304,7 @@ def test_tangential_traction_moves_a_large_sphere_like_a_half_space(large_sphere
 @pytest.mark.serial
 def test_every_block_agrees_with_the_half_space_mode_one_kernels(small_delta, large_sphere):
     """All 18 blocks against the half-space kernels of the mode-1 Boussinesq and Cerruti
-    solutions (ehdfem.compliance.halfspace_mode_one), under the mode-1 pressure P1 and the
+    solutions (ehdfem.solids.halfspace_mode_one), under the mode-1 pressure P1 and the
     traction profile sqrt(1 - R^2): max |FE - HS| over R <= 0.5, relative to max |HS| there.
     The wall's nine blocks at delta = 1e-3: within 0.4 % (measured 0.28 % at most). The
     sphere's at delta = 1e-5: within 1.2 % (measured 1.0 %, 0.7 % and 0.04 % for U_r, U_phi
@@ -312,7 +312,7 @@ def test_every_block_agrees_with_the_half_space_mode_one_kernels(small_delta, la
     U_r and U_phi under the pressure differ by 10 % and 7 %: the FE pressure acts normally to
     the curved face, whose radial component q r/a (absent from the half-space's t_z) drags it
     outwards (2.5 % with t_z alone); a face's loads do not move the other face."""
-    from ehdfem.compliance.halfspace_mode_one import HalfSpaceModeOne
+    from ehdfem.solids.halfspace_mode_one import HalfSpaceModeOne
 
     pressure, _ = mode_one_hertz(RADII)
     profile = hertz_family(RADII)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from ehdfem import CollisionParameters, film_radii
-from ehdfem.film import Film, contact_grid, radial_grid
+from ehdfem.film.reynolds import Film, contact_grid, radial_grid
 
 pytestmark = pytest.mark.serial
 

@@ -13,13 +13,13 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from ehdfem.checks import InputError
-from ehdfem.compliance import RigidSolids
-from ehdfem.film import Film, radial_grid
-from ehdfem.gap import ExactSpheres, Paraboloid, gap_geometry
-from ehdfem.normal import solve_normal
-from ehdfem.scales import CollisionParameters
-from ehdfem.timestepping import IntegratorOptions
+from ehdfem.film.gap import ExactSpheres, Paraboloid, gap_geometry
+from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
 DELTA = 0.1

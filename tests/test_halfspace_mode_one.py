@@ -1,6 +1,6 @@
 """Mode-1 (cos phi) ring-load kernels of an elastic half-space against exact elastic results.
 
-Units of :mod:`ehdfem.compliance.halfspace_mode_one`: displacements by 4 (1 - nu^2)/(pi E) times
+Units of :mod:`ehdfem.solids.halfspace_mode_one`: displacements by 4 (1 - nu^2)/(pi E) times
 traction times length; beta = nu/(1 - nu), gamma = (1 - 2 nu)/(2 (1 - nu)).
 """
 
@@ -10,13 +10,13 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from ehdfem.checks import InputError
-from ehdfem.compliance.halfspace_mode_one import (
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs.checks import InputError
+from ehdfem.solids.halfspace_mode_one import (
     HalfSpaceModeOne,
     ring_kernel,
     surface_response,
 )
-from ehdfem.film import radial_grid
 
 NU = 0.3
 BETA = NU / (1 - NU)

@@ -3,7 +3,7 @@
 from mpi4py import MPI
 
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters
+from ehdfem.inputs.scales import CollisionParameters
 
 
 def test_collision_is_identical_on_every_rank():

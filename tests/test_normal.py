@@ -5,11 +5,11 @@ import pytest
 from scipy.optimize import brentq
 
 from ehdfem.collision import DEFAULT_NODES, collide
-from ehdfem.compliance import RigidSolids
-from ehdfem.film import radial_grid
-from ehdfem.normal import solve_normal
-from ehdfem.scales import CollisionParameters, hertz_max_compression
-from ehdfem.timestepping import IntegratorOptions
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs.scales import CollisionParameters, hertz_max_compression
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
 

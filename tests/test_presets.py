@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from ehdfem import progress
-from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.presets import (
+from ehdfem.console import progress
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.presets import (
     LIQUIDS,
     MATERIALS,
     Liquid,
@@ -20,8 +20,8 @@ from ehdfem.presets import (
     liquid,
     material,
 )
-from ehdfem.scales import from_presets
-from ehdfem.study import Study, run_study
+from ehdfem.inputs.scales import from_presets
+from ehdfem.study.sweep import Study, run_study
 
 pytestmark = pytest.mark.serial
 

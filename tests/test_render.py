@@ -5,11 +5,11 @@ import imageio.v2 as imageio
 import numpy as np
 import pytest
 
-from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.compliance.halfspace import HalfSpaceCompliance
-from ehdfem.render import animate_film, render_solids
-from ehdfem.scales import CollisionParameters
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.outputs.render import animate_film, render_solids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
 
 pytestmark = pytest.mark.serial
 

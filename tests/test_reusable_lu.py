@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from ehdfem.reusable_lu import ReusableLU, TooManyChanges
+from ehdfem.motion.reusable_lu import ReusableLU, TooManyChanges
 
 pytestmark = pytest.mark.serial
 

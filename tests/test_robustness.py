@@ -8,11 +8,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from ehdfem.checks import InputError
-from ehdfem.cli import main
+from ehdfem.cli.main import main
 from ehdfem.collision import collide
-from ehdfem.normal import NormalSolverError
-from ehdfem.scales import CollisionParameters
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.normal import NormalSolverError
 
 pytestmark = pytest.mark.serial
 

@@ -4,9 +4,9 @@ import math
 
 import pytest
 
-from ehdfem.checks import InputError
-from ehdfem.presets import LIQUIDS, MATERIALS, liquid, material
-from ehdfem.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.presets import LIQUIDS, MATERIALS, liquid, material
+from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 
 pytestmark = pytest.mark.serial
 
@@ -111,7 +111,7 @@ def test_bad_physical_inputs(changes, name):
 def test_reduced_radius_and_mass_for_two_spheres():
     """1/a = 1/a1 + 1/a2 (a wall is a2 = inf); the FE two-sphere radii 1 + a1/a2 and 1 + a2/a1
     (by a) are a1/a and a2/a."""
-    from ehdfem.scales import reduced_mass, reduced_radius
+    from ehdfem.inputs.scales import reduced_mass, reduced_radius
 
     assert reduced_radius(2.0, 2.0) == 1.0 and reduced_radius(3.0, math.inf) == 3.0
     assert reduced_mass(4.0, 4.0) == 2.0 and reduced_mass(5.0, math.inf) == 5.0

@@ -4,20 +4,20 @@ The pressure-driven flow drags both surfaces radially in the flow direction by
 T = -(H/2) dP/dR (by sqrt(delta) mu V0 a / x0^2). A radial surface traction q on a half-space
 lifts its surface out of the solid by (1 - 2 nu)/(2 G) int_r^inf q ds (Cerruti's solution
 summed over rings); both surfaces rise towards the film, so an outflow closes the gap by the
-sum, scaled -eps sqrt(delta) kappa int_R^inf T dS (ehdfem.compliance.halfspace).
+sum, scaled -eps sqrt(delta) kappa int_R^inf T dS (ehdfem.solids.halfspace).
 """
 
 import numpy as np
 import pytest
 from mpi4py import MPI
 
-from ehdfem.compliance.fem import FESolids
-from ehdfem.compliance.halfspace import (
+from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.solids.fe.solids import FESolids
+from ehdfem.solids.halfspace import (
     HalfSpaceCompliance,
     outer_integral_matrix,
     shear_coefficient,
 )
-from ehdfem.film import Film, radial_grid
 
 pytestmark = pytest.mark.serial
 

@@ -8,14 +8,14 @@ by the trapezoid rule, so the balance closes to the time-discretisation error.
 import numpy as np
 import pytest
 
-from ehdfem import checks
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity
-from ehdfem.compliance import RigidSolids
-from ehdfem.film import radial_grid
-from ehdfem.normal import solve_normal
-from ehdfem.scales import CollisionParameters
-from ehdfem.tangential import SlidingFilmError, solve_tangential, viscosity_tilt
-from ehdfem.timestepping import IntegratorOptions
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs import checks
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.solids.compliance import RigidSolids
+from ehdfem.tangential.motion import SlidingFilmError, solve_tangential, viscosity_tilt
 
 pytestmark = pytest.mark.serial
 

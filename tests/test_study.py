@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters, from_presets
-from ehdfem.study import Study, critical_speed, critical_stokes, run_study
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters, from_presets
+from ehdfem.study.sweep import Study, critical_speed, critical_stokes, run_study
 
 SMALL = """
 name = "small"
@@ -72,7 +72,7 @@ def test_killed_sweep_resumes_with_every_point_once(tmp_path):
         SMALL.replace("St = [4.0, 12.0, 40.0]", "St = [4.0, 8.0, 12.0, 20.0, 40.0]")
     )
     study = Study(study_file)
-    command = [sys.executable, "-m", "ehdfem.cli", "sweep", str(study_file)]
+    command = [sys.executable, "-m", "ehdfem.cli.main", "sweep", str(study_file)]
     survivors = set()
     for target, delay in ((1, 0.0), (3, 0.05), (5, 0.15)):  # kill once `target` points are done
         process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)

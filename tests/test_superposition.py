@@ -12,16 +12,16 @@ import pytest
 from mpi4py import MPI
 from scipy.integrate import quad
 
-from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters
-from ehdfem.superposition import (
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.tangential.superposition import (
     TILT_LIMIT,
     SuperpositionWarning,
     check_superposition,
     ring_cut,
 )
-from ehdfem.timestepping import IntegratorOptions
 
 
 def sliding_collision(eps, St, p_cav, options=None, **extra):

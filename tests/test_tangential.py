@@ -4,14 +4,14 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp, trapezoid
 
-from ehdfem.checks import InputError
 from ehdfem.collision import collide, with_tangential
-from ehdfem.compliance import RigidSolids
-from ehdfem.compliance.halfspace import HalfSpaceCompliance
-from ehdfem.film import Film, radial_grid
-from ehdfem.normal import solve_normal
-from ehdfem.scales import CollisionParameters
-from ehdfem.tangential import (
+from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.motion.normal import solve_normal
+from ehdfem.solids.compliance import RigidSolids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
+from ehdfem.tangential.motion import (
     film_integrals,
     flat_contact,
     gcb_resistance,

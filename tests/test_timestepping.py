@@ -3,7 +3,13 @@
 import numpy as np
 import pytest
 
-from ehdfem.timestepping import crossing, derivative_weights, extrapolate, peak, step_integral
+from ehdfem.motion.timestepping import (
+    crossing,
+    derivative_weights,
+    extrapolate,
+    peak,
+    step_integral,
+)
 
 pytestmark = pytest.mark.serial
 

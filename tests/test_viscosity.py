@@ -8,13 +8,13 @@ import pytest
 from scipy.integrate import quad
 
 from ehdfem.collision import collide
-from ehdfem.compliance import RigidSolids
-from ehdfem.film import Film, FilmError, radial_grid
-from ehdfem.normal import solve_normal
-from ehdfem.presets import liquid, material
-from ehdfem.scales import CollisionParameters, PhysicalCollision
-from ehdfem.timestepping import IntegratorOptions
-from ehdfem.viscosity import Viscosity
+from ehdfem.film.reynolds import Film, FilmError, radial_grid
+from ehdfem.film.viscosity import Viscosity
+from ehdfem.inputs.presets import liquid, material
+from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
 

@@ -1,4 +1,4 @@
-"""Validation against published statements (ehdfem.literature): each test asserts agreement
+"""Validation against published statements (ehdfem.inputs.literature): each test asserts agreement
 where the source's theory or experiments claim it, inside the band the claim states (see each
 Claim's band_reason: the sources' own scatter was not reachable, so the bands are our reading
 of their wording). The report with both models is docs/validation.md."""
@@ -6,11 +6,11 @@ of their wording). The report with both models is docs/validation.md."""
 import numpy as np
 import pytest
 
-from ehdfem import literature as lit
-from ehdfem.closedform import fit_normal, fit_power_law
 from ehdfem.collision import collide
-from ehdfem.scales import CollisionParameters
-from ehdfem.study import critical_speed, critical_stokes
+from ehdfem.dem.closedform import fit_normal, fit_power_law
+from ehdfem.inputs import literature as lit
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.study.sweep import critical_speed, critical_stokes
 
 pytestmark = pytest.mark.serial
 

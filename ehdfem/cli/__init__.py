@@ -1,0 +1,1 @@
+"""The ehdfem command (main)."""

@@ -1,0 +1,153 @@
+"""Cavitation models: how far the film pressure may fall below ambient, and where the liquid goes.
+
+The pressure P is scaled by mu V0 a / x0^2 and P_cav = (p_cav - p_ambient) x0^2 / (mu V0 a) <= 0
+is the suction the liquid can hold (-inf: no limit). Three models, one class each, behind the
+interface that the implicit step (:mod:`ehdfem.motion.implicit_step`) uses on every Newton iterate:
+
+- :class:`NoCavitation` ("none", or any model with P_cav = -inf): unlimited suction; the
+  Reynolds equation holds at every wet node.
+- :class:`Truncation` ("truncate", the source's model): P >= P_cav as a complementarity with
+  the Reynolds residual r = m dH/dT + K P: at a cavitated node P = P_cav and the film would need
+  r >= 0 there; the semismooth-Newton active set is min(P - P_cav, r / s) = 0 with s the
+  residual's diagonal sensitivity. Liquid in the cavity is neither tracked nor conserved.
+- :class:`MassConserving` ("mass-conserving": Jakobsson-Floberg-Olsson, Elrod-Adams p-theta
+  form): the liquid fraction theta in [0, 1] of the gap is an unknown and everywhere
+
+      d(theta H)/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),
+      P - P_cav >= 0,   1 - theta >= 0,   (P - P_cav)(1 - theta) = 0,
+
+  so a cavity (theta < 1, P = P_cav) keeps its liquid and refills only with liquid that flows
+  in. The node unknown is theta at cavitated nodes (a column swap in the Newton matrix).
+
+Per Newton iterate the step calls, in order: ``wet`` (after the film is assembled),
+``limit`` (on the Reynolds residual), ``fixed_nodes`` and ``theta_nodes`` (which rows and
+columns of the Newton matrix change) and ``switch`` (after the update).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..inputs import checks
+
+MODELS = ("truncate", "mass-conserving", "none")
+NO_LIMIT = -math.inf  # P_cav of a film without a cavitation limit
+
+
+def suction_limit(value) -> float:
+    """P_cav checked: -inf (no limit) or a finite number <= 0 (scaled by mu V0 a / x0^2)."""
+    if isinstance(value, float) and value == NO_LIMIT:
+        return NO_LIMIT
+    return checks.number("p_cav", value, upper=0.0)
+
+
+def parse_suction_limit(value) -> float:
+    """P_cav from a command line or study file: None, "none" or "-inf" mean no limit."""
+    return NO_LIMIT if value is None or value in ("none", "-inf") else suction_limit(value)
+
+
+def suction_limit_output(p_cav: float) -> float | None:
+    """P_cav for JSON and tables: None when there is no limit."""
+    return None if p_cav == NO_LIMIT else p_cav
+
+
+def cavitation_model(name: str, p_cav: float):
+    """The cavitation model ``name`` (one of MODELS) with the limit ``p_cav`` (scaled)."""
+    checks.choice("cavitation", name, MODELS)
+    p_cav = suction_limit(p_cav)
+    if name == "none" or p_cav == NO_LIMIT:
+        return NoCavitation()
+    return Truncation(p_cav) if name == "truncate" else MassConserving(p_cav)
+
+
+class NoCavitation:
+    """Unlimited suction: no node is ever held at a cavitation pressure."""
+
+    name = "none"
+    p_cav = NO_LIMIT
+    tracks_liquid = False
+
+    def start(self, fill, cavitated):
+        """(theta, cavitated) at the start of a step's Newton iteration: a full film."""
+        return np.ones_like(fill), np.zeros(len(cavitated), bool)
+
+    def wet(self, fill, cavitated, dry):
+        """(theta, cavitated) once the wetted edge of the iterate is known."""
+        return fill, cavitated
+
+    def limit(self, residual, pressure, cavitated, dry, sensitivity):
+        """The cavitated nodes for this iterate; may overwrite their rows of ``residual``.
+        ``sensitivity()`` gives the residual's diagonal derivative by P at every node."""
+        return np.zeros_like(dry)
+
+    def fixed_nodes(self, dry, cavitated):
+        """Nodes whose Newton row is an identity (P prescribed)."""
+        return dry | cavitated
+
+    def theta_nodes(self, cavitated):
+        """Nodes whose unknown is the liquid fraction theta instead of P."""
+        return np.zeros_like(cavitated)
+
+    def switch(self, pressure, fill, cavitated, dry, stiffness):
+        """(P, theta, cavitated) after a Newton update; ``stiffness()`` is the pressure that
+        balances a unit change of theta in each node's equation."""
+        return pressure, fill, cavitated
+
+
+class Truncation(NoCavitation):
+    """P >= P_cav by a semismooth-Newton active set (module docstring); P_cav scaled."""
+
+    name = "truncate"
+
+    def __init__(self, p_cav: float):
+        self.p_cav = p_cav
+
+    def limit(self, residual, pressure, cavitated, dry, sensitivity):
+        scale = sensitivity()
+        scale = np.where(scale > 0, scale, 1.0)
+        cavitated = (pressure - self.p_cav < residual / scale) & ~dry
+        residual[cavitated] = pressure[cavitated] - self.p_cav
+        return cavitated
+
+
+class MassConserving(NoCavitation):
+    """JFO cavitation in the Elrod-Adams p-theta form (module docstring); P_cav scaled."""
+
+    name = "mass-conserving"
+    tracks_liquid = True
+
+    def __init__(self, p_cav: float):
+        self.p_cav = p_cav
+
+    def start(self, fill, cavitated):
+        return fill, cavitated
+
+    def wet(self, fill, cavitated, dry):
+        """A cavity the wetted edge passed over is dry, not cavitated."""
+        return np.where(dry, 1.0, fill), cavitated & ~dry
+
+    def limit(self, residual, pressure, cavitated, dry, sensitivity):
+        return cavitated
+
+    def fixed_nodes(self, dry, cavitated):
+        return dry
+
+    def theta_nodes(self, cavitated):
+        return cavitated
+
+    def switch(self, pressure, fill, cavitated, dry, stiffness):
+        """The Elrod-Adams switch. The node unknown is read as one universal variable u,
+        P = P_cav + u (full film, u >= 0) or theta = 1 + u / s (cavity, u < 0), with s the
+        stiffness (> 0 at wet nodes). A full node whose pressure fell below P_cav ruptures and a
+        cavity whose theta passed 1 refills, the overshoot carried over to the other variable:
+        the semismooth Newton for min(P - P_cav, s (1 - theta)) = 0, which does not cycle at
+        nodes where both vanish."""
+        stiffness = stiffness()
+        u = np.where(cavitated, (fill - 1.0) * stiffness, pressure - self.p_cav)
+        cavitated = (u < 0.0) & ~dry
+        pressure = np.where(cavitated, self.p_cav, np.where(dry, pressure, self.p_cav + u))
+        fill = np.ones_like(fill)
+        fill[cavitated] = np.maximum(1.0 + u[cavitated] / stiffness[cavitated], 0.0)
+        return pressure, fill, cavitated

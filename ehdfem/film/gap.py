@@ -1,0 +1,106 @@
+"""The undeformed gap between the two surfaces: the theory's paraboloid or the true spheres.
+
+In film units (gap and film thickness by x0, radius R by sqrt(a x0), delta = x0 / a with a the
+(reduced) sphere radius) the film thickness is
+
+    H(R, T) = X(T) + S(R) + W(R, T),
+
+with S the height of the two undeformed surfaces above their closest points, summed:
+
+- ``paraboloid`` (the asymptotic theory): S = R^2 / 2;
+- ``exact``: each sphere of radius rho a (rho by a; a flat wall or coating contributes 0) adds
+  (rho - sqrt(rho^2 - delta R^2)) / delta = R^2 / (rho + sqrt(rho^2 - delta R^2)), so for a
+  sphere on a wall S = R^2/2 + delta R^4/8 + O(delta^2 R^6), and for two spheres
+  (1/rho_1 + 1/rho_2 = 1) S = R^2/2 + delta R^4 (rho_1^-3 + rho_2^-3)/8 + ...
+
+Either way the film stays a thin film normal to the wall: the Reynolds equation keeps its flat
+form (the surface slope dS/dR = O(sqrt(delta) R) is neglected in the flow, and so are the
+curvature terms; see docs/model.md). The film's elements take S exactly between their nodes:
+``between_nodes`` is S minus its linear interpolant at points of an element.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..inputs import checks
+
+GAPS = ("paraboloid", "exact")
+
+
+class Paraboloid:
+    """S = R^2 / 2 (the asymptotic theory)."""
+
+    name = "paraboloid"
+
+    def height(self, radius):
+        """S(R) by x0 at R by sqrt(a x0)."""
+        return 0.5 * radius**2
+
+    def between_nodes(self, left, length, xi):
+        """S(left + xi L) minus the linear interpolant of S between left and left + L, for the
+        elements (left, length) at the points xi in [0, 1]: -xi (1 - xi) L^2 / 2."""
+        return -0.5 * (xi * (1.0 - xi)) * length[:, None] ** 2
+
+    def slope_between_nodes(self, left, length, xi):
+        """dS/dR at left + xi L minus the element's chord slope: -(1 - 2 xi) L / 2."""
+        return -(1 - 2 * xi) * length[:, None] / 2
+
+
+class ExactSpheres(Paraboloid):
+    """S for true spheres of radii ``radii`` (by a; math.inf for a flat wall) at delta = x0/a
+    (module docstring). The paraboloid part is kept in closed form and only the remainder
+    D = S - R^2/2 (of order delta R^4) is interpolated, so no precision is lost to cancellation."""
+
+    name = "exact"
+
+    def __init__(self, delta: float, radii=(1.0, math.inf)):
+        self.delta = checks.number("delta", delta, lower=0.0, upper=1.0, lower_open=True)
+        self.radii = [checks.positive("surface radius", r) for r in radii if not math.isinf(r)]
+        self.limit = min(self.radii) / math.sqrt(self.delta)  # the smaller sphere's equator
+
+    def _remainder(self, radius):
+        """D = S - R^2/2 and dD/dR."""
+        radius = np.asarray(radius, dtype=float)
+        if np.any(radius >= self.limit):
+            raise checks.InputError(
+                f"the film reaches R = {float(np.max(radius)):.4g} sqrt(a x0), beyond the "
+                f"sphere's equator at {self.limit:.4g}: no exact gap there"
+            )
+        value, slope = -0.5 * radius**2, -radius
+        for rho in self.radii:
+            root = np.sqrt(rho**2 - self.delta * radius**2)
+            value = value + radius**2 / (rho + root)
+            slope = slope + radius / root
+        return value, slope
+
+    def height(self, radius):
+        return 0.5 * radius**2 + self._remainder(radius)[0]
+
+    def between_nodes(self, left, length, xi):
+        points = left[:, None] + length[:, None] * xi
+        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        chord = d_left[:, None] * (1.0 - xi) + d_right[:, None] * xi
+        return super().between_nodes(left, length, xi) + self._remainder(points)[0] - chord
+
+    def slope_between_nodes(self, left, length, xi):
+        points = left[:, None] + length[:, None] * xi
+        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        chord = ((d_right - d_left) / length)[:, None]
+        return super().slope_between_nodes(left, length, xi) + self._remainder(points)[1] - chord
+
+
+def default_gap(model: str, layer: str) -> str:
+    """The gap a collision uses when none is asked for: the true spheres for the FE model with
+    a thin layer (the FE solids are true spheres), the paraboloid otherwise (the asymptotic
+    theory; the immersed far field needs it)."""
+    return "exact" if model == "fem" and layer == "thin" else "paraboloid"
+
+
+def gap_geometry(name: str, delta: float, surface_radii=(1.0, math.inf)):
+    """The undeformed gap ``name`` ("paraboloid" or "exact") for delta = x0/a and the surfaces'
+    radii by a (the sphere's, then the lower body's: math.inf for a wall)."""
+    checks.choice("gap", name, GAPS)
+    return Paraboloid() if name == "paraboloid" else ExactSpheres(delta, surface_radii)

@@ -1,0 +1,615 @@
+"""Axisymmetric Reynolds lubrication film: discretisation, wetted edge, sliding integrals.
+
+All quantities are scaled (DSH 1986): radius R by sqrt(a x0), film thickness H by x0, pressure P
+by mu V0 a / x0^2, time T by x0 / V0. The film obeys
+
+    dH/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),        0 < R < R_edge,
+    dP/dR = 0 at R = 0,    P >= P_cav (cavitation),
+
+with P = 0 at the wetted edge R_edge where H = 1 (thin layer), or, fully immersed, the far-field
+condition P ~ H^-2 (exact for the rigid-sphere solution P = -3 V / H^2) at the last node.
+
+Cavitation (the lower limit P_cav of the pressure and the liquid in a cavity) is a separate
+part, :mod:`ehdfem.film.cavitation`; the film supplies the pieces it works on.
+
+With a pressure-dependent viscosity mu(P) (:mod:`ehdfem.film.viscosity`) H^3 becomes H^3 mu0/mu(P).
+
+Discretisation: continuous piecewise-linear (P1) finite elements in R with the weight R, the
+lumped mass m_i = int phi_i R dR and element conductances from 3-point Gauss quadrature of
+int R H^3 mu0 / (12 mu) dR with H linear on the element (exact for that H and constant mu).
+The thin-layer edge is cut into its element (the element is shortened to end at R_edge, where
+P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not
+know about time stepping: it assembles, for a given film thickness H and pressure P, the
+weak-form pieces
+
+    m_i d(theta_i H_i)/dT + (K(H, P) P)_i = 0     (wet nodes; theta = 1 unless mass-conserving)
+
+plus the derivatives D = d(K P)/dH and E = d(K P)/dP - K (piezoviscosity), the dry nodes and
+the force.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..inputs import checks
+from .gap import Paraboloid
+from .viscosity import Viscosity
+
+LAYERS = ("thin", "immersed")
+
+# 3-point Gauss-Legendre on [0, 1]: integrates R H^3 exactly for linear R and H.
+_GAUSS_XI = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
+_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
+
+
+def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
+    """Film nodes R_i = R_f sinh(A i/(n-1)), A = asinh(R_max / R_f), scaled by sqrt(a x0).
+
+    The spacing is nearly uniform, A R_f / (n-1), inside the fine radius R_f (where the solids
+    flatten and the film is thinnest) and grows in proportion to R beyond it, so a far field
+    out to R_max costs only a logarithmic number of nodes.
+    """
+    n = checks.integer("n (film nodes)", n, lower=8)
+    fine_radius = checks.positive("fine_radius", fine_radius)
+    outer_radius = checks.number("outer_radius", outer_radius, lower=fine_radius, lower_open=True)
+    stretch = np.arcsinh(outer_radius / fine_radius)
+    radii = fine_radius * np.sinh(stretch * np.linspace(0.0, 1.0, n))
+    radii[-1] = outer_radius
+    return radii
+
+
+# The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
+# contact_grid): knots (rho, spacing) and the slope beyond the last knot.
+_CONTACT_SPACING_KNOTS = ((0.0, 0.7), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
+_CONTACT_SPACING_SLOPE = 8.0
+
+
+def contact_grid(
+    n: int, rim_radius: float, outer_radius: float, node_at: float | None = None
+) -> np.ndarray:
+    """Film nodes graded to a contact rim R_c, by sqrt(a x0).
+
+    The spacing is c s(R/R_c), s piecewise linear: 0.7 on the axis (where a soft rebound's film
+    is thinnest), 1 from 0.4 R_c to 0.78 R_c, down to 0.3 at the rim (where a hard impact's exit
+    constriction makes the film thinnest), up to 4.35 at 1.5 R_c and growing by 8 per R_c
+    beyond, so the far field grows geometrically and costs a logarithmic number of nodes. The
+    nodes sit at equal steps of int dR / s(R/R_c), with c set by n. ``node_at``: a radius given
+    a node of its own if it lies inside the grid (the sphere's radius, where the immersed film's
+    shear integrals end).
+    """
+    n = checks.integer("n (film nodes)", n, lower=8)
+    rim_radius = checks.positive("rim_radius", rim_radius)
+    outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
+    end = outer_radius / rim_radius
+    knots = [(rho, s) for rho, s in _CONTACT_SPACING_KNOTS if rho < end]
+    last_rho, last_s = _CONTACT_SPACING_KNOTS[len(knots) - 1]
+    slope = _CONTACT_SPACING_SLOPE
+    if len(knots) < len(_CONTACT_SPACING_KNOTS):
+        slope = (_CONTACT_SPACING_KNOTS[len(knots)][1] - last_s) / (
+            _CONTACT_SPACING_KNOTS[len(knots)][0] - last_rho
+        )
+    rho = np.array([k[0] for k in knots] + [end])
+    spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
+    pieces = _SpacingPieces(rho, spacing)
+    if node_at is None or not rim_radius < node_at < outer_radius:
+        radii = rim_radius * pieces.position(np.linspace(0.0, 1.0, n))
+    else:  # node k at node_at: equal steps of the share on either side of it
+        at = pieces.share(node_at / rim_radius)
+        k = min(max(round(at * (n - 1)), 1), n - 2)
+        share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
+        radii = rim_radius * pieces.position(share)
+        radii[k] = node_at
+    radii[0], radii[-1] = 0.0, outer_radius
+    return radii
+
+
+class _SpacingPieces:
+    """A spacing s(rho) linear between knots and the exact share of the nodes up to rho,
+    int_0^rho d rho' / s over the total, and its inverse."""
+
+    def __init__(self, rho: np.ndarray, spacing: np.ndarray):
+        self.rho, self.spacing = rho, spacing
+        self.slope = np.diff(spacing) / np.diff(rho)
+        self.cumulative = np.concatenate([[0.0], np.cumsum(self._integral(np.diff(rho)))])
+
+    def _integral(self, width, piece=slice(None)):
+        """int d rho / s over ``width`` from the start of each piece."""
+        s0, m = self.spacing[:-1][piece], self.slope[piece]
+        flat = np.abs(m) < 1e-12
+        return np.where(flat, width / s0, np.log1p(m * width / s0) / np.where(flat, 1.0, m))
+
+    def share(self, rho: float) -> float:
+        """The share of the nodes inside rho."""
+        i = min(int(np.searchsorted(self.rho, rho, side="right")) - 1, len(self.slope) - 1)
+        partial = self._integral(np.array([rho - self.rho[i]]), slice(i, i + 1))[0]
+        return float((self.cumulative[i] + partial) / self.cumulative[-1])
+
+    def position(self, share: np.ndarray) -> np.ndarray:
+        """rho at the given shares of the nodes (the inverse of :meth:`share`)."""
+        target = np.asarray(share) * self.cumulative[-1]
+        i = np.clip(
+            np.searchsorted(self.cumulative, target, side="right") - 1, 0, len(self.slope) - 1
+        )
+        left = target - self.cumulative[i]
+        s0, m = self.spacing[:-1][i], self.slope[i]
+        flat = np.abs(m) < 1e-12
+        grown = np.expm1(m * left) / np.where(flat, 1.0, m)
+        return self.rho[i] + s0 * np.where(flat, left, grown)
+
+
+def _ascending_mass(left, right):
+    """int over [left, right] of the hat that rises from 0 to 1, times R."""
+    return (right - left) * (left + 2.0 * right) / 6.0
+
+
+def _descending_mass(left, right):
+    """int over [left, right] of the hat that falls from 1 to 0, times R."""
+    return (right - left) * (2.0 * left + right) / 6.0
+
+
+@dataclass
+class _Elements:
+    left: np.ndarray  # left node of each wetted element
+    right: np.ndarray  # right node, -1 for an element cut at the wetted edge
+    length: np.ndarray
+    gauss_r: np.ndarray  # (elements, 3) Gauss radii
+    h_left: np.ndarray
+    h_right: np.ndarray  # 1 at the wetted edge
+
+
+@dataclass
+class FilmState:
+    """The assembled film for one pressure and film-thickness iterate (scaled units).
+
+    ``mass``: lumped m_i; ``conductance`` (lower, diagonal, upper) of K(H); ``dflux_dH`` the
+    tridiagonal D = d(K P)/dH; ``dflux_dP`` the tridiagonal d(K P)/dP - K from the
+    pressure-dependent viscosity (zero bands at constant viscosity); ``force_weights`` f with
+    St dV/dT = f . P; ``dry`` nodes hold P = 0 (outside the wetted edge); ``edge_radius`` is
+    R_edge (inf when fully immersed).
+    """
+
+    mass: np.ndarray
+    conductance: tuple[np.ndarray, np.ndarray, np.ndarray]
+    dflux_dH: tuple[np.ndarray, np.ndarray, np.ndarray]
+    dflux_dP: tuple[np.ndarray, np.ndarray, np.ndarray]
+    force_weights: np.ndarray
+    dry: np.ndarray
+    edge_radius: float
+
+    def flux(self, pressure: np.ndarray) -> np.ndarray:
+        """(K(H) P)_i, the net outward lubrication flux from node i (times 2 pi, scaled)."""
+        return tridiagonal_product(self.conductance, pressure)
+
+
+def tridiagonal_product(bands, vector):
+    """(lower, diagonal, upper) band matrix times a vector; lower[0] and upper[-1] unused."""
+    lower, diagonal, upper = bands
+    out = diagonal * vector
+    out[1:] += lower[1:] * vector[:-1]
+    out[:-1] += upper[:-1] * vector[1:]
+    return out
+
+
+@dataclass
+class ModeOneFilm:
+    """The film's azimuthal mode-1 (cos phi) operators at one instant (scaled).
+
+    A sliding and spinning sphere adds to the axisymmetric film (H0, P0) a mode-1 pressure
+    p1 = mu U0 sqrt(a) x0^(-3/2) q(R) cos(phi) and, on elastic solids, a mode-1 gap
+    h1 = x0 (U0/V0) sqrt(delta) H1(R) cos(phi). In these units (q is the film pressure unit
+    and H1 the gap unit, both times (U0/V0) sqrt(delta)) the mode-1 Reynolds equation,
+    linearised about (H0, P0), is
+
+        dH1/dT = (1/(12 R)) (R phi H0^3 q')' - phi H0^3 q / (12 R^2)
+                 + (1/(4 R)) (R phi H0^2 H1 P0')' + (1/(12 R)) (R phi_P H0^3 q P0')'
+                 + (w/2) dH0/dR,
+
+    with phi = mu0/mu(P0), phi_P = d phi/dP and w = (U + a Omega)/U0 the rolling speed. On P1
+    elements (weak form with the weight R, lumped mass) it reads, at the ``free`` nodes,
+
+        mass * dH1/dT + conductance q + thickness_coupling H1 + pressure_coupling q
+            = (w/2) drive,
+
+    and q = 0 elsewhere: on the axis, at dry nodes, at the immersed end and at cavitated nodes
+    (where P0 sits at the cavitation limit, the linearised limit P0 + q cos phi >= P_cav holds
+    for every phi only with q = 0). ``conductance`` is the symmetric form
+    (1/12) int phi H0^3 (q' v' + q v / R^2) R dR; q . conductance q is the Poiseuille
+    dissipation of the mode-1 flow. ``drive`` is int H0' v R dR. ``torque_weights`` give
+    int q R^2 dR. ``shear_weights`` j_i = int phi_i theta (mu/mu0) R dR / H0 give the
+    Couette force of nodal slip velocities; their sum is the Couette integral J. ``tail`` (immersed
+    only) is ln of the undeformed far-field film between the last node and the sphere's radius,
+    where the rigid resistances J, G and M grow as 1, 3/5 and 2/5 of it.
+    """
+
+    free: np.ndarray
+    mass: np.ndarray
+    conductance: np.ndarray
+    thickness_coupling: np.ndarray
+    pressure_coupling: np.ndarray
+    drive: np.ndarray
+    torque_weights: np.ndarray
+    shear_weights: np.ndarray
+    tail: float
+    _film: Film
+    _elements: _Elements
+    _pressure_slope: np.ndarray
+
+    def rigid_pressure(self) -> np.ndarray:
+        """q per unit rolling speed w on rigid solids (H1 = 0), the quasi-steady solution of
+        conductance q = drive / 2 at the free nodes (q = 6 w Pi of the classical mode-1
+        problem (1/R)(R H^3 Pi')' - H^3 Pi / R^2 = -H')."""
+        q = np.zeros_like(self.drive)
+        free = self.free
+        operator = self.conductance + self.pressure_coupling
+        q[free] = np.linalg.solve(operator[np.ix_(free, free)], 0.5 * self.drive[free])
+        return q
+
+    def surface_slope_weights(self, surface_sum: np.ndarray | None = None) -> np.ndarray:
+        """s with s . q = int q dSigma0/dR R dR, Sigma0 = X + S(R) + u_s + u_w the sum of the
+        two surfaces' heights: the undeformed gap plus ``surface_sum``, the nodal sum of the
+        sphere's and the wall's axisymmetric displacements along z (by x0, z from the wall into
+        the sphere; None: 0, as for identical half-spaces or rigid solids)."""
+        el, gap, radii = self._elements, self._film.gap, self._film.radii
+        left = radii[el.left]
+        chord = (gap.height(left + el.length) - gap.height(left)) / el.length
+        slope = chord[:, None] + gap.slope_between_nodes(left, el.length, _GAUSS_XI)
+        if surface_sum is not None:
+            ends = np.interp(left + el.length, radii, surface_sum) - surface_sum[el.left]
+            slope = slope + (ends / el.length)[:, None]
+        return _hat_weights(el, slope, len(self.drive))
+
+    def gradient_weights(self) -> np.ndarray:
+        """g with g . f = int f P0' R dR for a nodal (P1) f on the whole grid (f need not vanish
+        at the wetted edge)."""
+        el = self._elements
+        values = np.broadcast_to(self._pressure_slope[:, None], el.gauss_r.shape)
+        return _cell_hat_weights(el, self._film.radii, values)
+
+
+def _hat_weights(el: _Elements, values: np.ndarray, n: int) -> np.ndarray:
+    """w with w . f = int f g R dR over the elements, for a nodal (P1) f that is 0 at a cut
+    edge and g given at the elements' Gauss points, ``values`` (elements, 3)."""
+    regular = el.right >= 0
+    weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
+    out = np.zeros(n)
+    np.add.at(out, el.left, (weight * (1.0 - _GAUSS_XI)).sum(axis=1))
+    np.add.at(out, el.right[regular], (weight * _GAUSS_XI).sum(axis=1)[regular])
+    return out
+
+
+def _at_gauss_points(el: _Elements, nodal, edge_value: float) -> np.ndarray:
+    """A nodal field, linear on the elements, at their Gauss points (elements, 3); at a cut
+    element's edge it takes ``edge_value``, and everywhere if ``nodal`` is None."""
+    if nodal is None:
+        return np.full(el.gauss_r.shape, float(edge_value))
+    regular = el.right >= 0
+    right = np.where(regular, nodal[np.where(regular, el.right, 0)], edge_value)
+    return _gauss_values(nodal[el.left], right)
+
+
+def _cell_hat_weights(el: _Elements, radii: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """w with w . f = int f g R dR over the wetted elements, for f linear on the grid's cells
+    (a cut element keeps the hats of its full cell, so f need not vanish at the wetted edge)
+    and g given at the elements' Gauss points, ``values`` (elements, 3)."""
+    full = np.diff(radii)[np.minimum(el.left, len(radii) - 2)]
+    rising = (el.gauss_r - radii[el.left, None]) / full[:, None]
+    weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
+    out = np.zeros(len(radii))
+    np.add.at(out, el.left, (weight * (1.0 - rising)).sum(axis=1))
+    np.add.at(out, np.minimum(el.left + 1, len(out) - 1), (weight * rising).sum(axis=1))
+    return out
+
+
+class Film:
+    """Reynolds film on the radial nodes ``radii`` (scaled by sqrt(a x0)).
+
+    ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
+    P ~ H^-2 at the last node). ``viscosity``: a :class:`ehdfem.film.viscosity.Viscosity` (default
+    constant). ``gap``: the undeformed gap S(R) of :mod:`ehdfem.film.gap` (default the paraboloid
+    R^2/2), kept exactly between the nodes; the immersed far field assumes the paraboloid.
+    """
+
+    def __init__(
+        self,
+        radii: np.ndarray,
+        layer: str = "thin",
+        viscosity: Viscosity | None = None,
+        gap: Paraboloid | None = None,
+    ):
+        self.radii = np.asarray(radii, dtype=float)
+        self.layer = checks.choice("layer", layer, LAYERS)
+        self.viscosity = viscosity or Viscosity()
+        self.gap = gap or Paraboloid()
+        if self.layer == "immersed" and self.gap.name != "paraboloid":
+            raise checks.InputError(
+                f"gap = {self.gap.name!r} needs the thin layer: the immersed film reaches "
+                "beyond the sphere and its far-field closure assumes the paraboloid"
+            )
+        left, right = self.radii[:-1], self.radii[1:]
+        self._length = right - left
+        self._full_mass = np.zeros_like(self.radii)
+        self._full_mass[:-1] += _descending_mass(left, right)
+        self._full_mass[1:] += _ascending_mass(left, right)
+
+    @property
+    def full_mass(self) -> np.ndarray:
+        """m_i = int phi_i R dR over the whole grid (used for energies and forces)."""
+        return self._full_mass
+
+    def wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
+        """(number of wet nodes, R_edge) for the thin layer: R_edge is where H crosses 1.
+
+        The crossing is interpolated linearly between the last node with H < 1 and the next;
+        a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0 there) so the
+        cut element never degenerates.
+        """
+        n = len(self.radii)
+        if self.layer == "immersed":
+            return n, np.inf
+        above = np.flatnonzero(film_thickness >= 1.0)
+        if len(above) == 0:
+            raise FilmError("the wetted edge left the film grid: enlarge outer_radius")
+        first_dry = above[0]
+        if first_dry == 0:
+            return 0, 0.0
+        k = first_dry - 1
+        fraction = (1.0 - film_thickness[k]) / (film_thickness[first_dry] - film_thickness[k])
+        edge = self.radii[k] + fraction * self._length[k]
+        if fraction < 1e-3:
+            return k, edge
+        return first_dry, edge
+
+    def _elements(self, film_thickness: np.ndarray):
+        """(number of wet nodes, R_edge, the wetted elements). A thin layer's last element is
+        cut at the edge: its ``right`` index is -1 and H = 1 there."""
+        h = film_thickness
+        n_wet, edge = self.wetted_edge(h)
+        n_elem = max(n_wet - 1, 0)
+        left = np.arange(n_elem + int(self.layer == "thin" and n_wet > 0))
+        right = left + 1
+        length = self._length[np.minimum(left, len(self._length) - 1)].copy()
+        h_right = h[np.minimum(right, len(h) - 1)].copy()
+        if len(left) > n_elem:  # the cut element
+            right[-1] = -1
+            length[-1] = edge - self.radii[left[-1]]
+            h_right[-1] = 1.0
+        gauss_r = self.radii[left, None] + length[:, None] * _GAUSS_XI
+        return n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
+
+    def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
+        """Assemble the film for thickness H and pressure P (both at the nodes, scaled)."""
+        h = film_thickness
+        n = len(self.radii)
+        n_wet, edge, el = self._elements(h)
+        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+        mass = np.zeros(n)
+        regular = el.right >= 0
+        p_left, p_right = pressure[el.left], np.where(regular, pressure[el.right], 0.0)
+        k, dk_dh, dk_dp = _conductance(
+            el.gauss_r, el.length, self._gauss_thickness(el), p_left, p_right, self.viscosity
+        )
+        diagonal[el.left] += k
+        r_left = self.radii[el.left]
+        mass[el.left] += _descending_mass(r_left, r_left + el.length)
+        left, right = el.left[regular], el.right[regular]
+        diagonal[right] += k[regular]
+        upper[left] -= k[regular]
+        lower[right] -= k[regular]
+        mass[right] += _ascending_mass(self.radii[left], self.radii[right])
+        jump = p_left - p_right
+        dflux_dH = _derivative_bands(n, el, regular, dk_dh, jump)
+        dflux_dP = _derivative_bands(n, el, regular, dk_dp, jump)
+        force_weights = mass / 3.0
+        if self.layer == "immersed":
+            self._add_far_field(h, pressure, diagonal, dflux_dH[1], force_weights)
+        dry = np.arange(n) >= n_wet
+        return FilmState(
+            mass,
+            (lower, diagonal, upper),
+            dflux_dH,
+            dflux_dP,
+            force_weights,
+            dry,
+            edge,
+        )
+
+    def _add_far_field(self, h, pressure, diagonal, d_diagonal, force_weights):
+        """Robin condition R H^3/12 dP/dR = -R^2 H^2 P / 6 at the last node (P ~ H^-2, dH/dR = R)
+        and the force of the pressure beyond it, (1/3) int_Rmax^inf P R dR = P_N H_N / 3."""
+        r, hn = self.radii[-1], h[-1]
+        diagonal[-1] += r**2 * hn**2 / 6.0
+        d_diagonal[-1] += r**2 * hn / 3.0 * pressure[-1]
+        force_weights[-1] += hn / 3.0
+
+    def couette_weights(
+        self, film_thickness: np.ndarray, outer_radius: float = np.inf, pressure=None, fill=None
+    ) -> tuple[np.ndarray, float]:
+        """(j, tail): the Couette weights j_i = int phi_i theta (mu/mu0) R dR / H0 over the
+        wetted film inside ``outer_radius`` (phi_i the grid's hats), so that the Couette
+        integral is J = sum(j) + tail, and the far-field ``tail`` (immersed only: ln of the
+        undeformed film X + R^2/2 from the last node to ``outer_radius``; 0 for the thin
+        layer). H0 by x0, the viscosity at the nodal ``pressure`` P0 (by mu V0 a / x0^2; mu0 if
+        not given), theta the nodal ``fill`` (1 if not given)."""
+        h = film_thickness
+        el = self._inner_elements(h, outer_radius)
+        ratio = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))[0]
+        liquid = _at_gauss_points(el, fill, 1.0)
+        weights = _cell_hat_weights(el, self.radii, liquid * ratio / self._gauss_thickness(el))
+        tail = 0.0
+        r_last = self.radii[-1]
+        if self.layer == "immersed" and outer_radius > r_last:
+            gap = h[-1] - 0.5 * r_last**2
+            tail = float(np.log((gap + 0.5 * outer_radius**2) / h[-1]))
+        return weights, tail
+
+    def _inner_elements(self, film_thickness: np.ndarray, outer_radius: float) -> _Elements:
+        """The wetted elements that start inside ``outer_radius``: the integrals end at the
+        first node at or beyond it, so a grid should have a node there (:func:`contact_grid`'s
+        ``node_at``; an element across it would count whole and move the integral with the
+        grid, about 1 % of the spin change at delta = 0.01 on the previous sinh grid)."""
+        _, _, el = self._elements(film_thickness)
+        inside = self.radii[el.left] < outer_radius
+        return _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
+
+    def mode_one(
+        self,
+        film_thickness: np.ndarray,
+        outer_radius: float = np.inf,
+        pressure=None,
+        fill=None,
+        cavitated=None,
+    ) -> ModeOneFilm:
+        """The film's azimuthal mode-1 operators at one instant (see :class:`ModeOneFilm`).
+
+        ``film_thickness`` H0 and ``pressure`` P0 are the axisymmetric film at the nodes (by x0
+        and mu V0 a / x0^2; the viscosity is taken at P0, mu0 if not given), ``fill`` the liquid
+        fraction theta (1 if not given; a cavity shears only its liquid), ``cavitated`` the nodes
+        where P0 is at the cavitation limit (boolean; none if not given). Thin layer: up to the
+        wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta), caps
+        the logarithmic far field); beyond the last node the film is taken as the undeformed
+        X + R^2/2, whose rigid resistances grow as ln H (``tail``).
+        """
+        h = film_thickness
+        n = len(h)
+        el = self._inner_elements(h, outer_radius)
+        thickness = self._gauss_thickness(el)
+        regular = el.right >= 0
+        right = np.where(regular, el.right, 0)
+        ratio, dlog = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))
+        fluidity = 1.0 / ratio  # mu0 / mu
+        slope = ((el.h_right - el.h_left) / el.length)[:, None] + self.gap.slope_between_nodes(
+            self.radii[el.left], el.length, _GAUSS_XI
+        )
+        weight = el.length[:, None] * _GAUSS_W * el.gauss_r  # R dR at the Gauss points
+        hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
+        hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
+        nodes = (el.left, np.where(regular, el.right, el.left))
+        live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
+        pressure_slope = np.zeros(len(el.left))
+        if pressure is not None:
+            pressure_slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / (
+                el.length
+            )
+        cube = fluidity * thickness**3
+        conductance = np.zeros((n, n))
+        thickness_coupling = np.zeros((n, n))
+        pressure_coupling = np.zeros((n, n))
+        dfluidity = -fluidity * (0.0 if dlog is None else dlog)
+        for a in range(2):
+            ia, va, sa = nodes[a], live[a], hat_slopes[a]
+            for b in range(2):
+                ib, on = nodes[b], va * live[b]
+                stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
+                hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
+                np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
+                grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
+                np.add.at(
+                    thickness_coupling,
+                    (ia, ib),
+                    on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
+                )
+                np.add.at(
+                    pressure_coupling,
+                    (ia, ib),
+                    on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
+                )
+        free = np.zeros(n, bool)  # q = 0 on the axis, at dry nodes and at the immersed end
+        free[el.left[1:]] = True
+        if self.layer == "immersed" and len(el.left):
+            free[el.right[-1]] = False
+        if cavitated is not None:
+            free &= ~np.asarray(cavitated, bool)
+        shear, tail = self.couette_weights(h, outer_radius, pressure, fill)
+        return ModeOneFilm(
+            free=free,
+            mass=_hat_weights(el, np.ones_like(thickness), n),
+            conductance=conductance,
+            thickness_coupling=thickness_coupling,
+            pressure_coupling=pressure_coupling,
+            drive=_hat_weights(el, slope, n),
+            torque_weights=_hat_weights(el, el.gauss_r, n),
+            shear_weights=shear,
+            tail=tail,
+            _film=self,
+            _elements=el,
+            _pressure_slope=pressure_slope,
+        )
+
+    def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+        """T at the nodes: the radial shear traction -(H/2) dP/dR that the pressure-driven flow
+        exerts on each of the two surfaces, in the flow direction (by sqrt(delta) mu V0 a /
+        x0^2; positive outward). Each wetted element carries T = -(H/2) s with its own slope s
+        (the cut element up to the wetted edge, where P = 0); the nodal values are its lumped
+        projection, T_j = int phi_j T R dR / int phi_j R dR over the whole grid, so a node the
+        edge leaves keeps the share its part of the film gives it, and T moves continuously
+        with the edge."""
+        _, _, el = self._elements(film_thickness)
+        regular = el.right >= 0
+        right = np.where(regular, el.right, 0)
+        slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / el.length
+        traction = -0.5 * self._gauss_thickness(el) * slope[:, None]
+        load = _cell_hat_weights(el, self.radii, traction)
+        return load / self._full_mass
+
+    def _gauss_thickness(self, el: _Elements):
+        """H at the Gauss points of the elements: the undeformed gap S is kept exactly between
+        the nodes, H = X + S + W with only W linear (the linear interpolant of H plus S minus
+        its own interpolant)."""
+        between = self.gap.between_nodes(self.radii[el.left], el.length, _GAUSS_XI)
+        return el.h_left[:, None] * (1.0 - _GAUSS_XI) + el.h_right[:, None] * _GAUSS_XI + between
+
+    def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
+        """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of
+        m V0^2 per (x0/V0) divided by St (the same units as St d(V^2/2)/dT)."""
+        return float(pressure @ state.flux(pressure)) / 3.0
+
+
+def _gauss_values(left, right):
+    """A linear nodal field at the Gauss points of elements, (elements, 3)."""
+    return left[:, None] * (1.0 - _GAUSS_XI) + right[:, None] * _GAUSS_XI
+
+
+def _conductance(gauss_r, length, h, p_left, p_right, viscosity: Viscosity):
+    """Element conductance k = (1/(12 L^2)) int R H^3 mu0/mu(P) dR (H at the Gauss points, P
+    linear on the element) and its derivatives ((dk/dH_left, dk/dH_right), (dk/dP_left,
+    dk/dP_right)) by the nodal values."""
+    scale = 1.0 / (12.0 * length)
+    weight = _GAUSS_W * gauss_r * scale[:, None]
+    if viscosity.constant:
+        fluidity, dlog = 1.0, None
+    else:
+        ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right))
+        if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
+            raise FilmError("the viscosity overflows (mu/mu0 > 1e308): pressure iterate too high")
+        fluidity = 1.0 / ratio
+    k = (weight * h**3 * fluidity).sum(axis=1)
+    dh = weight * 3.0 * h**2 * fluidity
+    dk_dh = ((dh * (1.0 - _GAUSS_XI)).sum(axis=1), (dh * _GAUSS_XI).sum(axis=1))
+    if dlog is None:
+        return k, dk_dh, None
+    dp = -weight * h**3 * fluidity * dlog
+    return k, dk_dh, ((dp * (1.0 - _GAUSS_XI)).sum(axis=1), (dp * _GAUSS_XI).sum(axis=1))
+
+
+def _derivative_bands(n, el: _Elements, regular, dk, jump):
+    """Tridiagonal bands of sum_e (dk_e/dy) (P_left - P_right) for the element conductances'
+    derivatives dk = (dk/dy_left, dk/dy_right) by a nodal field y (H, or P for the viscosity;
+    None: zero bands). The cut element's right end is the edge, which is no unknown."""
+    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+    if dk is None:
+        return lower, diagonal, upper
+    dk_left, dk_right = dk
+    diagonal[el.left] += dk_left * jump
+    left, right = el.left[regular], el.right[regular]
+    dk_left, dk_right, jump = dk_left[regular], dk_right[regular], jump[regular]
+    upper[left] += dk_right * jump
+    lower[right] -= dk_left * jump
+    diagonal[right] -= dk_right * jump
+    return lower, diagonal, upper
+
+
+class FilmError(RuntimeError):
+    """The film cannot be assembled (e.g. the wetted edge ran off the grid)."""

@@ -1,0 +1,93 @@
+"""Pressure-dependent viscosity of the film liquid (piezoviscosity).
+
+The laws give the viscosity ratio mu(p) / mu0 as a function of the scaled gauge pressure
+P = p / (mu0 V0 a / x0^2) (mu0: the viscosity at ambient pressure):
+
+    constant:  mu / mu0 = 1
+    Barus:     mu / mu0 = exp(alpha P)
+    Roelands:  mu / mu0 = exp((alpha P_r / Z) [(1 + P / P_r)^Z - 1])
+
+with the scaled pressure-viscosity coefficient alpha = alpha_SI mu0 V0 a / x0^2 (alpha_SI in
+1/Pa), the Roelands reference pressure P_r = 1.96e8 Pa / (mu0 V0 a / x0^2) and the
+pressure-viscosity index Z. Written this way Roelands has the same slope alpha as Barus at low
+pressure; with alpha_SI and mu0 in Pa s, Z = alpha_SI 1.96e8 Pa / (ln(mu0) + 9.67), the
+classical form mu = mu0 exp{(ln mu0 + 9.67) [(1 + 5.1e-9 p)^Z - 1]} (Roelands 1966).
+
+Decision: the laws act on the compressive part of the pressure, max(P, 0). Under suction the
+viscosity is mu0: a liquid holds at most about an atmosphere of suction, where alpha_SI p is
+of order 1e-3, and the clip keeps Roelands defined for any suction the film computes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..inputs import checks
+
+LAWS = ("constant", "barus", "roelands")
+ROELANDS_PRESSURE = 1.96e8  # Pa, the reference pressure p_r of the Roelands law
+ROELANDS_LOG_VISCOSITY = 9.67  # -ln(6.31e-5), mu in Pa s: the Roelands asymptote
+ROELANDS_INDEX = 0.6  # Z of typical mineral oils, used when alpha does not give one
+
+
+def roelands_index(pressure_viscosity: float, viscosity: float) -> float:
+    """Z = alpha p_r / (ln(mu0 / Pa s) + 9.67): the Roelands index with the low-pressure slope
+    alpha (pressure_viscosity in 1/Pa, viscosity mu0 in Pa s)."""
+    return pressure_viscosity * ROELANDS_PRESSURE / (math.log(viscosity) + ROELANDS_LOG_VISCOSITY)
+
+
+@dataclass(frozen=True)
+class Viscosity:
+    """A viscosity law in scaled form (see the module docstring).
+
+    ``law``: "constant", "barus" or "roelands"; ``alpha``: the scaled pressure-viscosity
+    coefficient alpha_SI mu0 V0 a / x0^2, >= 0; ``roelands_pressure``: P_r scaled by
+    mu0 V0 a / x0^2 (Roelands only); ``roelands_index``: Z in (0, 2] (Roelands only).
+    """
+
+    law: str = "constant"
+    alpha: float = 0.0
+    roelands_pressure: float | None = None
+    roelands_index: float = ROELANDS_INDEX
+
+    def __post_init__(self):
+        checks.choice("viscosity", self.law, LAWS)
+        checks.number("alpha", self.alpha, lower=0.0)
+        checks.number("roelands_index", self.roelands_index, lower=0.0, upper=2.0, lower_open=True)
+        if self.law == "roelands":
+            if self.roelands_pressure is None:
+                raise checks.InputError(
+                    "the Roelands law needs roelands_pressure (1.96e8 Pa scaled by "
+                    "mu0 V0 a / x0^2), > 0"
+                )
+            checks.positive("roelands_pressure", self.roelands_pressure)
+
+    @property
+    def constant(self) -> bool:
+        """True when mu = mu0 at every pressure (the constant law, or alpha = 0)."""
+        return self.law == "constant" or self.alpha == 0.0
+
+    def log_ratio(self, compressive):
+        """ln(mu / mu0) at the compressive part max(P, 0) of the scaled pressure (a numpy array
+        or a UFL expression; not for the constant law)."""
+        if self.law == "barus":
+            return self.alpha * compressive
+        z, p_r = self.roelands_index, self.roelands_pressure
+        return self.alpha * p_r / z * ((1.0 + compressive / p_r) ** z - 1.0)
+
+    def ratio(self, pressure):
+        """(mu / mu0, d ln(mu / mu0) / dP) at the scaled pressures ``pressure``."""
+        pressure = np.asarray(pressure, dtype=float)
+        compressive = np.maximum(pressure, 0.0)
+        if self.constant:
+            return np.ones_like(pressure), np.zeros_like(pressure)
+        if self.law == "barus":
+            slope = np.where(pressure > 0.0, self.alpha, 0.0)
+        else:
+            base = 1.0 + compressive / self.roelands_pressure
+            slope = np.where(pressure > 0.0, self.alpha * base ** (self.roelands_index - 1.0), 0.0)
+        with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
+            return np.exp(self.log_ratio(compressive)), slope

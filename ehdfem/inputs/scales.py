@@ -1,0 +1,324 @@
+"""Physical inputs, the dimensionless groups and the scales (Davis, Serayssol & Hinch 1986).
+
+Throughout ehdfem: gap and film thickness are scaled by x0 (the layer thickness, the initial
+gap), radius by sqrt(a x0), time by x0/V0, velocity by V0 (the normal impact speed), pressure by
+mu V0 a / x0^2, force by 6 pi mu V0 a^2 / x0 (so that St dV/dT = F) and energy by m V0^2.
+The groups are
+
+    St = m V0 / (6 pi mu a^2),   eps = 4 theta mu V0 a^(3/2) / x0^(5/2),   delta = x0 / a,
+    P_cav = (p_cav - p_ambient) x0^2 / (mu V0 a),
+    theta = (1 - nu1^2)/(pi E1) + (1 - nu2^2)/(pi E2).
+
+For two spheres, a and m are the reduced radius and mass. Material and liquid presets with
+their sources live in :mod:`ehdfem.inputs.presets`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..film import cavitation
+from ..film.gap import GAPS
+from ..film.reynolds import LAYERS
+from ..film.viscosity import LAWS as VISCOSITY_LAWS
+from ..film.viscosity import (
+    ROELANDS_INDEX,
+    ROELANDS_LOG_VISCOSITY,
+    ROELANDS_PRESSURE,
+    Viscosity,
+    roelands_index,
+)
+from . import checks
+from .presets import Liquid, Material, body
+
+ATMOSPHERE = 101325.0  # Pa
+
+
+def stokes_number(mass: float, speed: float, viscosity: float, radius: float) -> float:
+    """St = m V0 / (6 pi mu a^2) (SI inputs)."""
+    return mass * speed / (6.0 * math.pi * viscosity * radius**2)
+
+
+def elastic_theta(*solids) -> float:
+    """theta = sum (1 - nu^2)/(pi E) over ``solids`` (each with young_modulus [Pa] and
+    poisson_ratio) [1/Pa]."""
+    return sum((1 - s.poisson_ratio**2) / (math.pi * s.young_modulus) for s in solids)
+
+
+def elasticity_parameter(theta, viscosity, speed, radius, layer_thickness) -> float:
+    """eps = 4 theta mu V0 a^(3/2) / x0^(5/2) (SI inputs, theta in 1/Pa)."""
+    return 4.0 * theta * viscosity * speed * radius**1.5 / layer_thickness**2.5
+
+
+def hertz_max_compression(eps: float, St: float) -> float:
+    """Dry Hertz maximum approach of a sphere on a half-space, scaled by x0.
+
+    delta_max = (15 m V0^2 / (16 E* a^(1/2)))^(2/5) with 1/E* = pi theta; with m V0 = 6 pi mu
+    a^2 St and theta from eps this is (90 pi^2/64 eps St)^(2/5) x0 = (13.88 eps St)^(2/5) x0.
+    """
+    return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
+
+
+def reduced_radius(a1: float, a2: float) -> float:
+    """a = a1 a2 / (a1 + a2) for two spheres (a2 = inf: a wall)."""
+    return a1 if math.isinf(a2) else a1 * a2 / (a1 + a2)
+
+
+def reduced_mass(m1: float, m2: float) -> float:
+    """m = m1 m2 / (m1 + m2) for two spheres (m2 = inf: a wall)."""
+    return m1 if math.isinf(m2) else m1 * m2 / (m1 + m2)
+
+
+@dataclass(frozen=True)
+class CollisionParameters:
+    """Dimensionless inputs of one collision (DSH scales; see the module docstring).
+
+    St > 0; eps > 0; delta = x0/a in (0, 1); p_cav <= 0 (-inf: no cavitation limit, the
+    default); e_dry in (0, 1] (1: pure EHD); layer "thin" or "immersed"; angle [deg] of the
+    impact velocity from the wall normal, in [0, 90); spin = a Omega0 / V0 (positive in the
+    rolling sense, see ehdfem.tangential.motion); inertia_factor k = I/(m a^2) in (0, 2/3] (2/5
+    solid, 2/3 thin shell); cavitation "truncate" (the source's), "mass-conserving" (JFO) or "none"
+    (:mod:`ehdfem.film.cavitation`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
+    pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
+    roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
+    (:mod:`ehdfem.film.viscosity`); gap "paraboloid" (the asymptotic theory), "exact" (the true
+    spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.film.gap`);
+    shear_traction: load the solids with the squeeze flow's shear traction too (True), only
+    with the pressure (False), or None, the model's default (on for the FE solids, off for the
+    half-space theory; :mod:`ehdfem.solids.halfspace`).
+    """
+
+    St: float
+    eps: float
+    delta: float = 0.01
+    p_cav: float = cavitation.NO_LIMIT
+    e_dry: float = 1.0
+    layer: str = "thin"
+    angle: float = 0.0
+    spin: float = 0.0
+    inertia_factor: float = 0.4
+    cavitation: str = "truncate"
+    viscosity: str = "constant"
+    alpha: float = 0.0
+    roelands_pressure: float | None = None
+    roelands_index: float = ROELANDS_INDEX
+    gap: str | None = None
+    shear_traction: bool | None = None
+
+    def __post_init__(self):
+        checks.positive("St", self.St)
+        checks.positive("eps", self.eps)
+        checks.number("delta", self.delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
+        cavitation.suction_limit(self.p_cav)
+        checks.number("e_dry", self.e_dry, lower=0.0, upper=1.0, lower_open=True)
+        checks.choice("layer", self.layer, LAYERS)
+        checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
+        checks.number("spin", self.spin)
+        if self.spin != 0.0 and self.tangential_speed == 0.0:
+            raise checks.InputError(
+                f"spin = {self.spin!r} needs an oblique impact (angle > 0): the tangential "
+                "motion of a head-on impact is not solved, so its spin would be ignored"
+            )
+        checks.number(
+            "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
+        )
+        checks.choice("cavitation", self.cavitation, cavitation.MODELS)
+        self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
+        if self.shear_traction not in (None, True, False):
+            raise checks.InputError(
+                f"shear_traction must be True, False or None, got {self.shear_traction!r}"
+            )
+        if self.gap is not None:
+            checks.choice("gap", self.gap, GAPS)
+            if self.gap == "exact" and self.layer == "immersed":
+                raise checks.InputError(
+                    "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
+                    "sphere and its far-field closure assumes the paraboloid"
+                )
+
+    def cavitation_model(self):
+        """The film's cavitation model with its limit P_cav (:mod:`ehdfem.film.cavitation`)."""
+        return cavitation.cavitation_model(self.cavitation, self.p_cav)
+
+    def viscosity_law(self) -> Viscosity:
+        """The film's viscosity law mu(P)/mu0 (scaled, :class:`ehdfem.film.viscosity.Viscosity`)."""
+        return Viscosity(self.viscosity, self.alpha, self.roelands_pressure, self.roelands_index)
+
+    @property
+    def tangential_speed(self) -> float:
+        """U0 / V0 = tan(angle)."""
+        return math.tan(math.radians(self.angle))
+
+
+@dataclass(frozen=True)
+class Scales:
+    """SI units of the scaled quantities: gap [m], radius [m], time [s], velocity [m/s],
+    pressure [Pa], force [N], energy [J], and the sphere radius a [m]."""
+
+    gap: float
+    radius: float
+    time: float
+    velocity: float
+    pressure: float
+    force: float
+    energy: float
+    sphere_radius: float
+
+
+@dataclass(frozen=True)
+class PhysicalCollision:
+    """Physical inputs (SI): sphere radius [m], materials, liquid, impact speed |v| [m/s], angle
+    from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
+    pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
+    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
+    the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
+    preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`).
+    Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
+
+    radius: float
+    sphere: Material
+    wall: Material
+    liquid: Liquid
+    speed: float
+    layer_thickness: float
+    angle: float = 0.0
+    layer: str = "thin"
+    e_dry: float = 1.0
+    spin: float = 0.0
+    ambient_pressure: float = ATMOSPHERE
+    cavitation_pressure: float | None = None
+    inertia_factor: float = 0.4
+    sphere_mass: float | None = field(default=None)
+    cavitation: str = "truncate"
+    viscosity: str = "constant"
+    pressure_viscosity: float | None = None
+    gap: str | None = None
+    shear_traction: bool | None = None
+
+    def __post_init__(self):
+        for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):
+            if not isinstance(getattr(self, role), kind):
+                raise checks.InputError(
+                    f"{role} must be a {kind.__name__} (see ehdfem.inputs.presets), "
+                    f"got {getattr(self, role)!r}"
+                )
+        checks.positive("radius", self.radius)
+        checks.positive("speed", self.speed)
+        checks.positive("layer_thickness", self.layer_thickness)
+        if self.layer_thickness >= self.radius:
+            raise checks.InputError(
+                f"layer_thickness = {self.layer_thickness!r} m must be smaller than the radius "
+                f"{self.radius!r} m (the allowed range is (0, radius))"
+            )
+        checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
+        checks.positive("ambient_pressure", self.ambient_pressure)
+        if self.cavitation_pressure is not None:
+            checks.number(
+                "cavitation_pressure",
+                self.cavitation_pressure,
+                lower=0.0,
+                upper=self.ambient_pressure,
+            )
+        elif self.liquid.vapour_pressure >= self.ambient_pressure:
+            raise checks.InputError(
+                f"vapour_pressure of liquid {self.liquid.name!r} = "
+                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
+                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
+            )
+        if self.sphere_mass is not None:
+            checks.positive("sphere_mass", self.sphere_mass)
+        if self.pressure_viscosity is not None:
+            checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
+        checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
+        if self.viscosity == "roelands" and self.liquid.viscosity <= math.exp(
+            -ROELANDS_LOG_VISCOSITY
+        ):
+            raise checks.InputError(
+                f"the Roelands law needs a viscosity above 6.31e-5 Pa s; "
+                f"{self.liquid.name} has {self.liquid.viscosity} Pa s"
+            )
+        self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
+
+    @property
+    def normal_speed(self) -> float:
+        """V0 = |v| cos(angle) [m/s]."""
+        return self.speed * math.cos(math.radians(self.angle))
+
+    @property
+    def tangential_speed(self) -> float:
+        """U0 = |v| sin(angle) [m/s]."""
+        return self.speed * math.sin(math.radians(self.angle))
+
+    @property
+    def mass(self) -> float:
+        """Sphere mass [kg]."""
+        if self.sphere_mass is not None:
+            return self.sphere_mass
+        return 4.0 / 3.0 * math.pi * self.radius**3 * self.sphere.density
+
+    @property
+    def theta(self) -> float:
+        """theta = sum (1 - nu^2)/(pi E) of sphere and wall [1/Pa] (:func:`elastic_theta`)."""
+        return elastic_theta(self.sphere, self.wall)
+
+    @property
+    def alpha(self) -> float:
+        """The pressure-viscosity coefficient [1/Pa]: the given one, else the liquid's."""
+        if self.pressure_viscosity is not None:
+            return self.pressure_viscosity
+        return self.liquid.pressure_viscosity
+
+    def dimensionless(self) -> CollisionParameters:
+        """St, eps, delta, P_cav, e_dry, alpha, ... for these inputs."""
+        mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
+        p_cav = (
+            self.liquid.vapour_pressure
+            if self.cavitation_pressure is None
+            else self.cavitation_pressure
+        )
+        pressure_scale = mu * v0 * a / x0**2
+        roelands = self.viscosity == "roelands"
+        return CollisionParameters(
+            St=stokes_number(self.mass, v0, mu, a),
+            eps=elasticity_parameter(self.theta, mu, v0, a, x0),
+            delta=x0 / a,
+            p_cav=(p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a),
+            e_dry=self.e_dry,
+            layer=self.layer,
+            angle=self.angle,
+            spin=self.spin * a / v0,
+            inertia_factor=self.inertia_factor,
+            cavitation=self.cavitation,
+            viscosity=self.viscosity,
+            alpha=0.0 if self.viscosity == "constant" else self.alpha * pressure_scale,
+            roelands_pressure=ROELANDS_PRESSURE / pressure_scale if roelands else None,
+            roelands_index=roelands_index(self.alpha, mu)
+            if roelands and self.alpha > 0
+            else ROELANDS_INDEX,
+            gap=self.gap,
+            shear_traction=self.shear_traction,
+        )
+
+    def scales(self) -> Scales:
+        """The SI units of the scaled results."""
+        mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
+        return Scales(
+            gap=x0,
+            radius=math.sqrt(a * x0),
+            time=x0 / v0,
+            velocity=v0,
+            pressure=mu * v0 * a / x0**2,
+            force=6.0 * math.pi * mu * v0 * a**2 / x0,
+            energy=self.mass * v0**2,
+            sphere_radius=a,
+        )
+
+
+def from_presets(**values) -> PhysicalCollision:
+    """A :class:`PhysicalCollision` (SI inputs) whose ``sphere``, ``wall`` (materials) and
+    ``liquid`` are each given by preset name, as a Material or Liquid, or as a dict of values
+    (SI) with an optional "preset" key whose values it changes (:func:`ehdfem.inputs.presets.body`),
+    e.g. ``sphere={"young_modulus": 3e9, "poisson_ratio": 0.35, "density": 1200}``."""
+    bodies = ("sphere", "wall", "liquid")
+    return PhysicalCollision(**{k: body(k, v) if k in bodies else v for k, v in values.items()})

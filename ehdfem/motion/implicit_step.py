@@ -1,0 +1,270 @@
+"""One implicit time step of the film, the elastic solids and the sphere: Newton on (P, X, V).
+
+Scaled as in :mod:`ehdfem.motion.normal`: pressure P by mu V0 a / x0^2 at the film nodes, gap X by
+x0, velocity V by V0, time by x0/V0. With the compliance C (W = C P, by x0) and a BDF formula
+dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.motion.timestepping`) the step solves
+
+    m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
+    a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt f.P = 0,
+    H = X + S(R) + C P + C_T T(H0, P),   H0 = X + S(R) + C P,
+
+with P = 0 at dry nodes and the rows and unknowns of the cavitation model
+(:mod:`ehdfem.film.cavitation`). S is the undeformed gap (:mod:`ehdfem.film.gap`; R^2/2 for the
+paraboloid). C_T T is the opening by the squeeze-shear traction T = -(H/2) dP/dR
+(:meth:`ehdfem.film.reynolds.Film.squeeze_shear`) when the compliance applies it: T is formed with
+H0, the film without its own shear opening (the neglected product is of relative size
+sqrt(delta) kappa (W_shear / H)), and the Newton matrix leaves the shear opening out (it is
+O(sqrt(delta)) of the pressure's), so the simplified Newton still contracts while the residual
+holds it in full. The Jacobian is dense (the compliance couples all nodes). It is
+factorised only when needed (simplified Newton): the LU
+(:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while a0/dt
+has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that become dry,
+wet or cavitated, and the columns of nodes whose unknown switches between P and theta at a
+mass-conserving cavity, are swapped in by the Woodbury identity.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import partial
+
+import numpy as np
+
+from ..film.reynolds import Film, FilmState
+from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
+from .timestepping import IntegratorOptions
+
+
+class StepFailed(Exception):
+    """The Newton iteration of one step failed; the time stepper retries with a smaller step."""
+
+    def __init__(self, reason, residual):
+        super().__init__(reason)
+        self.reason, self.residual = reason, residual
+
+
+@dataclass
+class StepSolution:
+    """The converged step: P, X, V, theta (liquid fraction), the mass-conserving cavities, the
+    assembled film at the solution and the Newton iterations used (scaled)."""
+
+    pressure: np.ndarray
+    gap: float
+    velocity: float
+    fill: np.ndarray
+    cavitated: np.ndarray
+    state: FilmState
+    iterations: int
+
+
+@dataclass
+class _Iterate:
+    """The residual of one Newton iterate and the node sets it was built with."""
+
+    rhs: np.ndarray
+    state: FilmState
+    film_thickness: np.ndarray
+    fixed: np.ndarray
+    theta_nodes: np.ndarray
+    sets: tuple
+
+
+class ImplicitStep:
+    """Newton for one step of the coupled system (module docstring).
+
+    ``film``: :class:`ehdfem.film.reynolds.Film`; ``compliance_matrix``: C (by x0 per unit
+    pressure);
+    ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``St``: the Stokes number;
+    ``shear_matrix``: C_T (by x0 per unit T) or None.
+    """
+
+    def __init__(
+        self, film: Film, compliance_matrix, cavitation, St: float, options=None, shear_matrix=None
+    ):
+        self.film = film
+        self.compliance = np.asarray(compliance_matrix, dtype=float)
+        self.shear = shear_matrix
+        self.compliance_diagonal = np.diag(self.compliance).copy()
+        self.cavitation = cavitation
+        self.St = St
+        self.options = options or IntegratorOptions()
+        self.undeformed = film.gap.height(film.radii)
+        self.factor = None
+        self.factorisations = 0
+
+    def thickness(self, pressure, gap):
+        """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
+        return self.thickness_parts(pressure, gap)[0]
+
+    def thickness_parts(self, pressure, gap):
+        """(H, W_shear): the film thickness and its shear opening C_T T(H0, P) (by x0; None
+        without the shear traction), T formed with H0 = X + S(R) + C P."""
+        h0 = gap + self.undeformed + self.compliance @ pressure
+        if self.shear is None:
+            return h0, None
+        opening = self.shear @ self.film.squeeze_shear(h0, pressure)
+        return h0 + opening, opening
+
+    def solve(self, guess, step, a0, past) -> StepSolution:
+        """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted
+        sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V, theta, cavitated).
+        Raises StepFailed. The node unknown is P, except at nodes the cavitation model solves
+        for theta (mass-conserving cavities, P = P_cav there)."""
+        pressure, gap, velocity, fill, cavitated = guess
+        fill, cavitated = self.cavitation.start(fill, cavitated)
+        previous_sets = previous_norm = None
+        refresh = False
+        for iteration in range(1, self.options.max_newton + 1):
+            it, cavitated, fill = self._residual(
+                pressure, gap, velocity, fill, cavitated, step, a0, past
+            )
+            if refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
+                self._factorise(it, step, a0, fill)
+                refresh = False
+            update = self._newton_update(it, step, a0, fill)
+            damping = self._damping(pressure, gap, update, it.rhs)
+            d_pressure, d_fill, d_gap, d_velocity = update
+            pressure = pressure + damping * d_pressure
+            fill = fill + damping * d_fill
+            gap += damping * d_gap
+            velocity += damping * d_velocity
+            h = it.film_thickness
+            norm = max(
+                np.abs(d_pressure).max() / (np.abs(pressure).max() + 1.0),
+                np.abs(d_fill).max(),
+                abs(d_gap) / max(h.min(), 1e-12),
+                abs(d_velocity) / (abs(velocity) + 1e-3),
+            )
+            stiffness = partial(self._theta_stiffness, it.state, h, step, a0)
+            pressure, fill, cavitated = self.cavitation.switch(
+                pressure, fill, cavitated, it.state.dry, stiffness
+            )
+            sets = (*it.sets[:2], self.cavitation.theta_nodes(cavitated).tobytes())
+            if norm <= self.options.newton_tol and damping == 1.0 and sets == previous_sets:
+                cavities = self.cavitation.theta_nodes(cavitated)
+                return StepSolution(pressure, gap, velocity, fill, cavities, it.state, iteration)
+            if previous_norm is not None and sets == previous_sets:
+                # refresh a stale factorisation when its contraction would need > 6 more sweeps
+                # (not while the fixed nodes move: that slows the iteration whatever the matrix)
+                ratio = norm / previous_norm
+                tol = self.options.newton_tol
+                refresh = ratio >= 1.0 or (ratio > 0.1 and np.log(tol / norm) / np.log(ratio) > 6)
+            previous_sets, previous_norm = sets, norm
+        self.factor = None
+        raise StepFailed("Newton did not converge", np.abs(it.rhs).max())
+
+    def _residual(self, pressure, gap, velocity, fill, cavitated, step, a0, past):
+        """The residual at an iterate, with the cavitation model's rows; returns
+        (iterate, cavitated, theta)."""
+        content_past, gap_past, velocity_past = past
+        h = self.thickness(pressure, gap)
+        if h.min() <= 0.0:
+            raise StepFailed("film thickness not positive", np.nan)
+        state = self.film.assemble(h, pressure)
+        fill, cavitated = self.cavitation.wet(fill, cavitated, state.dry)
+        residual = state.mass * (a0 * fill * h + content_past) / step + state.flux(pressure)
+
+        def sensitivity():
+            return state.mass * a0 / step * self.compliance_diagonal + state.conductance[1]
+
+        cavitated = self.cavitation.limit(residual, pressure, cavitated, state.dry, sensitivity)
+        residual[state.dry] = pressure[state.dry]
+        r_gap = a0 * gap + gap_past - step * velocity
+        r_vel = self.St * (a0 * velocity + velocity_past) - step * (state.force_weights @ pressure)
+        rhs = -np.concatenate([residual, [r_gap, r_vel]])
+        fixed = self.cavitation.fixed_nodes(state.dry, cavitated)
+        theta_nodes = self.cavitation.theta_nodes(cavitated)
+        sets = (int((~state.dry).sum()), fixed.tobytes(), theta_nodes.tobytes())
+        return _Iterate(rhs, state, h, fixed, theta_nodes, sets), cavitated, fill
+
+    def _newton_update(self, it: _Iterate, step, a0, fill):
+        """(dP, d theta, dX, dV) from the (possibly reused) factorisation."""
+        rows = partial(
+            self._rows, it.state, step=step, a0=a0, fill=fill, theta_nodes=it.theta_nodes
+        )
+
+        def columns(indices):
+            return self._newton_matrix(it, step, a0, fill)[:, indices]
+
+        try:
+            update = self.factor.solve(it.rhs, it.fixed, rows, it.theta_nodes, columns)
+        except TooManyChanges:
+            self._factorise(it, step, a0, fill)
+            update = self.factor.solve(it.rhs, it.fixed, None)
+        n = len(it.film_thickness)
+        d_node, d_gap, d_velocity = update[:n], update[n], update[n + 1]
+        d_pressure = np.where(it.theta_nodes, 0.0, d_node)
+        d_fill = np.where(it.theta_nodes, d_node, 0.0)
+        return d_pressure, d_fill, d_gap, d_velocity
+
+    def _damping(self, pressure, gap, update, rhs):
+        """The largest of 1, 1/2, 1/4, ... that keeps the film thickness positive."""
+        d_pressure, _, d_gap, _ = update
+        damping = 1.0
+        while self.thickness(pressure + damping * d_pressure, gap + damping * d_gap).min() <= 0:
+            damping *= 0.5
+            if damping < 1e-3:
+                raise StepFailed("Newton update closes the film", np.abs(rhs).max())
+        return damping
+
+    @staticmethod
+    def _theta_stiffness(state: FilmState, h, step, a0):
+        """s = (m H a0/dt) / K_ii: the pressure that balances a unit change of theta in a
+        node's equation (by mu V0 a / x0^2)."""
+        diagonal = state.conductance[1]
+        return state.mass * a0 * h / (step * np.where(diagonal > 0, diagonal, 1.0))
+
+    def _newton_matrix(self, it: _Iterate, step, a0, fill):
+        """The Jacobian in the Newton unknowns: at mass-conserving cavities the unknown is
+        theta, whose column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
+        jacobian = self._jacobian(it.state, it.fixed, step, a0, fill)
+        nodes = np.flatnonzero(it.theta_nodes)
+        jacobian[:, nodes] = 0.0
+        jacobian[nodes, nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
+        return jacobian
+
+    def _factorise(self, it: _Iterate, step, a0, fill):
+        """A new LU of the Newton matrix (:meth:`_newton_matrix`)."""
+        jacobian = self._newton_matrix(it, step, a0, fill)
+        try:
+            self.factor = ReusableLU(jacobian, it.fixed, a0 / step, it.theta_nodes)
+        except SingularMatrix as err:
+            raise StepFailed(str(err), np.nan) from err
+        self.factorisations += 1
+
+    def _rows(self, state: FilmState, rows, *, step, a0, fill=1.0, theta_nodes=None):
+        """Film rows of the Jacobian, d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) =
+        ((m theta a0/dt + D) C + K + E, (m theta a0/dt + D) 1, 0), for the node indices
+        ``rows`` (E: the viscosity's d(K P)/dP - K), none of them in ``theta_nodes``: the
+        columns of those hold d/d(theta), which is zero off their own rows."""
+        n = len(state.mass)
+        lower, diag, upper = state.dflux_dH
+        diag = diag + state.mass * fill * a0 / step
+        below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
+        out = np.zeros((len(rows), n + 2))
+        c = self.compliance
+        out[:, :n] = (
+            diag[rows, None] * c[rows] + lower[rows, None] * c[below] + upper[rows, None] * c[above]
+        )
+        j = np.arange(len(rows))
+        for k_low, k_diag, k_up in (state.conductance, state.dflux_dP):
+            out[j, rows] += k_diag[rows]
+            out[j, below] += k_low[rows]
+            out[j, above] += k_up[rows]
+        out[:, n] = lower[rows] + diag[rows] + upper[rows]
+        if theta_nodes is not None:
+            out[:, np.flatnonzero(theta_nodes)] = 0.0
+        return out
+
+    def _jacobian(self, state: FilmState, fixed, step, a0, fill):
+        """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the X and V rows."""
+        n = len(state.mass)
+        jac = np.zeros((n + 2, n + 2))
+        jac[:n] = self._rows(state, np.arange(n), step=step, a0=a0, fill=fill)
+        fixed_rows = np.flatnonzero(fixed)
+        jac[fixed_rows, :] = 0.0
+        jac[fixed_rows, fixed_rows] = 1.0
+        jac[n, n], jac[n, n + 1] = a0, -step
+        jac[n + 1, :n] = -step * state.force_weights
+        jac[n + 1, n + 1] = self.St * a0
+        return jac

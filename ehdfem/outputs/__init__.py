@@ -1,0 +1,2 @@
+"""What a collision gives back: field files for ParaView (fields), matplotlib plots (plots) and
+pyvista pictures (render)."""

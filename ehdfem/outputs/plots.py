@@ -1,0 +1,189 @@
+"""Plots of a collision (matplotlib, PNG). All axes are in the scaled units of
+ehdfem.inputs.scales."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def profile_instants(result) -> list[tuple[int, str]]:
+    """The steps where the film changes, each with the name of its phase, in time order:
+
+    - approach: the gap X has closed to half the layer (the film still a paraboloid);
+    - X = 0: the undeformed solids would touch, from here on the solids flatten;
+    - maximum force;
+    - maximum compression (smallest X, V = 0): the dimple (film thinner at its rim than on
+      the axis) is deepest around here;
+    - rebound: after maximum compression, the force back to half its maximum;
+    - strongest suction: the most negative force (the film pulls the sphere back), if any;
+    - exit (rebound) or end (sticking): the last step.
+
+    Phases that do not occur (a sphere that stops before X = 0, no suction) are left out, and
+    phases at the same step share it. Returns [(step, label)]."""
+    hist = result.history
+    last = len(hist.time) - 1
+    deepest = int(np.argmin(hist.gap))
+    strongest = int(np.argmax(hist.force))
+    phases = [
+        (_first(hist.gap <= 0.5), "approach"),
+        (_first(hist.gap <= 0.0), "X = 0"),
+        (strongest, "maximum force"),
+        (deepest, "maximum compression"),
+        (
+            _first((hist.force <= 0.5 * hist.force[strongest]) & (np.arange(last + 1) > deepest)),
+            "rebound",
+        ),
+        (int(np.argmin(hist.force)) if hist.force.min() < 0 else None, "strongest suction"),
+        (last, "exit" if result.rebound else "end"),
+    ]
+    labels = {}
+    for step, phase in phases:
+        if step is not None and step > 0:
+            labels.setdefault(step, []).append(phase)
+    return [(step, " + ".join(labels[step])) for step in sorted(labels)]
+
+
+def _first(condition) -> int | None:
+    """The first index where ``condition`` holds, None if nowhere."""
+    hits = np.flatnonzero(condition)
+    return int(hits[0]) if len(hits) else None
+
+
+def plot_histories(result, path: Path) -> Path:
+    """Gap X, velocity V, force F and film thickness (central and minimum) against time T."""
+    hist = result.history
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    panels = [
+        (axes[0, 0], hist.gap, "gap X (by $x_0$)"),
+        (axes[0, 1], hist.velocity, "normal velocity V (by $V_0$)"),
+        (axes[1, 0], hist.force, r"force F (by $6\pi\mu V_0 a^2/x_0$)"),
+    ]
+    for ax, values, label in panels:
+        ax.plot(hist.time, values, lw=1.5)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    ax = axes[1, 1]
+    ax.semilogy(hist.time, hist.central_film, label="on the axis")
+    ax.semilogy(hist.time, hist.min_film, "--", label="minimum")
+    ax.set_ylabel("film thickness H (by $x_0$)")
+    ax.legend()
+    ax.grid(alpha=0.3, which="both")
+    for ax in axes[1]:
+        ax.set_xlabel("time T (by $x_0/V_0$)")
+    fig.suptitle(_title(result))
+    return _save(fig, path)
+
+
+def plot_profiles(result, path: Path) -> Path:
+    """Pressure P(R) (by mu V0 a / x0^2) and film thickness H(R) (by x0) against R (by
+    sqrt(a x0)) at the instants where the film changes (:func:`profile_instants`: approach,
+    X = 0, maximum force, maximum compression, rebound, strongest suction, exit), each
+    labelled with its phase and T (by x0/V0)."""
+    hist = result.history
+    fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(12, 4.8))
+    instants = profile_instants(result)
+    steps = [step for step, _ in instants]
+    colours = plt.cm.viridis(np.linspace(0, 0.9, len(steps)))
+    # show the radii where the pressure matters: 1.5 times the widest 1 % support of P
+    pressure = np.abs(hist.pressure[steps])
+    loaded = result.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
+    shown = result.radii <= 1.5 * (loaded.max() if len(loaded) else result.radii[-1])
+    for colour, (i, phase) in zip(colours, instants, strict=True):
+        label = f"{phase}, T = {hist.time[i]:.4g}"
+        ax_p.plot(result.radii[shown], hist.pressure[i][shown], color=colour, label=label)
+        ax_h.semilogy(result.radii[shown], hist.film_thickness[i][shown], color=colour, label=label)
+    ax_p.axhline(0.0, color="0.6", lw=0.8)
+    ax_p.set_ylabel("pressure P (by $\\mu V_0 a/x_0^2$)")
+    suction = -float(hist.pressure[steps][:, shown].min())
+    if suction > 0:  # linear through the suction, logarithmic above it: both show
+        linear = max(suction, 1e-6 * float(pressure.max()))
+        ax_p.set_yscale("symlog", linthresh=linear)
+        ax_p.set_ylim(bottom=-2 * linear)
+        ax_p.set_ylabel(f"{ax_p.get_ylabel()}; linear within $\\pm${linear:.3g}")
+    ax_h.set_ylabel("film thickness H (by $x_0$)")
+    for ax in (ax_p, ax_h):
+        ax.set_xlabel("radius R (by $\\sqrt{a x_0}$)")
+        ax.grid(alpha=0.3)
+    ax_h.legend(fontsize=8, title="phase", title_fontsize=8)
+    fig.suptitle(_title(result))
+    return _save(fig, path)
+
+
+def plot_tangential(collision, path: Path) -> Path:
+    """Tangential velocity U, spin a Omega, slip U - a Omega (all by U0) and the tangential
+    force (by 6 pi mu a^2 U0 / x0) against time T."""
+    t = collision.tangential
+    fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(11, 4.5))
+    ax_v.plot(t.time, t.velocity, label="U")
+    ax_v.plot(t.time, t.spin, label=r"a$\Omega$")
+    ax_v.plot(t.time, t.slip, "--", label=r"slip U - a$\Omega$")
+    ax_v.set_ylabel("velocity (by $U_0$)")
+    ax_v.legend()
+    ax_f.plot(t.time, t.force)
+    ax_f.set_ylabel(r"tangential force (by $6\pi\mu a^2 U_0/x_0$)")
+    for ax in (ax_v, ax_f):
+        ax.set_xlabel("time T (by $x_0/V_0$)")
+        ax.grid(alpha=0.3)
+    e_t = "-" if t.e_t is None else f"{t.e_t:.5g}"
+    fig.suptitle(f"{_title(collision.normal)}; {t.model}: e_t = {e_t} ({t.at})")
+    return _save(fig, path)
+
+
+def plot_bounce(result, path: Path) -> Path:
+    """A bounce (:class:`ehdfem.bounce.trajectory.BounceResult`) as in the experiments: gap / D
+    against t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St marked
+    at
+    its apex."""
+    inputs = result.inputs
+    diameter, unit = inputs.diameter, inputs.time_scale()
+    trajectory = result.trajectory
+    contact = np.flatnonzero(trajectory["phase"] == "contact")
+    start = trajectory["time"][contact[0]] if contact.size else 0.0
+    fig, ax = plt.subplots(figsize=(9, 4.5))
+    ax.plot(
+        (trajectory["time"] - start) / unit,
+        trajectory["gap"] / diameter,
+        lw=1.4,
+        label=f"ehdfem bounce ({result.model}, {inputs.drag})",
+    )
+    for c in result.contacts:
+        if c.apex_time is not None:
+            ax.annotate(
+                f"e = {c.e:.3f}\nSt = {c.St:.0f}",
+                ((c.apex_time - start) / unit, c.apex_gap / diameter),
+                textcoords="offset points",
+                xytext=(4, 4),
+                fontsize=8,
+            )
+    ax.set_xlabel(r"$t/\sqrt{D/g}$")
+    ax.set_ylabel("gap / D")
+    ax.set_ylim(bottom=0.0)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    ax.set_title(
+        f"{inputs.sphere.name} D = {diameter * 1e3:.3g} mm in {inputs.liquid.name}: "
+        f"{result.status}",
+        fontsize=10,
+    )
+    return _save(fig, path)
+
+
+def _title(result) -> str:
+    p = result.params
+    outcome = f"e_n = {result.e_n:.4g}" if result.rebound else "sticks"
+    return f"St = {p.St:g}, eps = {p.eps:g}, {p.layer} layer: {outcome}"
+
+
+def _save(fig, path: Path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path

@@ -1,0 +1,437 @@
+"""Mode-1 (cos phi) FE solids: the film's azimuthal loads condensed to the film nodes.
+
+An oblique collision loads both solids with a film pressure q(R) cos phi and shear tractions
+t_r = A(R) cos phi, t_phi = -B(R) sin phi (:class:`ehdfem.solids.compliance.ModeOneCompliance`). On
+the (r, z) meshes of :class:`ehdfem.solids.fe.solids.FESolids` the displacement they cause is
+
+    (u_r, u_phi, u_z) = (U_r(r, z) cos phi, -U_phi(r, z) sin phi, U_z(r, z) cos phi).
+
+With d/dphi replaced by the mode number, the strains are e_ij = E_ij cos phi for
+ij = rr, phiphi, zz, rz and e_ij = -E_ij sin phi for ij = rphi, phiz, with the amplitudes
+
+    E_rr = U_r,r,  E_phiphi = (U_r - U_phi)/r,  E_zz = U_z,z,  2 E_rz = U_r,z + U_z,r,
+    2 E_rphi = U_phi,r + (U_r - U_phi)/r,  2 E_phiz = U_phi,z + U_z/r.
+
+An isotropic stress does not mix the cos and sin families, and cos^2 and sin^2 both integrate
+to pi over phi, so the strain energy is pi times int sigma(E) : E r dr dz; the loads' work
+carries the same pi (int t.v dphi = pi (A V_r + B V_phi + T V_z)), which cancels. On the axis
+the displacement must be one vector: u_x = U_r cos^2 + U_phi sin^2, u_y = (U_r - U_phi)
+sin cos and u_z = U_z cos do not depend on phi only if U_r = U_phi and U_z = 0 there. The
+unknowns are therefore S = (U_r + U_phi)/2, D = (U_r - U_phi)/2 and U_z, and the axis
+conditions are the exact Dirichlet conditions D = 0, U_z = 0 on the axis facets.
+
+Loads, on both contact faces, each a nodal profile on the film nodes (hat functions, zero beyond
+the last node): the pressure q cos phi acts normally on each face, as in FESolids (traction
+-q n cos phi, n the outward normal: t_z = +q cos phi on the sphere and -q cos phi on the wall,
+up to the face's slope r/a); the shear amplitudes A along r and B along phi.
+
+Mode 1 holds two rigid motions of a free sphere: the translation along x (S = 1, D = U_z = 0)
+and the rotation about y through the centre of mass z_c (S = z - z_c, D = 0, U_z = -r). The
+film load of a free sphere is balanced by the d'Alembert body force of the rigid acceleration
+its net x-force and y-moment cause (uniform density): with R_k the two motions and m_k the
+vectors of int R_k . v r dx, the load b becomes b - sum_k m_k c_k with G c = (R_k . b),
+G_kl = int R_k . R_l r dx. Pins (S at the far pole, U_z on the equator ring) then remove the
+rigid motions without carrying any force, and the sphere's displacement is reported relative
+to its rigid motion, u - sum_k R_k c_k with G c = (m_k . u): the mass-weighted mean translation
+and mean rotation about the centre of mass. A wall is clamped at its base.
+
+Scales as in :mod:`ehdfem.solids.fe.solids`: stresses by E_ref, displacements by a p / E_ref for
+tractions by p, where p is the film pressure unit mu V0 a / x0^2 for the pressure and
+sqrt(delta) times it for the shear tractions; ``factor(eps)`` = :meth:`FESolids.scale` turns
+them into x0. Film radii R by sqrt(a x0), at r = R sqrt(delta) a on the mesh.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...console.progress import progress
+from ...inputs import checks
+from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
+from . import dolfinx_compat
+from .mesh import cached_matrices
+from .solids import FESolids
+
+DEGREE = 2  # of the Lagrange elements
+BLOCK = 48  # right-hand sides per multiple-RHS solve (memory: 8 B x unknowns x BLOCK)
+TRACTIONS = ("pressure", "radial", "hoop")
+"""The load kinds of one solve: the same nodal profile (or each face its own) on both faces."""
+
+
+def lame_moduli(solids: FESolids):
+    """(lambda, mu) per cell of ``solids`` as UFL expressions (by E_ref), read off their
+    axisymmetric stress law (FESolids keeps no moduli of its own): the displacement (r, 2 z)
+    strains them by e = diag(1, 1, 2) (r, theta, z), under sigma_rr = 4 lambda + 2 mu and
+    sigma_zz = 4 lambda + 4 mu."""
+    import ufl
+
+    r, z = ufl.SpatialCoordinate(solids.mesh)
+    probe = solids._stress(ufl.as_vector((r, 2 * z)))
+    return (2 * probe[0, 0] - probe[2, 2]) / 4, (probe[2, 2] - probe[0, 0]) / 2
+
+
+def mode_one_space(mesh):
+    """The P2 space of the unknowns (S, D, U_z) (module docstring) on the (r, z) ``mesh``."""
+    return dolfinx_compat.lagrange_space(mesh, DEGREE, vector=True, components=3)
+
+
+def amplitudes(unknowns):
+    """(U_r, U_phi, U_z) of the unknowns (S, D, U_z): U_r = S + D, U_phi = S - D (UFL)."""
+    import ufl
+
+    return ufl.as_vector((unknowns[0] + unknowns[1], unknowns[0] - unknowns[1], unknowns[2]))
+
+
+def strain(unknowns, r):
+    """The mode-1 strain amplitudes E (module docstring; the rphi and phiz entries are those
+    of -sin phi) of the unknowns (S, D, U_z), a symmetric 3x3 UFL tensor in the order (r, phi,
+    z); ``r`` the radial coordinate (UFL)."""
+    import ufl
+
+    u_r, u_phi, u_z = (amplitudes(unknowns)[k] for k in range(3))
+    hoop = 2 * unknowns[1] / r  # (U_r - U_phi) / r
+    rz = (u_r.dx(1) + u_z.dx(0)) / 2
+    r_phi = (u_phi.dx(0) + hoop) / 2
+    phi_z = (u_phi.dx(1) + u_z / r) / 2
+    return ufl.as_tensor([[u_r.dx(0), r_phi, rz], [r_phi, hoop, phi_z], [rz, phi_z, u_z.dx(1)]])
+
+
+def stress(strain_amplitudes, lame):
+    """Isotropic stress amplitudes lambda tr(E) I + 2 mu E; ``lame`` = (lambda, mu)."""
+    import ufl
+
+    lmbda, mu = lame
+    return lmbda * ufl.tr(strain_amplitudes) * ufl.Identity(3) + 2 * mu * strain_amplitudes
+
+
+def stiffness_form(space, lame):
+    """The bilinear form int sigma(E(u)) : E(v) r dr dz on ``space`` (:func:`mode_one_space`),
+    the mode-1 strain energy divided by pi/2 (UFL; ``lame`` = (lambda, mu) by E_ref)."""
+    import ufl
+
+    r = ufl.SpatialCoordinate(space.mesh)[0]
+    u, v = ufl.TrialFunction(space), ufl.TestFunction(space)
+    return ufl.inner(stress(strain(u, r), lame), strain(v, r)) * r * ufl.dx
+
+
+def zero_condition(space, component: int, locate):
+    """A homogeneous Dirichlet condition on unknown ``component`` (0: S, 1: D, 2: U_z) of
+    ``space``, at the dofs found by ``locate``, a ``fem.locate_dofs_*`` call on the pair
+    (sub-space, collapsed sub-space); returns (condition, owned rows of the solution vector)."""
+    from dolfinx import fem
+
+    sub = space.sub(component)
+    collapsed, _ = sub.collapse()
+    parent, child = locate((sub, collapsed))
+    owned = space.dofmap.index_map.size_local * space.dofmap.index_map_bs
+    condition = fem.dirichletbc(fem.Function(collapsed), [parent, child], sub)
+    return condition, parent[parent < owned]
+
+
+def axis_conditions(space, axis_facets):
+    """The axis regularity conditions D = 0 and U_z = 0 on the facets ``axis_facets`` (r = 0):
+    a list of (condition, owned rows), as :func:`zero_condition`."""
+    from dolfinx import fem
+
+    return [
+        zero_condition(space, k, lambda pair: fem.locate_dofs_topological(pair, 1, axis_facets))
+        for k in (1, 2)
+    ]
+
+
+def rigid_motions(space, cells, centre_z: float):
+    """The x translation and the rotation about y through z = ``centre_z`` (by a) as functions
+    of the unknowns (S, D, U_z) on ``space``, zero outside ``cells``: (1, 0, 0) and
+    (z - z_c, 0, -r), per unit displacement and per unit angle."""
+    from dolfinx import fem
+
+    translation, rotation = fem.Function(space), fem.Function(space)
+    translation.interpolate(lambda x: np.vstack([np.ones_like(x[0]), 0 * x[0], 0 * x[0]]), cells)
+    rotation.interpolate(lambda x: np.vstack([x[1] - centre_z, 0 * x[0], -x[0]]), cells)
+    return translation, rotation
+
+
+@dataclass(frozen=True)
+class _FreeBody:
+    """A free sphere's rigid motions on the owned rows: ``motions`` (rows, 2) the vectors R_k,
+    ``inertia`` (rows, 2) the vectors m_k of int R_k . v r dx, ``gram`` G = m^T R (2x2)."""
+
+    motions: np.ndarray
+    inertia: np.ndarray
+    gram: np.ndarray
+
+
+@dataclass(frozen=True)
+class _Face:
+    """The owned rows of S on one contact face (D and U_z follow them in the blocked vector)
+    and the linear interpolation from the face dofs (gathered over ranks, sorted by r and
+    taken at ``first``) to the film nodes, as a matrix (N, face dofs)."""
+
+    rows: np.ndarray
+    first: np.ndarray
+    to_film_nodes: np.ndarray
+
+
+class FEModeOne(ModeOneCompliance):
+    """Mode-1 compliance of FE solids (:class:`ehdfem.solids.compliance.ModeOneCompliance`) on the
+    mesh of ``solids`` (a :class:`FESolids`, whose materials, free bodies and film nodes it shares),
+    at ``eps``; see the module docstring. The unit matrix comes from one factorisation and 3N
+    unit loads (the pressure hat j on both faces; the radial hat j on both faces, read per face
+    as "sphere_radial" and "wall_radial"; the same for the hoop hat), solved in blocks of
+    BLOCK right-hand sides. ``space``: the P2 space of the unknowns (S, D, U_z) on that mesh.
+    :meth:`field` gives the whole solids under given nodal loads; :meth:`close` frees the
+    factorisation (its own, besides the solids' axisymmetric one)."""
+
+    model = "fem"
+
+    def __init__(self, solids: FESolids, eps: float):
+        if not isinstance(solids, FESolids):
+            raise checks.InputError(f"solids must be FESolids, got {type(solids).__name__}")
+        checks.positive("eps", eps)
+        self.solids = solids
+        self.space = mode_one_space(solids.mesh)
+        self._assemble()
+        unit = cached_matrices(
+            solids.comm,
+            ("mode one", *solids.cache_arguments),
+            [sys.modules[__name__], *solids.cache_sources],
+            lambda: {"unit": self._condense()},
+        )["unit"]
+        super().__init__(solids.radii, unit, eps)
+
+    def factor(self, eps: float) -> float:
+        """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""
+        return self.solids.scale(eps)
+
+    def close(self) -> None:
+        """Free the factorised stiffness and the traction matrices (PETSc memory that Python's
+        garbage collector does not return). Collective under MPI; no solves afterwards."""
+        for petsc_object in (self._ksp, self._stiffness, *self._tractions.values()):
+            petsc_object.destroy()
+
+    def _assemble(self):
+        """Assemble the stiffness and set up its factorisation (MUMPS Cholesky, made on the
+        first solve: it is symmetric positive definite once pinned); set up the traction
+        matrices, the free bodies and the contact faces."""
+        from dolfinx import fem
+        from petsc4py import PETSc
+
+        conditions = self._constraints()
+        self._constrained = np.concatenate([rows for _, rows in conditions])
+        self._stiffness = dolfinx_compat.assemble_matrix(
+            fem.form(stiffness_form(self.space, lame_moduli(self.solids))),
+            [bc for bc, _ in conditions],
+        )
+        self._stiffness.setOption(PETSc.Mat.Option.SPD, True)
+        self._ksp = PETSc.KSP().create(self.solids.comm)
+        self._ksp.setOperators(self._stiffness)
+        self._ksp.setType("preonly")
+        self._ksp.getPC().setType("cholesky")
+        self._ksp.getPC().setFactorSolverType("mumps")
+        self._tractions = self._traction_matrices()
+        self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.bodies]
+        self._faces = [self._face(tag) for tag in self._face_tags]
+
+    @property
+    def _face_tags(self):
+        """The facet tags of the upper (sphere) and lower (wall) contact faces."""
+        geometry = self.solids._geometry
+        return geometry.SPHERE_CONTACT, geometry.LOWER_CONTACT
+
+    def _constraints(self):
+        """(condition, owned rows) pairs: the axis conditions, a clamped wall base (all three
+        unknowns; none for a lower sphere) and, for each free sphere, S = 0 at its far pole
+        and U_z = 0 at its equator (which fix its translation and rotation)."""
+        from dolfinx import fem
+
+        solids, space = self.solids, self.space
+        geometry, facets = solids._geometry, solids._facet_tags
+        axis = np.concatenate([facets.find(t) for t in (geometry.SPHERE_AXIS, geometry.LOWER_AXIS)])
+        conditions = axis_conditions(space, axis)
+        if solids.lower != "sphere":
+            base = facets.find(geometry.LOWER_BOTTOM)
+            conditions += [
+                zero_condition(space, k, lambda pair: fem.locate_dofs_topological(pair, 1, base))
+                for k in range(3)
+            ]
+        radii = (solids.radius_upper, solids.radius_lower)[: len(solids.bodies)]
+        for body, radius in zip(solids.bodies, radii, strict=True):
+            centre = body.pole_z + body.direction * radius
+            for k, (r, z) in ((0, (0.0, body.pole_z)), (2, (radius, centre))):
+                pin = zero_condition(
+                    space,
+                    k,
+                    lambda pair, r=r, z=z: fem.locate_dofs_geometrical(
+                        pair, lambda x: np.isclose(x[0], r) & np.isclose(x[1], z)
+                    ),
+                )
+                if solids.comm.allreduce(len(pin[1])) == 0:
+                    raise RuntimeError(f"no mesh vertex at the pin (r, z) = ({r}, {z})")
+                conditions.append(pin)
+        return conditions
+
+    def _traction_matrices(self):
+        """Per load kind of TRACTIONS, the matrix (unknowns x scalar P2 dofs) that turns a
+        traction profile q (P2, by its unit) on both contact faces into the load vector:
+        normal pressure -q n, radial t_r = q, hoop t_phi = -q sin phi (amplitude q)."""
+        import ufl
+        from dolfinx import fem
+
+        msh = self.solids.mesh
+        q = ufl.TrialFunction(self.solids._profile_space)
+        v_r, v_phi, v_z = (amplitudes(ufl.TestFunction(self.space))[k] for k in range(3))
+        n = ufl.FacetNormal(msh)
+        ds = ufl.Measure("ds", domain=msh, subdomain_data=self.solids._facet_tags)
+        faces = ds(self._face_tags[0]) + ds(self._face_tags[1])
+        r = ufl.SpatialCoordinate(msh)[0]
+        works = {"pressure": -(n[0] * v_r + n[1] * v_z), "radial": v_r, "hoop": v_phi}
+        return {
+            kind: dolfinx_compat.assemble_matrix(fem.form(q * work * r * faces), [])
+            for kind, work in works.items()
+        }
+
+    def _free_body(self, cell_tag: int) -> _FreeBody:
+        """The rigid motions of the free body of ``cell_tag`` about its centre of mass."""
+        import ufl
+        from dolfinx import fem
+
+        solids, space, comm = self.solids, self.space, self.solids.comm
+        r, z = ufl.SpatialCoordinate(solids.mesh)
+        dx = ufl.Measure("dx", domain=solids.mesh, subdomain_data=solids._cell_tags)(cell_tag)
+
+        def integral(integrand):
+            return comm.allreduce(fem.assemble_scalar(fem.form(integrand * r * dx)))
+
+        centre = integral(z) / integral(1.0)
+        motions = rigid_motions(space, solids._cell_tags.find(cell_tag), centre)
+        v = amplitudes(ufl.TestFunction(space))
+        inertia = [
+            dolfinx_compat.assemble_vector(
+                fem.form(ufl.dot(amplitudes(motion), v) * r * dx), []
+            ).getArray()
+            for motion in motions
+        ]
+        owned = len(inertia[0])
+        motions = np.column_stack([motion.x.array[:owned] for motion in motions])
+        inertia = np.column_stack(inertia)
+        return _FreeBody(motions, inertia, comm.allreduce(inertia.T @ motions))
+
+    def _face(self, tag: int) -> _Face:
+        """The rows and the interpolation to the film nodes of the contact face ``tag``."""
+        from dolfinx import fem
+
+        space = self.space
+        sub = space.sub(0)
+        collapsed, _ = sub.collapse()
+        parent, child = fem.locate_dofs_topological(
+            (sub, collapsed), 1, self.solids._facet_tags.find(tag)
+        )
+        keep = parent < space.dofmap.index_map.size_local * space.dofmap.index_map_bs
+        r = collapsed.tabulate_dof_coordinates()[child[keep], 0]
+        r, first = np.unique(np.concatenate(self.solids.comm.allgather(r)), return_index=True)
+        nodes = self.solids.radii_a
+        right = np.clip(np.searchsorted(r, nodes), 1, len(r) - 1)
+        weight = np.clip((nodes - r[right - 1]) / (r[right] - r[right - 1]), 0.0, 1.0)
+        to_film_nodes = np.zeros((len(nodes), len(r)))
+        rows = np.arange(len(nodes))
+        to_film_nodes[rows, right - 1] = 1 - weight
+        to_film_nodes[rows, right] += weight
+        return _Face(parent[keep], first, to_film_nodes)
+
+    def _loads(self, profiles) -> np.ndarray:
+        """The owned rows of the load vectors (rows, columns) of nodal traction profiles:
+        ``profiles[kind]`` = (upper, lower), each (N, columns) of amplitudes at the film nodes
+        on that face (hat functions, zero beyond the last node), by the film pressure unit p
+        (shear profiles already multiplied by sqrt(delta)); kinds from TRACTIONS."""
+        solids = self.solids
+        return sum(
+            solids.traction_loads(self._tractions[kind], solids.profile_values(faces))
+            for kind, faces in profiles.items()
+        )
+
+    def _solve(self, loads: np.ndarray) -> np.ndarray:
+        """Displacements (owned rows of the unknowns, by a p / E_ref) of the load columns
+        ``loads``: balanced on each free body by the d'Alembert body force, solved on the one
+        factorisation, then relative to each free body's rigid motion (module docstring)."""
+        from petsc4py import PETSc
+
+        comm = self.solids.comm
+        loads = loads.copy()
+        for body in self._free_bodies:
+            loads -= body.inertia @ np.linalg.solve(
+                body.gram, comm.allreduce(body.motions.T @ loads)
+            )
+        loads[self._constrained] = 0.0
+        size = (loads.shape[0], comm.allreduce(loads.shape[0]))
+        rhs = PETSc.Mat().createDense([size, (PETSc.DECIDE, loads.shape[1])], comm=comm)
+        rhs.setUp()
+        rhs.getDenseArray()[:] = loads
+        rhs.assemble()
+        solution = rhs.duplicate()
+        self._ksp.setUp()  # factorises on the first solve only
+        self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
+        values = solution.getDenseArray().copy()
+        for petsc_object in (rhs, solution):
+            petsc_object.destroy()
+        for body in self._free_bodies:
+            values -= body.motions @ np.linalg.solve(
+                body.gram, comm.allreduce(body.inertia.T @ values)
+            )
+        return values
+
+    def _face_displacements(self, face: _Face, values: np.ndarray) -> np.ndarray:
+        """(U_r, U_phi, U_z) at the film nodes of ``face`` from the owned rows ``values`` of a
+        block of solutions: (3N, columns), the three amplitudes stacked."""
+        comm = self.solids.comm
+        s, d, u_z = (
+            face.to_film_nodes @ np.concatenate(comm.allgather(values[face.rows + k]))[face.first]
+            for k in range(3)
+        )
+        return np.vstack([s + d, s - d, u_z])
+
+    def _condense(self) -> np.ndarray:
+        """The (6N, 5N) unit matrix (by a p / E_ref per unit nodal load, see the module
+        docstring), in the orders of MODE_ONE_DISPLACEMENTS and MODE_ONE_LOADS."""
+        n = len(self.solids.radii)
+        unit = np.zeros((6 * n, 5 * n))
+        shear = math.sqrt(self.solids.delta)
+        blocks = [(kind, start) for kind in TRACTIONS for start in range(0, n, BLOCK)]
+        for kind, start in progress(blocks, desc="FE mode-1 compliance"):
+            hats = np.eye(n)[:, start : start + BLOCK] * (1.0 if kind == "pressure" else shear)
+            values = self._solve(self._loads({kind: (hats, hats)}))
+            columns = slice(start, start + hats.shape[1])
+            for face, rows, load in zip(
+                self._faces, (slice(0, 3 * n), slice(3 * n, 6 * n)), ("sphere", "wall"), strict=True
+            ):
+                j = MODE_ONE_LOADS.index(kind if kind == "pressure" else f"{load}_{kind}")
+                unit[rows, j * n : (j + 1) * n][:, columns] = self._face_displacements(face, values)
+        return unit
+
+    def field(self, nodal_loads):
+        """The solids under the nodal loads ``nodal_loads`` ((5N,), in the order and units of
+        MODE_ONE_LOADS, as the columns of ``matrix``) at this compliance's eps: a DOLFINx
+        function on :attr:`space` holding (U_r, U_phi, U_z) (not the unknowns), by x0, each
+        free sphere relative to its rigid motion; at the film nodes of the faces it equals
+        ``matrix @ nodal_loads``."""
+        from dolfinx import fem
+
+        n = len(self.radii)
+        loads = np.asarray(nodal_loads, dtype=float)
+        if loads.shape != (5 * n,) or not np.isfinite(loads).all():
+            raise checks.InputError(f"nodal_loads must be {5 * n} finite values (5 per film node)")
+        shear = math.sqrt(self.solids.delta)
+        by_name = dict(zip(MODE_ONE_LOADS, loads.reshape(5, n)[:, :, None], strict=True))
+        profiles = {"pressure": (by_name["pressure"], by_name["pressure"])}
+        for kind in TRACTIONS[1:]:
+            profiles[kind] = (shear * by_name[f"sphere_{kind}"], shear * by_name[f"wall_{kind}"])
+        s, d, u_z = self._solve(self._loads(profiles))[:, 0].reshape(-1, 3).T
+        field = fem.Function(self.space)
+        field.x.array[: 3 * len(s)] = (
+            self.factor(self.eps) * np.column_stack([s + d, s - d, u_z]).ravel()
+        )
+        field.x.scatter_forward()
+        return field

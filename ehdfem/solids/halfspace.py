@@ -1,0 +1,184 @@
+"""Two elastic half-spaces: the axisymmetric ring-load kernel at the film nodes.
+
+An axisymmetric pressure on two elastic half-spaces (sphere and wall, combined through
+theta = sum (1 - nu^2)/(pi E)) opens the gap by, in scaled form (W by x0; R, S by sqrt(a x0);
+P by mu V0 a / x0^2),
+
+    W(R) = eps * int_0^inf P(S) S/(R+S) K(m) dS,    m = 4 R S / (R+S)^2,
+
+with K the complete elliptic integral of the first kind (parameter m). K has a logarithmic
+singularity at S = R: K ~ ln 4 - ln|1 - m| / 2.
+
+For a pressure that is piecewise linear on the film nodes (hat functions phi_j, the last one a
+half hat, zero beyond), W_i = eps * sum_j A_ij P_j with A_ij = int phi_j(S) S/(R_i+S) K dS. Each
+cell is integrated by 8-point Gauss-Legendre when it is at least one cell length away from R_i;
+cells that touch R_i or are closer than their length are integrated by a composite Gauss rule
+graded geometrically towards the end nearest R_i, which resolves the logarithm (or its near
+presence on strongly non-uniform grids) to ~1e-12 without adaptive quadrature.
+
+The film's squeeze flow also drags both surfaces radially, by the same traction tau = -(h/2)
+dp/dr in the flow direction on each (:meth:`ehdfem.film.reynolds.Film.squeeze_shear`). Summing
+Cerruti's point-force solution over rings (Johnson, Contact Mechanics, ch. 3), a radial surface
+traction q(s) on a half-space lifts its surface at r out of the solid by (1 - 2 nu)/(2 G)
+int_r^inf q(s) ds; rings inside r do not move it. (The sign follows from Betti's reciprocity
+with the inward radial displacement (1 - 2 nu) F / (4 pi G r) of a surface indented by a
+normal force F.) The two surfaces are loaded alike and each rises out of its own solid
+towards the film, so an outflow closes the gap by the sum over both solids, also for identical
+materials: the loading is symmetric about the mid-plane. Only equal and opposite tractions,
+such as the Couette shear of sliding, leave the gap of identical solids unchanged. Scaled,
+with T = -(H/2) dP/dR by sqrt(delta) mu V0 a / x0^2,
+
+    W_shear(R) = -eps sqrt(delta) kappa int_R^inf T dS,
+    kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E   (0.449 for nu = 0.3).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import ellipkm1
+
+from ..inputs.checks import InputError, number
+from .compliance import LinearCompliance
+
+IDENTICAL_SOLIDS = (
+    (1.0, 0.3),
+    (1.0, 0.3),
+)  # (Young's modulus ratio, Poisson) of dimensionless runs
+
+_GAUSS = np.polynomial.legendre.leggauss(8)
+_REGULAR_X = 0.5 * (_GAUSS[0] + 1.0)
+_REGULAR_W = 0.5 * _GAUSS[1]
+
+
+def _graded_rule(levels: int = 12, ratio: float = 0.15):
+    """Nodes and weights on [0, 1] for integrands with a log singularity at 0: Gauss on
+    [q^(k+1), q^k], k = 0..levels-1, and on [0, q^levels]."""
+    edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1)])
+    lengths = np.diff(edges)
+    x = (edges[:-1, None] + lengths[:, None] * _REGULAR_X).ravel()
+    w = (lengths[:, None] * _REGULAR_W).ravel()
+    return x, w
+
+
+_GRADED_X, _GRADED_W = _graded_rule()
+
+
+def _ring_kernel(radius, offset):
+    """S/(R+S) K(m) at S = R + offset, with K from 1 - m = (offset/(R+S))^2: the offset is
+    carried separately so that S next to R keeps its full relative accuracy."""
+    total = 2.0 * radius + offset
+    return (radius + offset) / total * ellipkm1((offset / total) ** 2)
+
+
+def influence_matrix(radii: np.ndarray) -> np.ndarray:
+    """A[i, j] = int phi_j(S) S/(R_i+S) K(m) dS for hat functions on ``radii`` (W = eps A P).
+
+    Scales: radii by sqrt(a x0); A maps P (by mu V0 a / x0^2) to W / eps (by x0).
+    """
+    return hat_integrals(radii, _ring_kernel, 1)[0]
+
+
+def hat_integrals(radii, kernel, size):
+    """M[p, i, j] = int phi_j(S) kernel(R_i, S - R_i)[p] dS for the hat functions phi_j on
+    ``radii`` (by sqrt(a x0); the last hat a half hat, zero beyond). Each cell is integrated by
+    8-point Gauss-Legendre, or by the graded rule when it is closer to R_i than its length
+    (module docstring); ``kernel(radius, offset)`` returns ``size`` values along its first
+    axis."""
+    r = np.asarray(radii, dtype=float)
+    n = len(r)
+    left, right = r[:-1], r[1:]
+    length = right - left
+    dist = np.maximum(left[None, :] - r[:, None], r[:, None] - right[None, :])
+    near_left = np.abs(r[:, None] - left[None, :]) <= np.abs(r[:, None] - right[None, :])
+    close = dist < length[None, :]
+    matrix = np.zeros((size, n, n))
+    rules = (
+        (~close, _REGULAR_X, _REGULAR_W, False),
+        (close & near_left, _GRADED_X, _GRADED_W, False),
+        (close & ~near_left, _GRADED_X, _GRADED_W, True),
+    )
+    for pairs, u, w, from_right in rules:
+        node, cell = np.nonzero(pairs)
+        cell_length = length[cell][:, None]
+        radius = r[node][:, None]
+        start = (right if from_right else left)[cell][:, None]
+        offset = (start - radius) + (-cell_length if from_right else cell_length) * u
+        to_right = 1.0 - u if from_right else u  # weight of the hat of the cell's right node
+        values = kernel(radius, offset).reshape(size, *offset.shape) * w * cell_length
+        matrix[:, node, cell] += (values * (1.0 - to_right)).sum(axis=-1)
+        matrix[:, node, cell + 1] += (values * to_right).sum(axis=-1)
+    return matrix
+
+
+def film_nodes(radii) -> np.ndarray:
+    """``radii`` (by sqrt(a x0)) as a float array, or an InputError unless they are at least 3
+    finite film nodes starting at 0 and increasing strictly."""
+    r = np.asarray(radii, dtype=float)
+    if r.ndim != 1 or len(r) < 3:
+        raise InputError("radii must be a 1-D array of at least 3 film nodes")
+    if not np.all(np.isfinite(r)) or r[0] != 0.0 or np.any(np.diff(r) <= 0):
+        raise InputError("radii must be finite, start at 0 and increase strictly")
+    return r
+
+
+def theta_shares(solids) -> tuple[float, float]:
+    """Each solid's share of theta, ((1 - nu^2)/E) / sum((1 - nu^2)/E), for the (Young's
+    modulus, Poisson ratio) pairs of sphere and wall (moduli in any common unit)."""
+    sphere, wall = ((1 - nu**2) / e for e, nu in solids)
+    return sphere / (sphere + wall), wall / (sphere + wall)
+
+
+class HalfSpaceCompliance(LinearCompliance):
+    """Elastic half-spaces at the film nodes: W = matrix @ P (see the module docstring).
+
+    ``radii``: film nodes (by sqrt(a x0)), starting at 0 and strictly increasing. ``eps``: the
+    elasticity parameter 4 theta mu V0 a^(3/2) / x0^(5/2) (> 0; 0 gives rigid solids).
+    ``shear``: None (the squeeze shear is not applied, the asymptotic theory) or (delta,
+    solids) with solids the (Young's modulus, Poisson ratio) pairs of sphere and wall: then
+    ``shear_matrix`` = -eps sqrt(delta) kappa B (module docstring). ``solids``: those pairs for
+    the split of the opening between the faces (each takes its share of theta,
+    (1 - nu^2)/E over the sum): ``surface_sum_matrix`` = (share_sphere - share_wall) * matrix,
+    None for equal shares (identical solids, the default).
+    """
+
+    model = "halfspace"
+
+    def __init__(self, radii: np.ndarray, eps: float, shear=None, solids=None):
+        radii = film_nodes(radii)
+        unit_shear = None
+        if shear is not None:
+            delta, solids = shear
+            kappa = shear_coefficient(solids)
+            unit_shear = -np.sqrt(delta) * kappa * outer_integral_matrix(radii)
+        kernel = influence_matrix(radii)
+        self.materials, unit_sum = solids, None
+        if solids is not None:
+            sphere, wall = theta_shares(solids)
+            if sphere != wall:
+                unit_sum = (sphere - wall) * kernel
+        super().__init__(radii, kernel, number("eps", eps, lower=0.0), unit_shear, unit_sum)
+
+    def factor(self, eps: float) -> float:
+        """The kernel is per unit eps: C = eps * kernel."""
+        return number("eps", eps, lower=0.0)
+
+
+def outer_integral_matrix(radii: np.ndarray) -> np.ndarray:
+    """B[i, j] = int_{R_i}^{R_N} phi_j dS for hat functions on ``radii``: (B T)_i is the
+    integral of the piecewise linear T from R_i to the last node (by sqrt(a x0))."""
+    r = np.asarray(radii, dtype=float)
+    half = 0.5 * np.diff(r)
+    matrix = np.zeros((len(r), len(r)))
+    for i in range(len(r) - 1):
+        matrix[i, i] += half[i]
+        matrix[i, i + 1 :] += half[i:]
+        matrix[i, i + 1 : -1] += half[i + 1 :]
+    return matrix
+
+
+def shear_coefficient(solids=IDENTICAL_SOLIDS) -> float:
+    """kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E over the two solids, given as
+    (Young's modulus, Poisson ratio) pairs (any common unit of modulus)."""
+    radial = sum((1 - 2 * nu) * (1 + nu) / e for e, nu in solids)
+    normal = sum((1 - nu**2) / e for e, nu in solids)
+    return np.pi / 4 * radial / normal

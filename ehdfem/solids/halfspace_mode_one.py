@@ -1,0 +1,225 @@
+"""Elastic half-spaces under azimuthal mode-1 (cos phi) surface tractions, at the film nodes.
+
+One half-space (solid in z < 0, outward normal +z, shear modulus G, Poisson ratio nu). Summing
+the Boussinesq (normal) and Cerruti (tangential) point-force solutions (Johnson, Contact
+Mechanics, 1985, ch. 3), a surface traction t at the point y moves the surface at x, with
+d = x - y and rho = |d|, by
+
+    u_a = (1/(4 rho)) (delta_ab + beta d_a d_b / rho^2) t_b + (gamma/4) d_a / rho^2 t_z,
+    u_z = (1/(4 rho)) t_z - (gamma/4) d_b / rho^2 t_b,
+    beta = nu / (1 - nu),   gamma = (1 - 2 nu) / (2 (1 - nu))     (a, b in-plane),
+
+per unit force, in units of 4 (1 - nu^2)/(pi E) = 2 (1 - nu)/(pi G). A pressure (t_z < 0)
+pushes the surface down; a normal load pulls the surface around it radially towards itself and,
+by Betti's reciprocity, a tangential load lowers the surface ahead of it and lifts it behind.
+
+Mode-1 tractions (t_r, t_phi, t_z) = (A(S) cos phi, -B(S) sin phi, Z(S) cos phi) give mode-1
+displacements (u_r, u_phi, u_z) = (U_r cos phi, -U_phi sin phi, U_z cos phi) with
+
+    U_a(R) = int_0^inf k_ab(R, S) L_b(S) dS,   (U_r, U_phi, U_z), L = (A, B, Z),
+
+k = S times the phi-integral of the point-force solution weighted by cos or sin of the angle
+between the field point and the ring point (:func:`ring_kernel`). k = k0 + beta k_beta +
+gamma k_gamma:
+
+- k0 (the 1/rho part): U_r, U_phi from A, B and U_z from Z, complete elliptic integrals K and E
+  of m = 4 R S / (R+S)^2 with a logarithmic singularity at S = R. U_z from Z is the mode-1
+  analogue of the axisymmetric kernel S/(R+S) K(m) of :mod:`ehdfem.solids.halfspace`.
+- k_beta (the d d / rho^3 part): U_r, U_phi from A, B; the same elliptic integrals.
+- k_gamma (the d / rho^2 coupling of normal and tangential, elementary): with S < R | S > R,
+
+      U_r from Z:   (pi/4) (S^2/R^2 | -1),     U_phi from Z: -(pi/4) (S^2/R^2 | 1),
+      U_z from A:  -(pi/4) (S/R | -R/S),       U_z from B:   -(pi/4) (S/R | R/S).
+
+  They jump at S = R (the 1/rho principal-value parts of the tangential kernels); a mode-1
+  pressure moves the surface tangentially by rings inside and outside R, and a traction along
+  x (A = B) lowers the surface by (gamma pi/2) (1/R) int_0^R A S dS, rings outside R not at all.
+
+Betti's reciprocity reads k_ab(R, S)/S = k_ba(S, R)/R. On the film nodes, L is piecewise linear
+(hat functions, zero beyond the last node) and is integrated as in
+:func:`ehdfem.solids.halfspace.influence_matrix`: 8-point Gauss on cells at least a cell
+length from R_i, the graded Gauss rule of that module on the others, so the logarithm and the
+jumps (which fall on the nodes) are resolved. The phi-integrals are the closed forms above when
+min(R, S)/max(R, S) >= 1/4 and a 32-point periodic trapezoidal rule below (where the closed forms
+lose digits and the integrand is smooth: error below 1e-15).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import ellipe, ellipkm1
+
+from ..inputs.checks import InputError, number, positive
+from ..inputs.presets import MATERIAL_RANGES
+from .compliance import ModeOneCompliance
+from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, theta_shares
+
+_CLOSED_FORM_RATIO = 0.25  # min(R, S)/max(R, S) from which the elliptic closed forms are used
+_TRAPEZOID_ANGLES = np.linspace(0.0, np.pi, 17)  # half a period: the integrands are even
+_TRAPEZOID_WEIGHTS = np.full(17, 2.0 * np.pi / 16) * np.r_[0.5, np.ones(15), 0.5]
+
+
+def ring_kernel_parts(radius, offset) -> np.ndarray:
+    """(k0, k_beta, k_gamma) of the module docstring at S = R + offset: shape (3, 3, 3, ...)
+    as [part, displacement (U_r, U_phi, U_z), load (A, B, Z)], broadcast over ``radius`` and
+    ``offset`` (R >= 0 and S > 0 by sqrt(a x0), or any common length). The offset is carried
+    separately so that S next to R keeps its full relative accuracy. Unit: displacement per unit
+    traction, by 4 (1 - nu^2)/(pi E) (a length: k is per unit S)."""
+    r, off = np.broadcast_arrays(np.asarray(radius, dtype=float), np.asarray(offset, dtype=float))
+    s = r + off
+    parts = np.zeros((3, 3, 3) + r.shape)
+    closed = np.minimum(r, s) >= _CLOSED_FORM_RATIO * np.maximum(r, s)
+    for mask, integrals in ((closed, _elliptic_integrals), (~closed, _trapezoid_integrals)):
+        if np.any(mask):
+            ring, beta_part = integrals(r[mask], off[mask])
+            parts[0][:, :, mask] = ring
+            parts[1][:2, :2][:, :, mask] = beta_part
+    below = off < 0  # rings inside R
+    ratio = np.where(below, s / np.where(below, r, 1.0), r / s)  # min(R, S)/max(R, S)
+    quarter_pi = np.pi / 4
+    parts[2, 0, 2] = quarter_pi * np.where(below, ratio**2, -1.0)
+    parts[2, 1, 2] = -quarter_pi * np.where(below, ratio**2, 1.0)
+    parts[2, 2, 0] = -quarter_pi * np.where(below, ratio, -ratio)
+    parts[2, 2, 1] = -quarter_pi * ratio
+    return parts
+
+
+def ring_kernel(radius, offset, poisson: float) -> np.ndarray:
+    """k = k0 + beta k_beta + gamma k_gamma (module docstring) at S = R + offset for Poisson
+    ratio ``poisson``: shape (3, 3, ...) [displacement (U_r, U_phi, U_z), load (A, B, Z)], by
+    4 (1 - nu^2)/(pi E)."""
+    nu = _poisson("poisson", poisson)
+    return np.tensordot(_nu_weights(nu), ring_kernel_parts(radius, offset), axes=1)
+
+
+def _nu_weights(nu):
+    """(1, beta, gamma) of the module docstring."""
+    return np.array([1.0, nu / (1 - nu), (1 - 2 * nu) / (2 * (1 - nu))])
+
+
+def _elliptic_integrals(r, off):
+    """S (1/4) int dpsi of the 1/rho and d d/rho^3 parts, in K(m) and E(m) (R, S comparable).
+    Returns the (3, 3, M) ring part and the (2, 2, M) beta part."""
+    s = r + off
+    t, q, rs = r + s, r**2 + s**2, r * s
+    k = ellipkm1((off / t) ** 2)
+    e = ellipe(1.0 - (off / t) ** 2)
+    sixth = s / (6 * rs**2)
+    cos2 = sixth * ((q**2 + 2 * rs**2) / t * k - t * q * e)  # S/4 int cos^2 psi / rho
+    sin2 = sixth * (t * q * e - off**2 * t * k)  # S/4 int sin^2 psi / rho
+    ring = np.zeros((3, 3) + r.shape)
+    ring[0, 0] = ring[1, 1] = cos2
+    ring[0, 1] = ring[1, 0] = sin2
+    ring[2, 2] = s / (2 * rs) * (q / t * k - t * e)  # S/4 int cos psi / rho
+    beta = np.empty((2, 2) + r.shape)
+    beta[0, 0] = sin2
+    beta[0, 1] = sixth * (-off * (r**2 + 2 * s**2) * k - t * (r**2 - 2 * s**2) * e)
+    beta[1, 0] = sixth * (off * (2 * r**2 + s**2) * k + t * (2 * r**2 - s**2) * e)
+    beta[1, 1] = 2 * sixth * ((q**2 - rs**2) / t * k - t * q * e)
+    return ring, beta
+
+
+def _trapezoid_integrals(r, off):
+    """The same integrals as :func:`_elliptic_integrals` by the periodic trapezoidal rule
+    (min(R, S)/max(R, S) < 1/4: the integrand is analytic and smooth in psi)."""
+    s = (r + off)[:, None]
+    r = r[:, None]
+    c = np.cos(_TRAPEZOID_ANGLES)
+    sin2 = 1.0 - c**2
+    rho = np.sqrt((r - s) ** 2 + 2 * r * s * (1 - c))
+    w = _TRAPEZOID_WEIGHTS * s / 4
+    along, across = r - s * c, r * c - s  # d along the field and the ring radial directions
+    ring = np.zeros((3, 3, len(r)))
+    ring[0, 0] = ring[1, 1] = (w * c**2 / rho).sum(axis=1)
+    ring[0, 1] = ring[1, 0] = (w * sin2 / rho).sum(axis=1)
+    ring[2, 2] = (w * c / rho).sum(axis=1)
+    w3 = w / rho**3
+    beta = np.empty((2, 2, len(r)))
+    beta[0, 0] = (w3 * along * across * c).sum(axis=1)
+    beta[0, 1] = (w3 * r * along * sin2).sum(axis=1)
+    beta[1, 0] = (w3 * -s * across * sin2).sum(axis=1)
+    beta[1, 1] = (w3 * r * s * sin2 * c).sum(axis=1)
+    return ring, beta
+
+
+def _stacked(blocks):
+    """(..., 3, 3, N, N) nodal blocks -> (..., 3N, 3N) with rows (U_r, U_phi, U_z) and
+    columns (A, B, Z)."""
+    *lead, _, _, n, _ = blocks.shape
+    return np.swapaxes(blocks, -3, -2).reshape(*lead, 3 * n, 3 * n)
+
+
+def response_parts(radii) -> np.ndarray:
+    """(3, 3N, 3N): the parts (k0, k_beta, k_gamma) of :func:`surface_response`, which is
+    their sum weighted by (1, beta, gamma) (module docstring)."""
+    r = film_nodes(radii)
+    matrix = hat_integrals(r, ring_kernel_parts, 27)
+    return _stacked(matrix.reshape(3, 3, 3, len(r), len(r)))
+
+
+def surface_response(radii, poisson: float) -> np.ndarray:
+    """(3N, 3N) response of ONE lower half-space at the nodes ``radii`` (by sqrt(a x0), or any
+    length unit L; from 0, increasing): stacked nodal amplitudes (A, B, Z) of the mode-1
+    traction (t_r, t_phi, t_z) = (A cos phi, -B sin phi, Z cos phi) (hat functions, zero beyond
+    the last node; traction unit sigma) -> stacked nodal (U_r, U_phi, U_z) of (u_r, u_phi, u_z)
+    = (U_r cos phi, -U_phi sin phi, U_z cos phi), z out of the solid, in units of
+    4 (1 - nu^2)/(pi E) sigma L. In these units the axisymmetric analogue of the Z -> U_z block
+    is -:func:`ehdfem.solids.halfspace.influence_matrix` (t_z = -P)."""
+    nu = _poisson("poisson", poisson)
+    return np.tensordot(_nu_weights(nu), response_parts(radii), axes=1)
+
+
+class HalfSpaceModeOne(ModeOneCompliance):
+    """Sphere and wall as elastic half-spaces under the film's mode-1 loads (the contract of
+    :class:`ehdfem.solids.compliance.ModeOneCompliance`).
+
+    The wall is the lower half-space of :func:`surface_response` (loads Z = -q, A, B); the
+    sphere its mirror image z -> -z, which turns its traction t_z = +q into Z = -q and its
+    displacement U_z into -U_z, tangential components unchanged. Solid i takes the share
+    ((1 - nu_i^2)/E_i) / sum((1 - nu^2)/E) of the unit eps (its part of theta), the shear loads
+    carry sqrt(delta) (their unit), so the gap opening U_z(sphere) - U_z(wall) per unit q is the
+    nu-independent Z -> U_z block times eps. Displacements are relative to the far material
+    of each half-space.
+
+    ``radii``: film nodes (by sqrt(a x0)), from 0, strictly increasing, at least 3. ``eps``:
+    4 theta mu V0 a^(3/2) / x0^(5/2) (>= 0). ``delta``: x0/a in (0, 1). ``solids``: (Young's
+    modulus, Poisson ratio) of sphere and wall (moduli in any common unit).
+    """
+
+    model = "halfspace"
+
+    def __init__(self, radii, eps: float, delta: float, solids=IDENTICAL_SOLIDS):
+        radii = film_nodes(radii)
+        delta = number("delta", delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
+        if len(solids) != 2:
+            raise InputError("solids must be two (Young's modulus, Poisson ratio) pairs")
+        moduli = [positive(f"{name} Young's modulus", e) for name, (e, _) in _named(solids)]
+        ratios = [_poisson(f"{name} Poisson ratio", nu) for name, (_, nu) in _named(solids)]
+        shares = theta_shares(tuple(zip(moduli, ratios, strict=True)))
+        parts = response_parts(radii)
+        n = len(radii)
+        unit = np.zeros((6 * n, 5 * n))
+        for face, (nu, share) in enumerate(zip(ratios, shares, strict=True)):
+            response = share * np.tensordot(_nu_weights(nu), parts, axes=1)
+            if face == 0:  # the sphere: mirror image, u_z -> -u_z
+                response[2 * n :] *= -1.0
+            rows = slice(3 * n * face, 3 * n * (face + 1))
+            unit[rows, :n] = -response[:, 2 * n :]  # pressure q: Z = -q on both faces
+            # the face's own (radial, hoop) loads are (A, B), by sqrt(delta) mu V0 a / x0^2
+            unit[rows, n * (1 + 2 * face) : n * (3 + 2 * face)] = (
+                np.sqrt(delta) * response[:, : 2 * n]
+            )
+        self.delta, self.solids = delta, tuple(zip(moduli, ratios, strict=True))
+        super().__init__(radii, unit, number("eps", eps, lower=0.0))
+
+    def factor(self, eps: float) -> float:
+        """The unit matrix is per unit eps: C = eps * unit_matrix."""
+        return number("eps", eps, lower=0.0)
+
+
+def _named(solids):
+    return zip(("sphere", "wall"), solids, strict=True)
+
+
+def _poisson(name, nu):
+    return number(name, nu, **MATERIAL_RANGES["poisson_ratio"])

@@ -1,0 +1,2 @@
+"""Parameter studies: sweeps over MPI ranks with resumable result tables and the critical Stokes
+number (sweep)."""

@@ -1,0 +1,489 @@
+"""Parameter studies over MPI ranks: resumable result tables and the critical Stokes number.
+
+A study is a TOML file (see studies/*.toml):
+
+    [grid]                        # every combination is one point
+    St = {geomspace = [3, 1000, 12]}   # or a list, or {linspace = [a, b, n]}
+    eps = [1e-5, 1e-3]
+    layer = ["thin"]              # any CollisionParameters field, plus "tangential", e.g.
+    cavitation = ["truncate", "mass-conserving"]
+    viscosity = ["barus"]         # with alpha (scaled), see ehdfem.film.viscosity
+    [numerics]
+    nodes = 240
+    rtol = 5e-5
+    [output]
+    table = "results/example.csv" # relative to the study file
+
+or, with physical inputs (SI), a ``[physical]`` table of
+:class:`ehdfem.inputs.scales.PhysicalCollision` fields held fixed, and a ``[grid]`` over
+PhysicalCollision fields (plus "tangential"):
+
+    [physical]
+    sphere = "steel"              # a preset name, or a table of values, with an optional preset
+    wall = {young_modulus = 3e9, poisson_ratio = 0.35, density = 1200}
+    liquid = {preset = "glycerol_80", viscosity = 0.05}
+    radius = 6.35e-3
+    layer_thickness = 3e-4
+    [grid]
+    speed = {geomspace = [0.05, 2.0, 8]}
+    angle = [0.0, 30.0]
+
+Their rows also give St, eps, delta, P_cav and the SI results (``*_m``, ``*_N``, ...).
+Points are claimed dynamically by the ranks (an exclusive file per point), so ranks that draw
+cheap points take more of them. Each finished point is written atomically as its own JSON file
+next to the table (``<table>.points/``); a run that is killed and started again skips the
+points already there, so nothing finished is lost or duplicated. The table (CSV, one row per
+point with inputs, outputs, status, seconds and code version) is rewritten atomically from the
+point files at the end of every run. All inputs and outputs are dimensionless (DSH scales).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import itertools
+import json
+import math
+import os
+import socket
+import time
+import tomllib
+from dataclasses import fields, replace
+from pathlib import Path
+
+import numpy as np
+
+from ..collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
+from ..console.progress import Counter
+from ..film import cavitation
+from ..inputs import checks
+from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from ..motion.normal import NormalSolverError
+from ..motion.timestepping import IntegratorOptions
+from ..version import __version__
+
+PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
+GRID_KEYS = (*PARAMETERS, "tangential")
+PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
+PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
+SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
+NUMERICS = ("nodes", "rtol")
+OUTPUTS = (
+    "rebound",
+    "status",
+    "e_n",
+    "max_rebound_velocity",
+    "min_film_thickness",
+    "max_force",
+    "contact_time",
+    "max_compression",
+    "e_t",
+    "spin_change",
+    "energy_error",
+    "film_nodes",
+)
+
+
+class Study:
+    """A parsed study file: the points (dicts of CollisionParameters fields plus "tangential",
+    or with a [physical] table, of PhysicalCollision fields plus "tangential"), the fixed
+    physical inputs (None for a dimensionless study), the numerics and the table path."""
+
+    def __init__(self, path: str | Path):
+        self.path = Path(path)
+        if not self.path.is_file():
+            raise checks.InputError(f"study file {str(self.path)!r} does not exist")
+        try:
+            spec = tomllib.loads(self.path.read_text())
+        except tomllib.TOMLDecodeError as err:
+            raise checks.InputError(f"study file {self.path}: {err}") from err
+        _known_keys("study file", spec, ("name", "grid", "physical", "numerics", "output"))
+        grid = spec.get("grid", {})
+        self.physical = spec.get("physical")
+        _check_grid(grid, self.physical)
+        self.name = spec.get("name", self.path.stem)
+        numerics = spec.get("numerics", {})
+        _known_keys("[numerics]", numerics, NUMERICS)
+        self.nodes = checks.integer(
+            "numerics.nodes", numerics.get("nodes", DEFAULT_NODES), lower=20
+        )
+        self.options = IntegratorOptions(rtol=numerics.get("rtol", IntegratorOptions.rtol))
+        output = spec.get("output", {})
+        _known_keys("[output]", output, ("table",))
+        self.table = self.path.parent / output.get("table", f"results/{self.path.stem}.csv")
+        axes = {name: _values(f"grid.{name}", value) for name, value in grid.items()}
+        self.points = [
+            dict(zip(axes, combo, strict=True)) for combo in itertools.product(*axes.values())
+        ]
+        self.stokes_numbers = []  # validate every point before any work starts
+        for point in self.points:
+            inputs = self.inputs(point)
+            scaled = inputs.dimensionless() if self.physical is not None else inputs
+            self.stokes_numbers.append(scaled.St)
+            checks.choice("grid.tangential", point.get("tangential", "couette"), TANGENTIAL_MODELS)
+
+    @property
+    def point_dir(self) -> Path:
+        return self.table.with_name(self.table.name + ".points")
+
+    def inputs(self, point: dict) -> CollisionParameters | PhysicalCollision:
+        """The collision inputs of ``point``: dimensionless, or the [physical] table's values
+        (SI) with the point's."""
+        if self.physical is None:
+            return _parameters(point)
+        values = {k: v for k, v in {**self.physical, **point}.items() if k != "tangential"}
+        return from_presets(**values)
+
+    def key(self, point: dict) -> str:
+        """The name of ``point``'s result file: a hash of its inputs (with the [physical]
+        table's, so that a changed table is not mistaken for finished points)."""
+        return point_key(point if self.physical is None else {**point, "[physical]": self.physical})
+
+
+def _check_grid(grid: dict, physical: dict | None) -> None:
+    """Refuse unknown or missing keys: a dimensionless grid needs St and eps; with a
+    [physical] table, the grid is over PhysicalCollision fields and the two tables together
+    need the sphere, wall, liquid, radius, speed and layer thickness."""
+    if physical is None:
+        _known_keys("[grid]", grid, GRID_KEYS)
+        for name in ("St", "eps"):
+            if name not in grid:
+                raise checks.InputError(f"[grid] needs {name}")
+        return
+    if not isinstance(physical, dict):
+        raise checks.InputError("[physical] must be a table of PhysicalCollision fields")
+    _known_keys("[physical]", physical, PHYSICAL_FIELDS)
+    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, "tangential"))
+    missing = [name for name in PHYSICAL_REQUIRED if name not in physical and name not in grid]
+    if missing:
+        raise checks.InputError(f"[physical] (or [grid]) needs {', '.join(missing)}")
+
+
+def _known_keys(where, table, allowed):
+    unknown = sorted(set(table) - set(allowed))
+    if unknown:
+        raise checks.InputError(
+            f"{where}: unknown key(s) {', '.join(unknown)}; allowed: {', '.join(allowed)}"
+        )
+
+
+def _values(name, value):
+    """A grid axis: a list, a scalar, or {geomspace|linspace = [start, stop, count]}."""
+    if isinstance(value, dict):
+        if len(value) != 1 or next(iter(value)) not in ("geomspace", "linspace"):
+            raise checks.InputError(
+                f"{name}: use a list or {{geomspace = [a, b, n]}} / {{linspace = [a, b, n]}}"
+            )
+        kind, args = next(iter(value.items()))
+        if not (isinstance(args, list) and len(args) == 3):
+            raise checks.InputError(f"{name}.{kind} needs [start, stop, count]")
+        count = checks.integer(f"{name}.{kind} count", args[2], lower=1, upper=100000)
+        return [float(v) for v in getattr(np, kind)(args[0], args[1], count)]
+    return list(value) if isinstance(value, list) else [value]
+
+
+def _parameters(point) -> CollisionParameters:
+    values = {k: v for k, v in point.items() if k in PARAMETERS}
+    if "p_cav" in values:
+        values["p_cav"] = cavitation.parse_suction_limit(values["p_cav"])
+    return CollisionParameters(**values)
+
+
+def point_key(point) -> str:
+    """A stable name for a point (hash of its inputs)."""
+    text = json.dumps(point, sort_keys=True, default=str)
+    return hashlib.sha1(text.encode()).hexdigest()[:16]
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    """Write to a temporary file in the same folder, fsync, then rename over ``path``."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    with tmp.open("w") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def run_point(study: Study, point: dict) -> dict:
+    """One collision; failures are recorded with their reason instead of stopping the study."""
+    start = time.perf_counter()
+    row = {**point}
+    try:
+        result = collide(
+            study.inputs(point),
+            nodes=study.nodes,
+            options=study.options,
+            tangential=point.get("tangential", "couette"),
+        )
+        summary = result.summary()
+        if study.physical is not None:
+            row.update({name: summary[name] for name in SCALED_GROUPS})
+        row.update({name: summary.get(name) for name in OUTPUTS})
+        row.update(summary.get("si", {}))
+        row["status"] = "ok:" + summary["status"]
+    except (NormalSolverError, checks.InputError, np.linalg.LinAlgError) as err:
+        row.update({name: None for name in OUTPUTS})
+        row["status"] = f"failed: {type(err).__name__}: {err}"
+    row["seconds"] = round(time.perf_counter() - start, 3)
+    row["version"] = __version__
+    return row
+
+
+def run_study(study: Study, comm=None, progress=print) -> list[dict]:
+    """Run every point not yet in the study's point folder, spread over the ranks of ``comm``
+    (mpi4py communicator or None), then write the table. Returns the rows (on every rank).
+    ``progress(line)`` reports each finished point ("[done/total] rank r: inputs -> outcome");
+    on a terminal, rank 0 also draws a bar of the points done with rate and time left
+    (:mod:`ehdfem.console.progress`)."""
+    rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
+    points_dir = study.point_dir
+    claims = points_dir / "claims"
+    if rank == 0:
+        claims.mkdir(parents=True, exist_ok=True)
+        for stale in claims.iterdir():  # claims of a killed run: their points were not finished
+            stale.unlink()
+    if comm is not None:
+        comm.Barrier()
+    order = sorted(range(len(study.points)), key=lambda i: -study.stokes_numbers[i])  # costly 1st
+    total = len(study.points)
+    with Counter(total, f"sweep {study.name}", _finished(points_dir), unit="point") as bar:
+        for i in order:
+            row = _claim_and_run(study, study.points[i], claims)
+            if row is None:
+                continue
+            finished = _finished(points_dir)
+            bar.advance_to(finished)
+            if progress is not None:
+                with bar.paused():
+                    progress(
+                        f"[{finished}/{total}] rank {rank}: "
+                        + ", ".join(f"{k}={v}" for k, v in study.points[i].items())
+                        + f" -> {row['status']} e_n={row['e_n']} ({row['seconds']} s)"
+                    )
+    if comm is not None:
+        comm.Barrier()
+    rows = collect(study)
+    if rank == 0:
+        write_table(study, rows)
+    return rows
+
+
+def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
+    """Run ``point`` and write its result file, unless it is finished or claimed by another
+    rank (then None): the claim is an exclusive file in ``claims``, removed when done."""
+    key = study.key(point)
+    done = study.point_dir / f"{key}.json"
+    if done.exists():
+        return None
+    try:
+        fd = os.open(claims / key, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+    except FileExistsError:
+        return None
+    os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
+    os.close(fd)
+    row = run_point(study, point)
+    _write_atomic(done, json.dumps(row))
+    (claims / key).unlink(missing_ok=True)
+    return row
+
+
+def _finished(points_dir: Path) -> int:
+    """How many points are finished (result files in ``points_dir``)."""
+    return sum(1 for _ in points_dir.glob("*.json"))
+
+
+def collect(study: Study) -> list[dict]:
+    """The finished rows, in the order of the study's points (missing points are skipped)."""
+    rows = []
+    for point in study.points:
+        path = study.point_dir / f"{study.key(point)}.json"
+        if path.exists():
+            rows.append(json.loads(path.read_text()))
+    return rows
+
+
+def write_table(study: Study, rows: list[dict]) -> Path:
+    """Write the study's CSV table atomically."""
+    return write_csv(study.table, rows, list(GRID_KEYS))
+
+
+def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
+    """Write rows (dicts; the header is the union of their keys) to a CSV file atomically."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    names = list(dict.fromkeys(itertools.chain.from_iterable(rows))) if rows else list(empty_header)
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=names)
+    writer.writeheader()
+    writer.writerows(rows)
+    _write_atomic(path, text.getvalue())
+    return path
+
+
+class ResultTable:
+    """A study script's rows in a CSV, keyed by ``keys`` (column names): ``get`` finds a
+    finished row, ``add`` appends one and rewrites the CSV atomically, so a script that is
+    stopped and started again computes only what is missing. Values are kept as strings."""
+
+    def __init__(self, path, keys):
+        self.path, self.keys = Path(path), tuple(keys)
+        self.rows = list(csv.DictReader(self.path.open())) if self.path.exists() else []
+
+    def _key(self, row):
+        return tuple(str(row[k]) for k in self.keys)
+
+    def get(self, **key):
+        wanted = self._key(key)
+        return next((r for r in self.rows if self._key(r) == wanted), None)
+
+    def add(self, row):
+        self.rows.append({k: str(v) for k, v in row.items()})
+        write_csv(self.path, self.rows)
+        return self.rows[-1]
+
+
+def computed_or_loaded(path: Path, compute, load: bool) -> list[dict]:
+    """The rows of a study script: read from the CSV ``path`` when ``load`` (to redraw figures),
+    otherwise ``compute()`` them and write them there atomically."""
+    if load:
+        with Path(path).open() as f:
+            return list(csv.DictReader(f))
+    rows = compute()
+    write_csv(path, rows)
+    return rows
+
+
+def study_script(root: Path, name: str, compute, plot, load: bool) -> None:
+    """The main of a study script: rows in root/studies/results/NAME.csv (computed, or read
+    back when ``load``), figure root/docs/figures/NAME.png by ``plot(rows, path)``."""
+    table = root / "studies" / "results" / f"{name}.csv"
+    figure = root / "docs" / "figures" / f"{name}.png"
+    plot(computed_or_loaded(table, compute, load), figure)
+    print(f"wrote {table} and {figure}")
+
+
+def critical_stokes(
+    params: CollisionParameters,
+    bracket=(1.0, 1000.0),
+    rtol: float = 1e-3,
+    nodes: int = DEFAULT_NODES,
+    options: IntegratorOptions | None = None,
+    model: str = "halfspace",
+    progress_label: str | None = None,
+) -> dict:
+    """St_c: the smallest St at which the sphere leaves the layer (e_n > 0), by bisection in
+    log St on the outcome of the collision (other inputs from ``params``). Returns St_c, the
+    final bracket [sticks, rebounds], the relative tolerance and the number of collisions.
+    ``progress_label``: label of a progress bar over the collisions (terminal only; None: no
+    bar).
+
+    The film grid is chosen once, for the top of the bracket (the widest contact), and the
+    compliance is built once on it: the FE solids are factorised a single time."""
+    lo, hi = (
+        checks.positive("bracket low", bracket[0]),
+        checks.positive("bracket high", bracket[1]),
+    )
+    if lo >= hi:
+        raise checks.InputError(f"bracket = {bracket} must be increasing")
+    checks.number("rtol", rtol, lower=1e-8, upper=0.5)
+    values = {name: getattr(params, name) for name in PARAMETERS}
+    widest = CollisionParameters(**{**values, "St": 4 * hi})
+    compliance = elasticity(widest, film_radii(widest, nodes), model)
+
+    def rebounds(St):
+        params = CollisionParameters(**{**values, "St": St})
+        return collide(params, options=options, compliance=compliance).normal.rebound
+
+    try:
+        lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)
+    finally:
+        compliance.close()
+    return {
+        "St_c": math.sqrt(lo * hi),
+        "bracket": [lo, hi],
+        "rtol": rtol,
+        "collisions": evaluations,
+    }
+
+
+def bisections(low: float, high: float, rtol: float) -> int:
+    """How many halvings in log bring the bracket [low, high] to a relative width <= rtol."""
+    ratio = math.log(high / low) / math.log1p(rtol)
+    return max(0, math.ceil(math.log2(ratio))) if ratio > 1 else 0
+
+
+def threshold(rebounds, low, high, rtol, name, limits, progress_label=None):
+    """The bracket [low, high] (relative width <= rtol) of the value of ``name`` where the
+    outcome ``rebounds(value)`` turns from False to True, by bisection in log after widening
+    the starting bracket by factors of 4 within ``limits``. Returns (low, high, evaluations).
+    ``progress_label``: label of a progress bar over the evaluations (terminal only), whose
+    total is the count if the starting bracket holds the threshold, raised when it is
+    widened."""
+    evaluations = 0
+    count = 2 + bisections(low, high, rtol)
+    bar = Counter(count, progress_label, unit="collision") if progress_label else None
+
+    def outcome(value, more):
+        """The outcome at ``value``; ``more``: evaluations after this one besides the halvings
+        of the current bracket (1 and 0 for the ends' checks, -1 for a halving itself)."""
+        nonlocal evaluations
+        rebound = rebounds(value)
+        evaluations += 1
+        if bar is not None:
+            bar.advance_to(evaluations, evaluations + more + bisections(low, high, rtol))
+        return rebound
+
+    try:
+        while outcome(low, 1):  # widen until the low end sticks and the high end rebounds
+            low, high = low / 4, low
+            if low < limits[0]:
+                raise checks.InputError(
+                    f"the sphere rebounds even at {name} = {limits[0]:g}: no critical {name}"
+                )
+        while not outcome(high, 0):
+            low, high = high, high * 4
+            if high > limits[1]:
+                raise checks.InputError(f"the sphere sticks up to {name} = {limits[1]:g}")
+        while high / low - 1 > rtol:
+            mid = math.sqrt(low * high)
+            low, high = (low, mid) if outcome(mid, -1) else (mid, high)
+    finally:
+        if bar is not None:
+            bar.close()
+    return low, high, evaluations
+
+
+def critical_speed(
+    physical: PhysicalCollision,
+    bracket=(0.01, 10.0),
+    rtol: float = 0.01,
+    model: str = "halfspace",
+    rebounds=None,
+) -> dict:
+    """The critical impact speed [m/s] of a physical collision (its other inputs fixed; eps,
+    P_cav and alpha change with the speed) and St_c, the Stokes number there, by bisection in
+    log speed on the rebound outcome. ``rebounds(speed)``: the outcome (default: a collision
+    with ``model``; pass a cached one to resume a study)."""
+    checks.number("rtol", rtol, lower=1e-8, upper=0.5)
+    lo, hi = (
+        checks.positive("bracket low", bracket[0]),
+        checks.positive("bracket high", bracket[1]),
+    )
+    if rebounds is None:
+
+        def rebounds(speed):
+            result = collide(replace(physical, speed=speed), model=model)
+            result.compliance.close()
+            return result.normal.rebound
+
+    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "speed [m/s]", (1e-4, 1e3))
+    speed = math.sqrt(lo * hi)
+    return {
+        "speed": speed,
+        "St_c": replace(physical, speed=speed).dimensionless().St,
+        "bracket": [lo, hi],
+        "rtol": rtol,
+        "collisions": evaluations,
+    }

@@ -14,9 +14,9 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
+from . import checks
 from .film import cavitation
 from .film.reynolds import contact_grid
-from .inputs import checks
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .motion.timestepping import IntegratorOptions

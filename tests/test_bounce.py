@@ -19,8 +19,8 @@ from ehdfem.bounce.trajectory import (
     drag_factor,
     release_height_for_speed,
 )
+from ehdfem.checks import InputError
 from ehdfem.cli.main import main
-from ehdfem.inputs.checks import InputError
 
 # steel on glass in a 10 cSt silicone oil: St ~ 50 at the first impact from 3 mm
 OIL_BOUNCE = dict(radius=1.5e-3, sphere="steel", wall="glass", liquid="silicone_oil_10cst")

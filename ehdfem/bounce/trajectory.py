@@ -43,11 +43,11 @@ import numpy as np
 from scipy.integrate import solve_ivp, trapezoid
 from scipy.optimize import brentq
 
+from .. import checks
 from ..collision import DEFAULT_NODES, collide, film_radii
 from ..dem.closedform import legendre
 from ..film import cavitation
-from ..inputs import checks
-from ..inputs.presets import Liquid, Material, body
+from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import (
     ATMOSPHERE,
     PhysicalCollision,
@@ -217,12 +217,7 @@ class BounceInputs:
         checks.number("gravity", self.gravity, lower=0.0, upper=100.0, lower_open=True)
         checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         checks.positive("ambient_pressure", self.ambient_pressure)
-        if self.liquid.vapour_pressure >= self.ambient_pressure:
-            raise checks.InputError(
-                f"vapour_pressure of liquid {self.liquid.name!r} = "
-                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
-                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
-            )
+        check_vapour_pressure(self.liquid, self.ambient_pressure)
 
     @property
     def diameter(self) -> float:

@@ -18,19 +18,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .. import checks
 from ..film import cavitation
 from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
 from ..film.viscosity import (
     ROELANDS_INDEX,
-    ROELANDS_LOG_VISCOSITY,
     ROELANDS_PRESSURE,
     Viscosity,
+    check_roelands_viscosity,
     roelands_index,
 )
-from . import checks
-from .presets import Liquid, Material, body
+from .presets import Liquid, Material, body, check_vapour_pressure
 
 ATMOSPHERE = 101325.0  # Pa
 
@@ -220,24 +220,15 @@ class PhysicalCollision:
                 lower=0.0,
                 upper=self.ambient_pressure,
             )
-        elif self.liquid.vapour_pressure >= self.ambient_pressure:
-            raise checks.InputError(
-                f"vapour_pressure of liquid {self.liquid.name!r} = "
-                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
-                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
-            )
+        else:
+            check_vapour_pressure(self.liquid, self.ambient_pressure)
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
         if self.pressure_viscosity is not None:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
         checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
-        if self.viscosity == "roelands" and self.liquid.viscosity <= math.exp(
-            -ROELANDS_LOG_VISCOSITY
-        ):
-            raise checks.InputError(
-                f"the Roelands law needs a viscosity above 6.31e-5 Pa s; "
-                f"{self.liquid.name} has {self.liquid.viscosity} Pa s"
-            )
+        if self.viscosity == "roelands":
+            check_roelands_viscosity(self.liquid.name, self.liquid.viscosity)
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
 
     @property

@@ -54,10 +54,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import checks
 from ..collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
 from ..console.progress import Counter
 from ..film import cavitation
-from ..inputs import checks
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions

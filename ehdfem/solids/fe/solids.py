@@ -39,7 +39,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ...inputs import checks
+from ... import checks
 from ..compliance import LinearCompliance
 from . import dolfinx_compat
 from .condensation import condensed

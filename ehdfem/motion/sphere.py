@@ -60,7 +60,7 @@ class Sphere:
 
     def applied_force(self, state: SphereState) -> float:
         """sum_i F_i at the state (by 6 pi mu V0 a^2 / x0)."""
-        return sum(force.value(state) for force in self.forces)
+        return sum((force.value(state) for force in self.forces), 0.0)
 
     def residual(self, step, a0, past, state: SphereState, film_force: float):
         """(r_X, r_V) = (a0 X + past_X - dt V, St (a0 V + past_V) - dt (F_film + sum_i F_i))
@@ -90,7 +90,7 @@ class Sphere:
 
     def work(self, state: SphereState) -> float:
         """The applied forces' work on the sphere since first touch, sum_i W_i (by m V0^2 / St)."""
-        return sum(force.work(state) for force in self.forces)
+        return sum((force.work(state) for force in self.forces), 0.0)
 
     @staticmethod
     def left_layer(gap: float, velocity: float) -> bool:

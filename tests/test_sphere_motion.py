@@ -6,9 +6,9 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.presets import Liquid, Material
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
 from ehdfem.motion.forces import BuoyantWeight, ConstantForce, SphereState

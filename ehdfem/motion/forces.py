@@ -19,7 +19,7 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 from .forces import BuoyantWeight, ConstantForce, SphereForce, SphereState
 
 if TYPE_CHECKING:

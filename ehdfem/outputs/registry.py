@@ -240,3 +240,19 @@ def format_table(summary: dict) -> str:
         cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
         lines.append("  " + "  ".join([*cells, row[3]]))
     return "\n".join(lines)
+
+
+def markdown_table() -> str:
+    """The registry as the Markdown table of docs/outputs.md: name, meaning, scale, SI unit, SI
+    key, and a note where an output may be missing (optional) or may not apply (the reason)."""
+    lines = [
+        "| name | meaning | scaled by | SI unit | SI key | note |",
+        "|---|---|---|---|---|---|",
+    ]
+    for o in OUTPUTS:
+        note = "left out of the summary where there is none" if o.optional else ""
+        note = f"None where not applicable: {o.reason}" if o.applies is not None else note
+        si_key = f"`{o.si_key}`" if o.si_key else "-"
+        cells = (f"`{o.name}`", o.meaning, o.scale, o.unit or "-", si_key, note)
+        lines.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |")
+    return "\n".join(lines)

@@ -200,15 +200,17 @@ def in_si_where_possible(result: CollisionResult) -> dict:
     """Every output once, for a collision with physical inputs: its SI value under its SI key
     where it has one, else its scaled value under its name (None where there is none)."""
     si = si_values(result)
-    return {
-        o.si_key if o.si_key is not None else o.name: (
-            si.get(o.si_key) if o.si_key is not None else o.value(result)
-        )
-        for o in OUTPUTS
-    }
+    out = {}
+    for o in OUTPUTS:
+        if o.si_key is None:
+            out[o.name] = o.value(result)
+        else:
+            out[o.si_key] = si.get(o.si_key)
+    return out
 
 
 def _text(value) -> str:
+    """A value in a table: 6 significant digits for a float, "-" for None."""
     return "-" if value is None else f"{value:.6g}" if isinstance(value, float) else str(value)
 
 

@@ -56,6 +56,7 @@ from ..inputs.scales import (
     stokes_number,
 )
 from ..motion.timestepping import IntegratorOptions
+from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
 from ..version import __version__
 
@@ -407,20 +408,25 @@ class Contact:
     """One contact (film model, :func:`ehdfem.collision.collide`) within a bounce (SI).
 
     ``impact_speed``: the largest approach speed since the last apex (the release); the
-    restitution ``e`` = ``rebound_speed`` / ``impact_speed``, as measured in experiments
-    (rebound_speed = e_dry V_exit V0 at the hand-over gap, the largest rising speed after it);
+    restitution ``e`` = rebound speed / ``impact_speed``, as measured in experiments (the
+    rebound speed e_dry V_exit V0 at the hand-over gap, the largest rising speed after it);
     ``St``: rho_p D impact_speed / (9 mu). ``handover_gap`` h_c and ``handover_speed`` V0 =
-    |v(h_c)|; ``contact_St``, ``eps``, ``p_cav``: the film model's groups (effective mass);
-    ``status`` "rebound" or "stick"; ``exit_velocity``: V_exit (by V0, before e_dry);
-    ``duration`` [s]; ``min_film`` [m]; ``max_force`` [N]. Force jumps (relative, flight to
-    film, both at the same h and v): ``entry_jump`` once the film pressure has built up (the
-    first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
+    |v(h_c)|; ``contact_St``, ``eps``, ``p_cav``: the film model's groups (effective mass).
+    ``film``: every output of the film model (:mod:`ehdfem.outputs.registry`,
+    :func:`ehdfem.outputs.registry.in_si_where_possible`): in SI under its SI key where it has
+    one (``min_film_thickness_m`` [m], ``max_force_N`` [N], ``contact_time_s`` [s],
+    ``max_compression_m`` [m], ``rebound_normal_speed_m_s`` the rebound speed [m/s]), else
+    under its name scaled by the contact's own scales, x0 = h_c and V0 (``exit_velocity``
+    V_exit by V0, before e_dry; ``status`` "rebound" or "stick"; ``energy_error`` the film
+    model's relative balance error, None with a cavitation limit). Force jumps (relative,
+    flight to film, both at the same h and v): ``entry_jump`` once the film pressure has built
+    up (the first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
     Impulses not applied during the contact, relative to the hand-over momentum
     (m + C_M m_f) V0: ``gravity_impulse`` ((m - m_f) g duration) and ``remainder_impulse``
     (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest film). Energies [J]:
     ``film_dissipated`` (the film's viscous dissipation up to exit), ``exit_loss`` (the dry
     loss (1 - e_dry^2) times the exit's kinetic energy, plus the elastic energy left in the
-    solids), ``energy_error`` (the film model's relative balance error)."""
+    solids)."""
 
     impact_speed: float
     St: float
@@ -429,22 +435,27 @@ class Contact:
     contact_St: float
     eps: float
     p_cav: float | None
-    status: str
-    exit_velocity: float
-    rebound_speed: float
     e: float
-    duration: float
-    min_film: float
-    max_force: float
     entry_jump: float
     exit_jump: float
     gravity_impulse: float
     remainder_impulse: float
     film_dissipated: float
     exit_loss: float
-    energy_error: float
+    film: dict
     apex_gap: float | None = None
     apex_time: float | None = None
+
+    @property
+    def status(self) -> str:
+        """The film model's outcome, "rebound" or "stick" (``film["status"]``)."""
+        return self.film["status"]
+
+    def row(self) -> dict:
+        """The contact as one flat dict: its fields, then the film model's outputs."""
+        fields = asdict(self)
+        film = fields.pop("film")
+        return {**fields, **film}
 
 
 TRAJECTORY_COLUMNS = (
@@ -499,8 +510,8 @@ class BounceResult:
         return [dict(zip(TRAJECTORY_COLUMNS, row, strict=True)) for row in rows]
 
     def contact_rows(self) -> list[dict]:
-        """The contacts as rows (dicts of the :class:`Contact` fields, numbered from 1)."""
-        return [{"contact": i + 1, **asdict(c)} for i, c in enumerate(self.contacts)]
+        """The contacts as rows (:meth:`Contact.row`, numbered from 1)."""
+        return [{"contact": i + 1, **c.row()} for i, c in enumerate(self.contacts)]
 
     def summary(self) -> dict:
         """The results as a JSON-ready dict: status, contacts, apexes, energy balance, the
@@ -709,18 +720,12 @@ class _Bounce:
             contact_St=params.St,
             eps=params.eps,
             p_cav=cavitation.suction_limit_output(params.p_cav),
-            status=normal.status,
-            exit_velocity=normal.exit_velocity,
-            rebound_speed=rebound_speed,
             e=rebound_speed / impact,
-            duration=end * scales.time,
-            min_film=normal.min_film_thickness * scales.gap,
-            max_force=normal.max_force * scales.force,
             **self._jumps(hist, normal, scales),
             **self._omitted(hist, end, scales, speed),
             film_dissipated=film_dissipated,
             exit_loss=exit_loss,
-            energy_error=normal.energy_error,
+            film=outputs.in_si_where_possible(result),
         )
         self.contacts.append(contact)
         exit_state = (t0 + end * scales.time, gap, rebound_speed, drag)

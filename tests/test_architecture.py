@@ -17,8 +17,9 @@ LAYERS = (
     ("solids",),
     ("motion",),
     ("tangential",),
+    ("outputs",),
     ("collision",),
-    ("outputs", "dem"),
+    ("dem",),
     ("study", "bounce"),
     ("cli",),
     ("__init__", "__main__"),
@@ -36,9 +37,18 @@ def _modules():
 
 
 def _imports(name, path, tree):
-    """The ehdfem modules (or packages) that a module imports, absolute."""
+    """The ehdfem modules (or packages) that a module imports at run time, absolute (imports
+    for type annotations only, under ``if TYPE_CHECKING:``, are left out)."""
     here = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    typing_only = {
+        id(inner)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"
+        for inner in ast.walk(node)
+    }
     for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
         if isinstance(node, ast.ImportFrom) and node.level:
             base = here[: len(here) - node.level + 1]
             target = ".".join(base + ([node.module] if node.module else []))

@@ -661,6 +661,53 @@ class _Bounce:
         far, inputs = self.far, self.far.inputs
         t0, gap, velocity, drag = _last(leg)
         speed = -velocity
+        result, scales = self._film_collision(gap, speed)
+        normal, params = result.normal, result.params
+        energy_unit = far.effective_mass * speed**2 / params.St
+        at_end = self._record_contact(normal, (t0, gap, speed, drag), scales, energy_unit)
+        exit_speed = normal.exit_velocity * speed
+        rebound_speed = inputs.e_dry * exit_speed
+        film_dissipated = at_end["dissipated"] * energy_unit
+        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * far.effective_mass * exit_speed**2
+        exit_loss += at_end["elastic"] * energy_unit
+        self.film_dissipated += film_dissipated
+        self.exit_loss += exit_loss
+        impact = float(np.max(np.abs(leg.velocity)))
+        contact = Contact(
+            impact_speed=impact,
+            St=inputs.stokes_number(impact),
+            handover_gap=gap,
+            handover_speed=speed,
+            contact_St=params.St,
+            eps=params.eps,
+            p_cav=cavitation.suction_limit_output(params.p_cav),
+            e=rebound_speed / impact,
+            **self._jumps(normal.history, normal, scales),
+            **self._omitted(normal.history, normal.contact_time, scales, speed),
+            film_dissipated=film_dissipated,
+            exit_loss=exit_loss,
+            film=outputs.in_si_where_possible(result),
+        )
+        self.contacts.append(contact)
+        exit_state = (t0 + normal.contact_time * scales.time, gap, rebound_speed, drag)
+        if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
+            self._append(
+                time=[exit_state[0]],
+                gap=[gap],
+                velocity=[rebound_speed],
+                phase=["flight"],
+                kinetic=[0.5 * far.effective_mass * rebound_speed**2],
+                potential=[far.net_weight * gap],
+                elastic=[0.0],
+                drag_dissipated=[drag],
+            )
+        return contact, exit_state
+
+    def _film_collision(self, gap: float, speed: float):
+        """The immersed EHD collision from the hand-over at ``gap`` (m, the contact's layer
+        thickness x0) and approach ``speed`` (m/s, its V0), with the sphere's effective mass;
+        returns the collision result (scaled) and its SI scales."""
+        far, inputs = self.far, self.far.inputs
         physical = PhysicalCollision(
             radius=inputs.radius,
             sphere=inputs.sphere,
@@ -680,16 +727,21 @@ class _Bounce:
             result = collide(physical, options=self.options, compliance=solids)
         else:
             result = collide(physical, model=self.model, nodes=self.nodes, options=self.options)
-        normal, scales, params = result.normal, physical.scales(), result.params
-        hist = normal.history
-        energy_unit = far.effective_mass * speed**2 / params.St
-        end = normal.contact_time
+        return result, physical.scales()
+
+    def _record_contact(self, normal, start, scales, energy_unit) -> dict:
+        """Append the contact's samples (SI) to the trajectory, from the hand-over ``start`` =
+        (t0 [s], x0 [m], V0 [m/s], drag work so far [J]) to the exit or the stop, the exit
+        interpolated between the last two steps; returns the scaled gap, velocity, dissipated
+        and elastic energy there (energies by ``energy_unit`` = m V0^2 / St, in J)."""
+        far, hist, end = self.far, normal.history, normal.contact_time
+        t0, gap, speed, drag = start
         names = ("gap", "velocity", "dissipated", "elastic")
         at_end = {name: float(np.interp(end, hist.time, getattr(hist, name))) for name in names}
         shown = hist.time <= end
         times = hist.time[shown]
         samples = {name: getattr(hist, name)[shown] for name in names}
-        if normal.rebound:  # the exit, interpolated between the last two steps
+        if normal.rebound:
             times = np.append(times, end)
             samples = {name: np.append(samples[name], at_end[name]) for name in names}
         self._append(
@@ -704,43 +756,7 @@ class _Bounce:
             drag_dissipated=np.full(len(times), drag),
             film_dissipated=self.film_dissipated + samples["dissipated"] * energy_unit,
         )
-        exit_speed = normal.exit_velocity * speed
-        rebound_speed = inputs.e_dry * exit_speed
-        film_dissipated = at_end["dissipated"] * energy_unit
-        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * far.effective_mass * exit_speed**2
-        exit_loss += at_end["elastic"] * energy_unit
-        self.film_dissipated += film_dissipated
-        self.exit_loss += exit_loss
-        impact = float(np.max(np.abs(leg.velocity)))
-        contact = Contact(
-            impact_speed=impact,
-            St=inputs.stokes_number(impact),
-            handover_gap=gap,
-            handover_speed=speed,
-            contact_St=params.St,
-            eps=params.eps,
-            p_cav=cavitation.suction_limit_output(params.p_cav),
-            e=rebound_speed / impact,
-            **self._jumps(hist, normal, scales),
-            **self._omitted(hist, end, scales, speed),
-            film_dissipated=film_dissipated,
-            exit_loss=exit_loss,
-            film=outputs.in_si_where_possible(result),
-        )
-        self.contacts.append(contact)
-        exit_state = (t0 + end * scales.time, gap, rebound_speed, drag)
-        if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
-            self._append(
-                time=[exit_state[0]],
-                gap=[gap],
-                velocity=[rebound_speed],
-                phase=["flight"],
-                kinetic=[0.5 * far.effective_mass * rebound_speed**2],
-                potential=[far.net_weight * gap],
-                elastic=[0.0],
-                drag_dissipated=[drag],
-            )
-        return contact, exit_state
+        return at_end
 
     def _jumps(self, hist, normal, scales) -> dict:
         """Relative force jumps flight -> film at entry (X <= SETTLED_FILM) and before exit."""

@@ -43,10 +43,11 @@ import numpy as np
 from scipy.integrate import solve_ivp, trapezoid
 from scipy.optimize import brentq
 
-from ..collision import DEFAULT_NODES, collide, film_radii
+from ..collision import collide, film_radii
 from ..dem.closedform import legendre
 from ..film import cavitation
 from ..inputs import checks
+from ..inputs.config import DEFAULT_NODES, Numerics, RunConfig
 from ..inputs.presets import Liquid, Material, body
 from ..inputs.scales import (
     ATMOSPHERE,
@@ -668,12 +669,13 @@ class _Bounce:
             sphere_mass=far.effective_mass,
             cavitation=inputs.cavitation,
         )
+        numerics = Numerics(nodes=self.nodes, integrator=self.options)
         if self.model == "rigid":
             params = physical.dimensionless()
             solids = RigidSolids(film_radii(params, self.nodes))
-            result = collide(physical, options=self.options, compliance=solids)
+            result = collide(physical, RunConfig(numerics=numerics), compliance=solids)
         else:
-            result = collide(physical, model=self.model, nodes=self.nodes, options=self.options)
+            result = collide(physical, RunConfig(model=self.model, numerics=numerics))
         normal, scales, params = result.normal, physical.scales(), result.params
         hist = normal.history
         energy_unit = far.effective_mass * speed**2 / params.St

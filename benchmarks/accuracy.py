@@ -39,6 +39,7 @@ from ehdfem import (  # noqa: E402
 )
 from ehdfem.collision import DEFAULT_NODES, elasticity, film_extent, film_radii  # noqa: E402
 from ehdfem.film.reynolds import radial_grid  # noqa: E402
+from ehdfem.inputs.config import Numerics, RunConfig
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
 from ehdfem.study import sweep as study  # noqa: E402
 from ehdfem.study.sweep import ResultTable, _write_atomic  # noqa: E402
@@ -80,7 +81,15 @@ def parameters(layer, St, eps, options, model):
     base = dict(eps=eps, layer=layer, angle=30.0, delta=0.01, **options)
     if St == "near":  # St_c with the fixed OLD numerics, so the case does not move with defaults
         head_on = CollisionParameters(St=1.0, **{**base, "angle": 0.0})
-        St = 1.2 * critical_stokes(head_on, (1.0, 200.0), 1e-3, options=OLD, model=model)["St_c"]
+        St = (
+            1.2
+            * critical_stokes(
+                head_on,
+                (1.0, 200.0),
+                1e-3,
+                RunConfig(model=model, numerics=Numerics(integrator=OLD)),
+            )["St_c"]
+        )
     return CollisionParameters(St=St, **base)
 
 
@@ -102,10 +111,16 @@ def timed(params, model, nodes, options, repeats=1, radii=None):
     for _ in range(repeats):
         start = time.perf_counter()
         if radii is None:
-            result = collide(params, model=model, nodes=nodes, options=options)
+            result = collide(
+                params, RunConfig(model=model, numerics=Numerics(nodes=nodes, integrator=options))
+            )
         else:
-            compliance = elasticity(params, radii, model)
-            result = collide(params, model=model, options=options, compliance=compliance)
+            compliance = elasticity(params, radii, RunConfig(model=model))
+            result = collide(
+                params,
+                RunConfig(model=model, numerics=Numerics(integrator=options)),
+                compliance=compliance,
+            )
         seconds.append(time.perf_counter() - start)
     tried = result.normal.steps + result.normal.rejected_steps
     return result.summary(), min(seconds), tried

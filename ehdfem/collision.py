@@ -66,6 +66,7 @@ def elasticity(
     config: RunConfig | None = None,
     physical: PhysicalCollision | None = None,
     materials=None,
+    comm=None,
 ) -> Compliance:
     """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
     half-spaces, or FE solids (:class:`ehdfem.solids.fe.solids.FESolids`) built for params.delta
@@ -75,7 +76,7 @@ def elasticity(
     half-space's pressure kernel only sees theta; the FE solids and the shear traction also
     see the moduli ratio and the nu's; a coating's modulus is the wall's times its stiffness).
     The squeeze-shear traction is applied when params.shear_traction says so (default: FE
-    solids only)."""
+    solids only). ``comm``: the FE solids' MPI communicator (default COMM_WORLD)."""
     config = RunConfig() if config is None else config
     sphere, wall = _materials(physical) if materials is None else materials
     shear = params.shear_traction
@@ -88,7 +89,13 @@ def elasticity(
 
     lower = config.lower
     fe = FESolids(
-        params.delta, radii, sphere=sphere, wall=wall, lower=lower.kind, **lower.solids(wall[0])
+        params.delta,
+        radii,
+        sphere=sphere,
+        wall=wall,
+        lower=lower.kind,
+        comm=comm,
+        **lower.solids(wall[0]),
     )
     return fe.compliance(params.eps, shear=shear)
 

@@ -12,6 +12,7 @@ import pytest
 
 from ehdfem.cli.main import main
 from ehdfem.inputs.checks import InputError
+from ehdfem.inputs.config import RunConfig
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
@@ -130,7 +131,9 @@ def test_field_instants_include_requested_times():
     from ehdfem.inputs.scales import CollisionParameters
     from ehdfem.outputs.fields import field_snapshots
 
-    normal = collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), nodes=60).normal
+    normal = collide(
+        CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), RunConfig.from_settings(nodes=60)
+    ).normal
     hist = normal.history
     t = 0.5 * (hist.time[10] + hist.time[11])
     snapshots = field_snapshots(normal, [t])

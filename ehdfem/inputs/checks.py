@@ -59,9 +59,7 @@ def integer(name: str, value, *, lower=None, upper=None) -> int:
 def choice(name: str, value, allowed):
     """One of the strings in ``allowed``."""
     if value not in allowed:
-        raise InputError(
-            f"{name} = {value!r} is not one of {', '.join(map(repr, allowed))}", name
-        )
+        raise InputError(f"{name} = {value!r} is not one of {', '.join(map(repr, allowed))}", name)
     return value
 
 

@@ -123,7 +123,8 @@ class RunConfig:
     solids, and the numerics. See the module docstring for the flat settings."""
 
     model: str = setting(
-        "halfspace", help="elasticity of the solids: half-space kernel or FE solids",
+        "halfspace",
+        help="elasticity of the solids: half-space kernel or FE solids",
         choices=MODELS,
     )
     lower: Wall | CoatedWall | LowerSphere = field(default_factory=Wall)
@@ -196,8 +197,12 @@ class RunConfig:
             part: {f.name: values.pop(f.name) for f in described(part) if f.name in values}
             for part in (LOWER_BODIES[kind], Numerics, IntegratorOptions)
         }
-        numerics = Numerics(**parts[Numerics], integrator=IntegratorOptions(**parts[IntegratorOptions]))
-        return cls(**values, lower=LOWER_BODIES[kind](**parts[LOWER_BODIES[kind]]), numerics=numerics)
+        numerics = Numerics(
+            **parts[Numerics], integrator=IntegratorOptions(**parts[IntegratorOptions])
+        )
+        return cls(
+            **values, lower=LOWER_BODIES[kind](**parts[LOWER_BODIES[kind]]), numerics=numerics
+        )
 
 
 def setting_classes() -> tuple:
@@ -231,16 +236,16 @@ def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, 
 def _physical(values: dict) -> PhysicalCollision:
     """A PhysicalCollision from its JSON dict (materials and liquid as dicts, SI)."""
     bodies = {"sphere": Material, "wall": Material, "liquid": Liquid}
-    return PhysicalCollision(
-        **{k: bodies[k](**v) if k in bodies else v for k, v in values.items()}
-    )
+    return PhysicalCollision(**{k: bodies[k](**v) if k in bodies else v for k, v in values.items()})
 
 
 def _earlier_run(inputs: dict, collision) -> dict:
     """The flat settings of the earlier JSON format: model, nodes, rtol, tangential,
     deformation and FESolids' ``solids`` (coating as (E, nu), E in the wall's unit: its
     Young's modulus for physical inputs, else 1) at the top level of ``inputs``."""
-    run = {k: inputs[k] for k in ("model", "nodes", "rtol", "tangential", "deformation") if k in inputs}
+    run = {
+        k: inputs[k] for k in ("model", "nodes", "rtol", "tangential", "deformation") if k in inputs
+    }
     solids = inputs.get("solids") or {}
     if solids.get("lower", "wall") != "wall":
         run["lower"] = solids["lower"]
@@ -253,4 +258,3 @@ def _earlier_run(inputs: dict, collision) -> dict:
         run["coating_stiffness"] = solids["coating"][0] / wall
         run["coating_poisson"] = solids["coating"][1]
     return run
-

@@ -74,8 +74,12 @@ def default_text(f: dataclasses.Field) -> str:
         return f.metadata["default_text"]
     if f.default is dataclasses.MISSING:
         return "required"
-    return "none" if f.default is None else f"{f.default:g}" if _is_float(f.default) else str(
-        f.default
+    return (
+        "none"
+        if f.default is None
+        else f"{f.default:g}"
+        if _is_float(f.default)
+        else str(f.default)
     )
 
 
@@ -104,6 +108,10 @@ def validate(instance) -> None:
         elif base is float:
             lower, upper, lower_open, upper_open = f.metadata["range"]
             checks.number(
-                f.name, value, lower=lower, upper=upper, lower_open=lower_open,
+                f.name,
+                value,
+                lower=lower,
+                upper=upper,
+                lower_open=lower_open,
                 upper_open=upper_open,
             )

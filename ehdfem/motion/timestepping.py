@@ -35,8 +35,11 @@ class IntegratorOptions:
     """
 
     rtol: float = setting(
-        2e-4, help="time-step tolerance: local error per step", unit="relative",
-        lower=1e-10, upper=0.1,
+        2e-4,
+        help="time-step tolerance: local error per step",
+        unit="relative",
+        lower=1e-10,
+        upper=0.1,
     )
     film_control: bool = setting(
         True, help="control the film thickness's local error too", default_text="on"
@@ -46,8 +49,11 @@ class IntegratorOptions:
         1.5, help="largest step growth per step", unit="ratio", lower=1.1, upper=3.0
     )
     newton_tol: float = setting(
-        1e-7, help="Newton increments relative to the solution size", unit="relative",
-        lower=1e-14, upper=1e-3,
+        1e-7,
+        help="Newton increments relative to the solution size",
+        unit="relative",
+        lower=1e-14,
+        upper=1e-3,
     )
     max_newton: int = setting(30, help="most Newton iterations per step", lower=2, upper=100)
     first_step: float = setting(
@@ -55,8 +61,11 @@ class IntegratorOptions:
     )
     max_steps: int = setting(50000, help="most time steps", lower=10)
     max_time: float = setting(
-        1e4, help="give up after this time (sticking by stalling)", unit="by x0/V0",
-        lower=0.0, lower_open=True,
+        1e4,
+        help="give up after this time (sticking by stalling)",
+        unit="by x0/V0",
+        lower=0.0,
+        lower_open=True,
     )
 
     def __post_init__(self):

@@ -64,9 +64,9 @@ from ..film import cavitation
 from ..inputs import checks
 from ..inputs.config import Numerics, RunConfig, setting_names
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from ..inputs.settings import described
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
-from ..inputs.settings import described
 from ..version import __version__
 
 PARAMETERS = tuple(f.name for f in fields(CollisionParameters))

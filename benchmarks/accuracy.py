@@ -42,7 +42,7 @@ from ehdfem.film.reynolds import radial_grid  # noqa: E402
 from ehdfem.inputs.config import Numerics, RunConfig
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
 from ehdfem.study import sweep as study  # noqa: E402
-from ehdfem.study.sweep import ResultTable, _write_atomic  # noqa: E402
+from ehdfem.study.sweep import ResultTable, write_atomic  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 OUTPUTS = tuple(
@@ -190,7 +190,7 @@ def main(stored_only=False):
             continue
         rows.append(row)
         summary = summarise(rows, len(grid))
-        _write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
+        write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
     print_table(summary)
 
 

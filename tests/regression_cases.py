@@ -133,11 +133,11 @@ def cases():
 def run(inputs, keywords):
     """The regression outputs of one case (a dict of floats, None where not defined)."""
     from ehdfem.collision import collide
-    from ehdfem.motion.timestepping import IntegratorOptions
+    from ehdfem.inputs.config import RunConfig
 
-    keywords = dict(keywords)
-    keywords["options"] = IntegratorOptions(**{**BEFORE, **keywords.get("options", {})})
-    summary = collide(inputs, **keywords).summary()
+    settings = {**BEFORE, **keywords}
+    settings.update(settings.pop("options", {}))  # the time-step settings of the case
+    summary = collide(inputs, RunConfig.from_settings(**settings)).summary()
     return {name: summary[name] for name in OUTPUTS}
 
 

@@ -174,7 +174,8 @@ def test_json_to_stdout_is_the_json_alone():
     inputs = result["inputs"]
     assert inputs["parameters"]["St"] == 10 and inputs["parameters"]["angle"] == 30
     assert inputs["parameters"]["p_cav"] == -2 and inputs["physical"] is None
-    assert (inputs["model"], inputs["nodes"], inputs["tangential"]) == ("halfspace", 40, "couette")
+    run = inputs["run"]
+    assert (run["model"], run["nodes"], run["tangential"]) == ("halfspace", 40, "couette")
 
 
 def test_physical_json_records_the_materials_and_the_liquid(capsys):

@@ -27,6 +27,7 @@ def setting(
     upper_open: bool = False,
     flag: str | None = None,
     default_text: str | None = None,
+    checked: bool = True,
 ):
     """A dataclass field with metadata: ``help`` (what it is in the physics), ``unit`` (SI
     unit or scale, e.g. "Pa" or "by x0"), ``choices`` (allowed strings) or the range
@@ -39,13 +40,33 @@ def setting(
         "range": (lower, upper, lower_open, upper_open),
         "flag": flag,
         "default_text": default_text,
+        "checked": checked,
     }
     return dataclasses.field(default=default, metadata=metadata)
 
 
 def described(cls) -> list[dataclasses.Field]:
-    """The fields of the dataclass ``cls`` that carry setting metadata."""
-    return [f for f in dataclasses.fields(cls) if "help" in f.metadata]
+    """The scalar fields (bool, int, float, str, maybe None) of the dataclass ``cls``, with
+    or without setting metadata (a field without shows its name as help: a new field
+    appears on the command line without edits)."""
+    return [f for f in dataclasses.fields(cls) if _scalar(cls, f)]
+
+
+def meta(f: dataclasses.Field, key: str):
+    """The setting metadata ``key`` of field ``f``, or its neutral value when ``f`` has none
+    (help: the field's name in words)."""
+    if "help" in f.metadata:
+        return f.metadata[key]
+    neutral = {"help": f.name.replace("_", " "), "range": (None, None, False, False)}
+    return neutral.get(key)
+
+
+def _scalar(cls, f: dataclasses.Field) -> bool:
+    try:
+        kind(cls, f)
+    except TypeError:
+        return False
+    return True
 
 
 def kind(cls, f: dataclasses.Field) -> type:
@@ -60,9 +81,9 @@ def kind(cls, f: dataclasses.Field) -> type:
 
 def allowed_text(f: dataclasses.Field) -> str:
     """The allowed values of field ``f`` as text: "a | b" or a range "(0, 1]" ("" if free)."""
-    if f.metadata["choices"] is not None:
-        return " | ".join(map(str, f.metadata["choices"]))
-    lower, upper, lower_open, upper_open = f.metadata["range"]
+    if meta(f, "choices") is not None:
+        return " | ".join(map(str, meta(f, "choices")))
+    lower, upper, lower_open, upper_open = meta(f, "range")
     if lower is None and upper is None:
         return ""
     return checks.range_text(lower, upper, lower_open, upper_open)
@@ -91,7 +112,7 @@ def validate(instance) -> None:
     """Check every described field of the dataclass ``instance``: its type, and its choices
     or range (None passes where the annotation allows it)."""
     cls = type(instance)
-    for f in described(cls):
+    for f in (f for f in described(cls) if f.metadata.get("checked")):
         value = getattr(instance, f.name)
         hint = get_type_hints(cls)[f.name]
         if value is None and type(None) in getattr(hint, "__args__", ()):

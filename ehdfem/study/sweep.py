@@ -207,7 +207,7 @@ def point_key(point) -> str:
     return hashlib.sha1(text.encode()).hexdigest()[:16]
 
 
-def _write_atomic(path: Path, text: str) -> None:
+def write_atomic(path: Path, text: str) -> None:
     """Write to a temporary file in the same folder, fsync, then rename over ``path``."""
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     with tmp.open("w") as f:
@@ -291,7 +291,7 @@ def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
     os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
     os.close(fd)
     row = run_point(study, point)
-    _write_atomic(done, json.dumps(row))
+    write_atomic(done, json.dumps(row))
     (claims / key).unlink(missing_ok=True)
     return row
 
@@ -325,7 +325,7 @@ def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
     writer = csv.DictWriter(text, fieldnames=names)
     writer.writeheader()
     writer.writerows(rows)
-    _write_atomic(path, text.getvalue())
+    write_atomic(path, text.getvalue())
     return path
 
 

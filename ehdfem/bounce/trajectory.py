@@ -598,6 +598,7 @@ class _Bounce:
 
     def __init__(self, far: FarField, model, nodes, options, rest_apex):
         self.far, self.model, self.nodes, self.options = far, model, nodes, options
+        self.config = RunConfig(numerics=Numerics(nodes=nodes, integrator=options))  # half-space
         self.rest_apex = rest_apex * far.inputs.diameter
         self.samples = {name: [] for name in TRAJECTORY_COLUMNS}
         self.contacts: list[Contact] = []
@@ -669,13 +670,12 @@ class _Bounce:
             sphere_mass=far.effective_mass,
             cavitation=inputs.cavitation,
         )
-        numerics = Numerics(nodes=self.nodes, integrator=self.options)
         if self.model == "rigid":
             params = physical.dimensionless()
             solids = RigidSolids(film_radii(params, self.nodes))
-            result = collide(physical, RunConfig(numerics=numerics), compliance=solids)
+            result = collide(physical, self.config, compliance=solids)
         else:
-            result = collide(physical, RunConfig(model=self.model, numerics=numerics))
+            result = collide(physical, self.config)
         normal, scales, params = result.normal, physical.scales(), result.params
         hist = normal.history
         energy_unit = far.effective_mass * speed**2 / params.St

@@ -38,9 +38,13 @@ from ehdfem import (  # noqa: E402
     critical_stokes,
 )
 from ehdfem.collision import DEFAULT_NODES, elasticity, film_extent, film_radii  # noqa: E402
+from ehdfem.config import Numerics, RunConfig
 from ehdfem.film.reynolds import radial_grid  # noqa: E402
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
-from ehdfem.study.sweep import ResultTable, _write_atomic  # noqa: E402
+from ehdfem.study.sweep import (  # noqa: E402
+    ResultTable,
+    write_atomic,  # noqa: E402
+)
 
 RESULTS = Path(__file__).resolve().parent / "results"
 OUTPUTS = (  # the measured outputs of ehdfem.outputs.registry (not flags, counts or checks)
@@ -86,7 +90,15 @@ def parameters(layer, St, eps, options, model):
     base = dict(eps=eps, layer=layer, angle=30.0, delta=0.01, **options)
     if St == "near":  # St_c with the fixed OLD numerics, so the case does not move with defaults
         head_on = CollisionParameters(St=1.0, **{**base, "angle": 0.0})
-        St = 1.2 * critical_stokes(head_on, (1.0, 200.0), 1e-3, options=OLD, model=model)["St_c"]
+        St = (
+            1.2
+            * critical_stokes(
+                head_on,
+                (1.0, 200.0),
+                1e-3,
+                RunConfig(model=model, numerics=Numerics(integrator=OLD)),
+            )["St_c"]
+        )
     return CollisionParameters(St=St, **base)
 
 
@@ -108,10 +120,16 @@ def timed(params, model, nodes, options, repeats=1, radii=None):
     for _ in range(repeats):
         start = time.perf_counter()
         if radii is None:
-            result = collide(params, model=model, nodes=nodes, options=options)
+            result = collide(
+                params, RunConfig(model=model, numerics=Numerics(nodes=nodes, integrator=options))
+            )
         else:
-            compliance = elasticity(params, radii, model)
-            result = collide(params, model=model, options=options, compliance=compliance)
+            compliance = elasticity(params, radii, RunConfig(model=model))
+            result = collide(
+                params,
+                RunConfig(model=model, numerics=Numerics(integrator=options)),
+                compliance=compliance,
+            )
         seconds.append(time.perf_counter() - start)
     tried = result.normal.steps + result.normal.rejected_steps
     return result.summary(), min(seconds), tried
@@ -181,7 +199,7 @@ def main(stored_only=False):
             continue
         rows.append(row)
         summary = summarise(rows, len(grid))
-        _write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
+        write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
     print_table(summary)
 
 

@@ -16,6 +16,7 @@ import time  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 from ehdfem.collision import DEFAULT_NODES, collide, film_radii  # noqa: E402
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
 from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
 
@@ -34,7 +35,7 @@ def measure(params, nodes, repeats):
         start = time.perf_counter()
         HalfSpaceCompliance(film_radii(params, nodes), params.eps)
         kernel = time.perf_counter() - start
-        result = collide(params, nodes=nodes, refinements=0)
+        result = collide(params, RunConfig.from_settings(nodes=nodes, refinements=0))
         total = time.perf_counter() - start
         if best is None or total < best["seconds"]:
             best = {

@@ -10,7 +10,9 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
   :func:`collide` for a whole sweep at fixed geometry and materials;
 - :func:`solve_normal`, :func:`solve_tangential`: the two motions on their own;
 - :func:`critical_stokes`, :func:`critical_speed`: the rebound threshold;
-- :class:`IntegratorOptions`: time-step tolerance and limits;
+- :class:`RunConfig`: how a collision is computed (model, lower body, tangential film model,
+  numerics; :mod:`ehdfem.config`), and :class:`IntegratorOptions`, its time-step
+  tolerance and limits;
 - :func:`bounce` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a liquid and
   bouncing until it rests, each contact an immersed EHD collision (:class:`BounceResult`). The
   function shadows the module's name: import the module's other names with
@@ -19,6 +21,7 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
 
 from .bounce.trajectory import BounceInputs, BounceResult, bounce
 from .collision import CollisionResult, collide, elasticity, film_radii
+from .config import RunConfig
 from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from .motion.normal import NormalResult, solve_normal
 from .motion.timestepping import IntegratorOptions
@@ -34,6 +37,7 @@ __all__ = [
     "IntegratorOptions",
     "NormalResult",
     "PhysicalCollision",
+    "RunConfig",
     "TangentialResult",
     "__version__",
     "bounce",

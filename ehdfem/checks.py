@@ -12,7 +12,12 @@ from numbers import Real
 
 
 class InputError(ValueError):
-    """A parameter is missing, of the wrong type, not finite or out of its range."""
+    """A parameter is missing, of the wrong type, not finite or out of its range; ``name``:
+    the parameter's name when the error is about one (the command line shows its flag)."""
+
+    def __init__(self, message: str, name: str | None = None):
+        super().__init__(message)
+        self.name = name
 
 
 def number(name: str, value, *, lower=None, upper=None, lower_open=False, upper_open=False):
@@ -22,15 +27,15 @@ def number(name: str, value, *, lower=None, upper=None, lower_open=False, upper_
     error message names ``name`` and states the allowed range.
     """
     if isinstance(value, bool) or not isinstance(value, Real):
-        raise InputError(f"{name} must be a real number, got {value!r}")
+        raise InputError(f"{name} must be a real number, got {value!r}", name)
     value = float(value)
     if not math.isfinite(value):
-        raise InputError(f"{name} must be finite, got {value!r}")
+        raise InputError(f"{name} must be finite, got {value!r}", name)
     low_ok = lower is None or (value > lower if lower_open else value >= lower)
     up_ok = upper is None or (value < upper if upper_open else value <= upper)
     if not (low_ok and up_ok):
         allowed = _range(lower, upper, lower_open, upper_open)
-        raise InputError(f"{name} = {value!r} is outside the allowed range {allowed}")
+        raise InputError(f"{name} = {value!r} is outside the allowed range {allowed}", name)
     return value
 
 
@@ -42,10 +47,11 @@ def positive(name: str, value) -> float:
 def integer(name: str, value, *, lower=None, upper=None) -> int:
     """An integer in [lower, upper]."""
     if isinstance(value, bool) or not isinstance(value, int):
-        raise InputError(f"{name} must be an integer, got {value!r}")
+        raise InputError(f"{name} must be an integer, got {value!r}", name)
     if (lower is not None and value < lower) or (upper is not None and value > upper):
         raise InputError(
-            f"{name} = {value!r} is outside the allowed range {_range(lower, upper, False, False)}"
+            f"{name} = {value!r} is outside the allowed range {_range(lower, upper, False, False)}",
+            name,
         )
     return value
 
@@ -53,7 +59,7 @@ def integer(name: str, value, *, lower=None, upper=None) -> int:
 def choice(name: str, value, allowed):
     """One of the strings in ``allowed``."""
     if value not in allowed:
-        raise InputError(f"{name} = {value!r} is not one of {', '.join(map(repr, allowed))}")
+        raise InputError(f"{name} = {value!r} is not one of {', '.join(map(repr, allowed))}", name)
     return value
 
 

@@ -15,11 +15,11 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from . import checks
+from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, RunConfig
 from .film import cavitation
 from .film.reynolds import contact_grid
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
-from .motion.timestepping import IntegratorOptions
 from .outputs import registry as outputs
 from .solids.compliance import Compliance, ModeOneCompliance
 from .solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
@@ -32,8 +32,6 @@ from .tangential.superposition import (
 )
 from .version import __version__
 
-MODELS = ("halfspace", "fem")
-DEFAULT_NODES = 240
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
@@ -64,49 +62,51 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
 
 
 def elasticity(
-    params: CollisionParameters, radii, model="halfspace", physical=None, solids=None
+    params: CollisionParameters,
+    radii,
+    config: RunConfig | None = None,
+    physical: PhysicalCollision | None = None,
+    materials=None,
+    comm=None,
 ) -> Compliance:
     """The compliance at the film nodes ``radii`` (by sqrt(a x0)) for params.eps: elastic
-    half-spaces, or FE solids (:class:`ehdfem.solids.fe.solids.FESolids`) built for params.delta.
-    Materials, as (Young's modulus, Poisson ratio): ``solids["sphere"]`` and ``solids["wall"]``
-    if given, else those of the physical inputs, else identical solids with Poisson ratio 0.3
-    (the half-space's pressure kernel only sees theta; the FE solids and the shear traction
-    also see the moduli ratio and the nu's). The squeeze-shear traction is applied when
-    params.shear_traction says so (default: FE solids only). ``solids``: further FESolids
-    arguments (lower body, coating, radius ratio)."""
-    solids = dict(solids or {})
-    sphere, wall = _materials(physical, solids)
-    for name in ("sphere", "wall"):
-        solids.pop(name, None)
+    half-spaces, or FE solids (:class:`ehdfem.solids.fe.solids.FESolids`) built for params.delta
+    with the lower body of ``config`` (default :class:`ehdfem.config.RunConfig`).
+    Materials, as (Young's modulus, Poisson ratio) of (sphere, wall): ``materials`` if given,
+    else those of the physical inputs, else identical solids with Poisson ratio 0.3 (the
+    half-space's pressure kernel only sees theta; the FE solids and the shear traction also
+    see the moduli ratio and the nu's; a coating's modulus is the wall's times its stiffness).
+    The squeeze-shear traction is applied when params.shear_traction says so (default: FE
+    solids only). ``comm``: the FE solids' MPI communicator (default COMM_WORLD)."""
+    config = RunConfig() if config is None else config
+    sphere, wall = _materials(physical) if materials is None else materials
     shear = params.shear_traction
-    shear = model == "fem" if shear is None else shear
-    if model == "halfspace":
+    shear = config.model == "fem" if shear is None else shear
+    if config.model == "halfspace":
         return HalfSpaceCompliance(
             radii, params.eps, (params.delta, (sphere, wall)) if shear else None, (sphere, wall)
         )
     from .solids.fe.solids import FESolids
 
-    fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, **solids)
+    lower = config.lower
+    fe = FESolids(
+        params.delta,
+        radii,
+        sphere=sphere,
+        wall=wall,
+        lower=lower.kind,
+        comm=comm,
+        **lower.solids(wall[0]),
+    )
     return fe.compliance(params.eps, shear=shear)
 
 
-_LOWER_SPHERE_SLIDING = (
-    "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower = "
-    "'sphere' is not supported: the sliding film's force and torque are derived for a sphere "
-    "on a wall); use tangential = 'couette'"
-)
-
-
-def _materials(physical, solids):
-    """(sphere, wall) as (Young's modulus, Poisson ratio): from ``solids`` if given, else
-    from the physical inputs, else identical solids."""
-    sphere, wall = IDENTICAL_SOLIDS
-    if physical is not None:
-        sphere, wall = (
-            (m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall)
-        )
-    solids = solids or {}
-    return solids.get("sphere", sphere), solids.get("wall", wall)
+def _materials(physical):
+    """(sphere, wall) as (Young's modulus, Poisson ratio): those of the physical inputs, else
+    identical solids."""
+    if physical is None:
+        return IDENTICAL_SOLIDS
+    return tuple((m.young_modulus, m.poisson_ratio) for m in (physical.sphere, physical.wall))
 
 
 def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, physical=None):
@@ -121,11 +121,11 @@ def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, phy
         from .solids.fe.mode_one import FEModeOne
 
         if compliance.solids.lower == "sphere":
-            raise checks.InputError(_LOWER_SPHERE_SLIDING)
+            raise checks.InputError(LOWER_SPHERE_SLIDING)
         return FEModeOne(compliance.solids, params.eps)
     from .solids.halfspace_mode_one import HalfSpaceModeOne
 
-    materials = getattr(compliance, "materials", None) or _materials(physical, None)
+    materials = getattr(compliance, "materials", None) or _materials(physical)
     return HalfSpaceModeOne(compliance.radii, params.eps, params.delta, materials)
 
 
@@ -147,14 +147,14 @@ class CollisionResult:
     physical: PhysicalCollision | None = None
     compliance: Compliance | None = None
     superposition: SuperpositionValidity | None = None
+    config: RunConfig | None = None
 
-    def summary(self, run: dict | None = None) -> dict:
+    def summary(self) -> dict:
         """A JSON-ready dict: the ehdfem version and the collision's groups and models; the
         outputs of :mod:`ehdfem.outputs.registry` (dimensionless, DSH scales), with the reasons
         of those that do not apply under "not_applicable" and, for physical inputs, the SI
         values under "si"; the time-step control and the tangential model used; and under
-        "inputs" everything needed to run the collision again (see :meth:`inputs`; ``run``: the
-        options of the :func:`collide` call, e.g. model, nodes, rtol, tangential, solids)."""
+        "inputs" everything needed to run the collision again (see :meth:`inputs`)."""
         n = self.normal
         p = self.params
         out = {
@@ -185,57 +185,45 @@ class CollisionResult:
         out["not_applicable"] = outputs.not_applicable(self)
         if self.physical is not None:
             out["si"] = outputs.si_values(self)
-        out["inputs"] = self.inputs(run)
+        out["inputs"] = self.inputs()
         return out
 
-    def inputs(self, run: dict | None = None) -> dict:
-        """The inputs of this collision as a JSON-ready dict: "parameters", every
+    def inputs(self) -> dict:
+        """The inputs of this collision as a JSON-ready dict, which
+        :func:`ehdfem.config.read_inputs` reads back: "parameters", every
         CollisionParameters field (dimensionless, DSH scales; P_cav None for no limit);
         "physical", for physical inputs, every PhysicalCollision field (SI) with the
-        materials' and the liquid's values; then the options of the call, ``run``, over those
-        the result knows (model, rtol, tangential model of an oblique impact, film nodes used)."""
+        materials' and the liquid's values; "run", the flat settings of the run configuration
+        (:meth:`ehdfem.config.RunConfig.settings`)."""
         parameters = asdict(self.params)
         parameters["p_cav"] = cavitation.suction_limit_output(self.params.p_cav)
-        known = {"model": self.model, "rtol": self.normal.rtol, "nodes": len(self.normal.radii)}
-        if self.tangential is not None:
-            known["tangential"] = self.tangential.model
+        config = RunConfig() if self.config is None else self.config
         return {
             "parameters": parameters,
             "physical": None if self.physical is None else asdict(self.physical),
-            **known,
-            **(run or {}),
+            "run": config.settings(),
         }
 
 
 def collide(
     params: CollisionParameters | PhysicalCollision,
-    model: str = "halfspace",
-    nodes: int = DEFAULT_NODES,
-    options: IntegratorOptions | None = None,
-    refinements: int = 2,
-    tangential: str = "couette",
-    solids: dict | None = None,
+    config: RunConfig | None = None,
     compliance: Compliance | None = None,
-    deformation: str = "gap",
     mode_one: ModeOneCompliance | None = None,
 ) -> CollisionResult:
-    """Simulate one collision with dimensionless (or physical) inputs; see the module docstring.
+    """Simulate one collision with dimensionless (or physical) inputs, computed as ``config``
+    says (:class:`ehdfem.config.RunConfig`; default: half-space solids, Couette
+    tangential film, 240 film nodes); see the module docstring.
 
-    ``nodes``: film nodes. If the film closes on that grid (hard impacts of stiff solids, where
-    the rim of the flattened contact gets thinner than the grid resolves), the collision is
-    run again on a grid with twice the nodes, at most ``refinements`` times; the nodes used are
-    reported in the result (``film_nodes``). ``tangential``: the film model of the
-    tangential motion, "couette" or "lubrication" (:mod:`ehdfem.tangential.motion`); it is solved
-    when the impact is oblique (angle > 0). ``deformation``: the mode-1 deformation of the
-    lubrication model's solids, "full", "gap" or "none"
-    (:data:`ehdfem.tangential.motion.DEFORMATIONS`; "none" is exact for rigid solids only).
-    ``solids``: for the FE model, arguments of :class:`ehdfem.solids.fe.solids.FESolids` (e.g.
-    ``lower="coated"``, ``coating=(E, nu)``,
-    ``coating_thickness``, or ``lower="sphere"`` with ``radius_ratio``). ``compliance``: an
-    elasticity built before (e.g. by :func:`elasticity` for the widest collision of a sweep,
-    whose grid then serves every point), used at params.eps on its own grid, without
-    refinement; ``model``, ``nodes`` and ``solids`` are then not used. ``mode_one``: the
-    solids' mode-1 compliance (:class:`ehdfem.solids.compliance.ModeOneCompliance`) built before by
+    If the film closes on the grid of ``config.numerics.nodes`` (hard impacts of stiff
+    solids, where the rim of the flattened contact gets thinner than the grid resolves), the
+    collision is run again on a grid with twice the nodes, at most ``numerics.refinements``
+    times; the nodes used are reported in the result (``film_nodes``). The tangential motion
+    is solved when the impact is oblique (angle > 0). ``compliance``: an elasticity built
+    before (e.g. by :func:`elasticity` for the widest collision of a sweep, whose grid then
+    serves every point), used at params.eps on its own grid, without refinement; the model,
+    lower body and nodes of ``config`` are then not used. ``mode_one``: the solids' mode-1
+    compliance (:class:`ehdfem.solids.compliance.ModeOneCompliance`) built before by
     :func:`mode_one_elasticity` for ``compliance``, at any eps; only with ``compliance`` (the
     same elasticity model on the same film nodes). It is used at params.eps (``with_eps``) by
     the lubrication model with deformation "gap" or "full", where it maps the mode-1 film loads
@@ -251,26 +239,20 @@ def collide(
         raise checks.InputError(
             f"params must be CollisionParameters or PhysicalCollision, got {params!r}"
         )
-    checks.choice("model", model, MODELS)
-    checks.choice("tangential", tangential, TANGENTIAL_MODELS)
-    checks.choice("deformation", deformation, DEFORMATIONS)
-    if tangential == "lubrication" and (solids or {}).get("lower") == "sphere":
-        raise checks.InputError(_LOWER_SPHERE_SLIDING)
-    sliding = (tangential, deformation)
-    nodes = checks.integer("nodes", nodes, lower=20, upper=5000)
-    checks.integer("refinements", refinements, lower=0, upper=4)
+    config = RunConfig() if config is None else config
+    if not isinstance(config, RunConfig):
+        raise checks.InputError(f"config must be a RunConfig, got {config!r}", "config")
     mode_one = _mode_one_at(mode_one, compliance, params.eps)
     if compliance is not None:
-        return _collide_on(
-            params, compliance.with_eps(params.eps), options, sliding, physical, mode_one
-        )
-    for attempt in range(refinements + 1):
-        radii = film_radii(params, nodes * 2**attempt)
+        return _collide_on(params, compliance.with_eps(params.eps), config, physical, mode_one)
+    numerics = config.numerics
+    for attempt in range(numerics.refinements + 1):
+        radii = film_radii(params, numerics.nodes * 2**attempt)
         try:
-            compliance = elasticity(params, radii, model, physical, solids)
-            return _collide_on(params, compliance, options, sliding, physical)
+            solids = elasticity(params, radii, config, physical)
+            return _collide_on(params, solids, config, physical)
         except FilmClosedError:
-            if attempt == refinements:
+            if attempt == numerics.refinements:
                 raise
 
 
@@ -299,15 +281,18 @@ def _mode_one_at(mode_one, compliance, eps):
     return mode_one.with_eps(eps)
 
 
-def _collide_on(params, compliance, options, sliding, physical, given_mode_one=None):
-    """The normal and (oblique impacts) tangential motion on a given compliance; ``sliding``:
-    (tangential model, mode-1 deformation); ``given_mode_one``: a mode-1 compliance at
-    params.eps that is not closed here (None: built here when needed, and closed)."""
-    normal = solve_normal(params, compliance, options)
-    result = CollisionResult(params, compliance.model, normal, None, physical, compliance)
+def _collide_on(params, compliance, config, physical, given_mode_one=None):
+    """The normal and (oblique impacts) tangential motion on a given compliance, with the
+    tangential model, mode-1 deformation and time integration of ``config``;
+    ``given_mode_one``: a mode-1 compliance at params.eps that is not closed here (None: built
+    here when needed, and closed)."""
+    normal = solve_normal(params, compliance, config.options)
+    result = CollisionResult(
+        params, compliance.model, normal, None, physical, compliance, None, config
+    )
     if params.tangential_speed == 0:
         return result
-    return _slide(result, sliding, given_mode_one)
+    return _slide(result, (config.tangential, config.deformation), given_mode_one)
 
 
 def with_tangential(

@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
 from ehdfem.study.sweep import study_script  # noqa: E402
 
@@ -37,14 +38,16 @@ CASES = {
 }
 
 
-def solids(spec, delta):
+def lower_body(spec, delta):
+    """The run settings of a case's lower body (the coating's modulus by the wall's)."""
     if spec is None:
-        return None
+        return {}
     if spec[0] == "sphere":
         return {"lower": "sphere", "radius_ratio": spec[1]}
     return {
         "lower": "coated",
-        "coating": (spec[1], 0.3),
+        "coating_stiffness": spec[1],
+        "coating_poisson": 0.3,
         "coating_thickness": spec[2] * np.sqrt(delta),
     }
 
@@ -63,7 +66,10 @@ def run():
             shear_traction=False,
         )
         for name, (model, spec) in CASES.items():
-            r = collide(params, model=model, nodes=120, solids=solids(spec, delta))
+            r = collide(
+                params,
+                RunConfig.from_settings(model=model, nodes=120, **lower_body(spec, delta)),
+            )
             rows.append(
                 {
                     "delta": delta,

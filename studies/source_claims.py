@@ -49,6 +49,7 @@ from ehdfem.collision import (  # noqa: E402
     mode_one_elasticity,
     with_tangential,
 )
+from ehdfem.config import RunConfig
 from ehdfem.inputs.presets import MATERIALS  # noqa: E402
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets  # noqa: E402
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
@@ -208,8 +209,8 @@ class Compliances:
         radii = film_radii(params, NODES)
         self.built = {}
         for model in ("halfspace", "fem"):
-            solids = {"comm": MPI.COMM_SELF} if model == "fem" else None
-            compliance = elasticity(params, radii, model, physical, solids)
+            config = RunConfig(model=model)
+            compliance = elasticity(params, radii, config, physical, comm=MPI.COMM_SELF)
             self.built[model] = (compliance, mode_one_elasticity(params, compliance, physical))
 
     def close(self):

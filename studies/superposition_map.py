@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
 from ehdfem.study.sweep import study_script  # noqa: E402
 from ehdfem.tangential.superposition import SuperpositionWarning, check_superposition  # noqa: E402
@@ -41,7 +42,9 @@ def run():
                 )
                 with warnings.catch_warnings():
                     warnings.simplefilter("ignore", SuperpositionWarning)
-                    result = collide(params, nodes=120, tangential="lubrication")
+                    result = collide(
+                        params, RunConfig.from_settings(nodes=120, tangential="lubrication")
+                    )
                 v = result.superposition
                 case = {
                     "eps": eps,

@@ -31,6 +31,7 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity  # noqa: E402
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
 from ehdfem.solids.fe.solids import FECompliance  # noqa: E402
@@ -66,9 +67,9 @@ def solids(eps):
     the closers of what holds a factorisation."""
     widest = parameters(eps, STOKES[-1], True)
     radii = film_radii(widest, NODES)
-    half_space = elasticity(widest, radii, "halfspace")
+    half_space = elasticity(widest, radii)
     start = time.perf_counter()
-    full = elasticity(parameters(eps, STOKES[-1], False), radii, "fem")
+    full = elasticity(parameters(eps, STOKES[-1], False), radii, RunConfig(model="fem"))
     # the same solids' opening under the pressure alone (the shear traction's columns dropped)
     paraboloid = FECompliance(full.solids, full.unit_matrix, eps, None, full.unit_surface_sum)
     fe_mode_one = mode_one_elasticity(widest, full)
@@ -90,7 +91,12 @@ def collision_row(eps, St, label, compliance, mode_one):
     row = {"eps": eps, "St": float(St), "model": label}
     start = time.perf_counter()
     try:
-        r = collide(params, tangential=tangential, compliance=compliance, mode_one=mode_one)
+        r = collide(
+            params,
+            RunConfig.from_settings(tangential=tangential),
+            compliance=compliance,
+            mode_one=mode_one,
+        )
     except NormalSolverError as err:
         print(f"eps={eps:g} St={St:8.3f} {label:15s} failed: {err}", flush=True)
         return {**row, "status": f"failed: {type(err).__name__}"}

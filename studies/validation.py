@@ -20,6 +20,7 @@ import numpy as np  # noqa: E402
 import source_claims  # noqa: E402  (studies/, the directory of this script)
 
 from ehdfem.collision import collide, elasticity, film_radii  # noqa: E402
+from ehdfem.config import RunConfig
 from ehdfem.dem.closedform import davis_rager_good, fit_normal, fit_power_law, legendre  # noqa: E402
 from ehdfem.inputs import literature as lit  # noqa: E402
 from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
@@ -91,7 +92,10 @@ def thin_cases(table):
                 table,
                 f"St_c {model} {eps}",
                 lambda model=model, eps=eps: critical_stokes(
-                    CollisionParameters(St=1.0, eps=eps, **THIN), (2.0, 20.0), 3e-3, model=model
+                    CollisionParameters(St=1.0, eps=eps, **THIN),
+                    (2.0, 20.0),
+                    3e-3,
+                    RunConfig(model=model),
                 ),
             )["St_c"]
             for eps in (EPS if model == "halfspace" else FE_EPS)
@@ -101,7 +105,7 @@ def thin_cases(table):
 
     def restitution(model):
         widest = CollisionParameters(St=4 * STOKES[-1], eps=1e-3, **THIN)
-        compliance = elasticity(widest, film_radii(widest), model)
+        compliance = elasticity(widest, film_radii(widest), RunConfig(model=model))
         out = []
         for St in STOKES:
             params = CollisionParameters(St=St, eps=1e-3, angle=45.0, **THIN)
@@ -117,7 +121,10 @@ def thin_cases(table):
 def tangential_cases(table):
     def e_t(eps, St):
         params = CollisionParameters(St=St, eps=eps, angle=30.0, **THIN)
-        return {m: collide(params, tangential=m).tangential.e_t for m in ("couette", "lubrication")}
+        return {
+            m: collide(params, RunConfig.from_settings(tangential=m)).tangential.e_t
+            for m in ("couette", "lubrication")
+        }
 
     return {
         (eps, St): cached(table, f"e_t {eps} {St}", lambda e=eps, s=St: e_t(e, s))

@@ -39,6 +39,7 @@ from ehdfem import (  # noqa: E402
     elasticity,
     film_radii,
 )
+from ehdfem.config import RunConfig
 from ehdfem.solids.fe.solids import FECompliance  # noqa: E402
 from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
 from ehdfem.study.sweep import ResultTable  # noqa: E402
@@ -72,11 +73,10 @@ def feasible(delta, compression):
 
 def run_point(delta, compression, materials):
     """The five models at one point, on one film grid (dicts of the outputs)."""
-    solids = dict(zip(("sphere", "wall"), MATERIALS[materials], strict=True))
     base = parameters(delta, compression, "paraboloid")
     radii = film_radii(base, NODES)
     eps = base.eps
-    full = elasticity(base, radii, "fem", solids=solids)
+    full = elasticity(base, radii, RunConfig(model="fem"), materials=MATERIALS[materials])
     finite = FECompliance(full.solids, full.unit_matrix, eps)
     half_space = HalfSpaceCompliance(radii, eps)
     sheared = HalfSpaceCompliance(radii, eps, (delta, MATERIALS[materials]))

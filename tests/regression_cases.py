@@ -149,11 +149,11 @@ def cases():
 def run(inputs, keywords):
     """The regression outputs of one case (a dict of floats, None where not defined)."""
     from ehdfem.collision import collide
-    from ehdfem.motion.timestepping import IntegratorOptions
+    from ehdfem.config import RunConfig
 
-    keywords = dict(keywords)
-    keywords["options"] = IntegratorOptions(**{**BEFORE, **keywords.get("options", {})})
-    values = registry.computed(collide(inputs, **keywords))
+    settings = {**BEFORE, **keywords}
+    settings.update(settings.pop("options", {}))  # the time-step settings of the case
+    values = registry.computed(collide(inputs, RunConfig.from_settings(**settings)))
     return {name: values[name] for name in OUTPUTS}
 
 

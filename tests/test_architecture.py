@@ -18,6 +18,7 @@ LAYERS = (
     ("motion",),
     ("tangential",),
     ("outputs",),
+    ("config",),
     ("collision",),
     ("dem",),
     ("study", "bounce"),

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.film.cavitation import NO_LIMIT, MassConserving, NoCavitation, cavitation_model
 from ehdfem.film.reynolds import Film, radial_grid
 from ehdfem.inputs.scales import CollisionParameters
@@ -103,7 +104,7 @@ def test_liquid_volume_is_conserved_through_cavitation_and_rebound():
         params = CollisionParameters(
             St=10.0, eps=1e-2, layer="immersed", p_cav=P_CAV, cavitation=model
         )
-        compliance = collide(params, nodes=80).compliance
+        compliance = collide(params, RunConfig.from_settings(nodes=80)).compliance
         result = solve_normal(params, compliance, options)
         film = Film(compliance.radii, "immersed")
         assert result.rebound

@@ -12,6 +12,7 @@ import pytest
 
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
+from ehdfem.config import RunConfig
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
@@ -130,7 +131,9 @@ def test_field_instants_include_requested_times():
     from ehdfem.inputs.scales import CollisionParameters
     from ehdfem.outputs.fields import field_snapshots
 
-    normal = collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), nodes=60).normal
+    normal = collide(
+        CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), RunConfig.from_settings(nodes=60)
+    ).normal
     hist = normal.history
     t = 0.5 * (hist.time[10] + hist.time[11])
     snapshots = field_snapshots(normal, [t])
@@ -171,7 +174,8 @@ def test_json_to_stdout_is_the_json_alone():
     inputs = result["inputs"]
     assert inputs["parameters"]["St"] == 10 and inputs["parameters"]["angle"] == 30
     assert inputs["parameters"]["p_cav"] == -2 and inputs["physical"] is None
-    assert (inputs["model"], inputs["nodes"], inputs["tangential"]) == ("halfspace", 40, "couette")
+    run = inputs["run"]
+    assert (run["model"], run["nodes"], run["tangential"]) == ("halfspace", 40, "couette")
 
 
 def test_physical_json_records_the_materials_and_the_liquid(capsys):

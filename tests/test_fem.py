@@ -8,6 +8,7 @@ from mpi4py import MPI
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.outputs.fields import write_fields
@@ -91,8 +92,8 @@ def test_fe_collision_agrees_with_the_half_space_at_small_delta(St, delta):
     """eps = 1e-3, thin layer, P_cav = -2: the full FE model (true sphere gap, shear traction)
     and the asymptotic theory agree on e_n within 1 % at small delta."""
     params = CollisionParameters(St=St, eps=1e-3, layer="thin", p_cav=-2.0, delta=delta)
-    half_space = collide(params, nodes=120)
-    fem = collide(params, model="fem", nodes=120)
+    half_space = collide(params, RunConfig.from_settings(nodes=120))
+    fem = collide(params, RunConfig.from_settings(model="fem", nodes=120))
     assert fem.summary()["gap"] == "exact" and fem.summary()["shear_traction"]
     assert fem.normal.e_n == pytest.approx(half_space.normal.e_n, rel=0.01)
 

@@ -5,6 +5,7 @@ import pytest
 from scipy.optimize import brentq
 
 from ehdfem.collision import DEFAULT_NODES, collide
+from ehdfem.config import Numerics, RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, hertz_max_compression
 from ehdfem.motion.normal import solve_normal
@@ -50,7 +51,7 @@ def test_dry_hertz_limit_of_the_maximum_compression():
     """At large St the film is negligible: the approach reaches the Hertz compression
     (13.88 eps St)^(2/5) (within 2 %) and the sphere comes back at nearly its impact speed."""
     params = CollisionParameters(St=5e3, eps=1e-6, layer="thin")
-    result = collide(params, refinements=0)
+    result = collide(params, RunConfig.from_settings(refinements=0))
     assert result.normal.max_compression == pytest.approx(
         hertz_max_compression(1e-6, 5e3), rel=0.02
     )
@@ -67,7 +68,9 @@ def test_energy_balance_without_cavitation():
     whose dissipation is not in the balance)."""
     thin = CollisionParameters(St=10.0, eps=1e-3, layer="thin")
     errors = [
-        collide(thin, options=IntegratorOptions(rtol=r)).normal.energy_error
+        collide(
+            thin, RunConfig(numerics=Numerics(integrator=IntegratorOptions(rtol=r)))
+        ).normal.energy_error
         for r in (IntegratorOptions.rtol, 2e-6, 2e-7)
     ]
     assert errors[0] < 1e-3 and errors[2] < 3e-5
@@ -113,7 +116,10 @@ def test_grid_convergence_of_the_restitution():
     params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)
     options = IntegratorOptions(rtol=2e-6)
     nodes = (DEFAULT_NODES // 2, DEFAULT_NODES, 2 * DEFAULT_NODES)
-    e = [collide(params, nodes=n, options=options).normal.e_n for n in nodes]
+    e = [
+        collide(params, RunConfig(numerics=Numerics(nodes=n, integrator=options))).normal.e_n
+        for n in nodes
+    ]
     order = np.log2(abs(e[0] - e[1]) / abs(e[1] - e[2]))
     print(f"e_n on {nodes} nodes: {e}; observed order {order:.2f}")
     assert abs(e[2] / e[1] - 1) < 5e-3
@@ -136,7 +142,9 @@ def test_film_control_resolves_the_thinnest_film(case):
     params = CollisionParameters(**case)
 
     def thinnest(options):
-        return collide(params, nodes=80, options=options).normal.min_film_thickness
+        return collide(
+            params, RunConfig(numerics=Numerics(nodes=80, integrator=options))
+        ).normal.min_film_thickness
 
     converged = thinnest(IntegratorOptions(rtol=1e-7))
     assert abs(thinnest(IntegratorOptions()) / converged - 1) < 1e-2
@@ -154,7 +162,7 @@ def test_a_growing_cavity_costs_no_run_of_short_steps():
 
     def steps(**cavitation):
         params = CollisionParameters(St=50.0, eps=0.1, layer="thin", **cavitation)
-        normal = collide(params, nodes=120).normal
+        normal = collide(params, RunConfig.from_settings(nodes=120)).normal
         return normal.steps + normal.rejected_steps
 
     assert steps(p_cav=-2.0, cavitation="mass-conserving") < steps()

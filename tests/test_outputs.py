@@ -11,6 +11,7 @@ import pytest
 
 from ehdfem.bounce.trajectory import BounceInputs, bounce
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig, setting_names
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.outputs import registry
@@ -18,6 +19,7 @@ from ehdfem.study.sweep import Study, run_point
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
 OBLIQUE = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+NODES_40 = RunConfig.from_settings(nodes=40)
 STUDY = """
 [grid]
 St = [10.0]
@@ -45,7 +47,7 @@ nodes = 40
 @pytest.fixture(scope="module")
 def sliding():
     """An oblique impact with the sliding film: every output has a value."""
-    return collide(OBLIQUE, nodes=40, tangential="lubrication")
+    return collide(OBLIQUE, RunConfig.from_settings(nodes=40, tangential="lubrication"))
 
 
 def test_every_entry_has_a_meaning_a_scale_and_a_unit():
@@ -73,7 +75,7 @@ def test_summary_carries_exactly_the_registry_names(sliding):
     optional ones (the sliding film's diagnostics) are left out and only they."""
     summary = sliding.summary()
     assert set(registry.names()) <= set(summary)
-    couette = collide(OBLIQUE, nodes=40).summary()
+    couette = collide(OBLIQUE, NODES_40).summary()
     missing = {name for name in registry.names() if name not in couette}
     assert missing == {o.name for o in registry.OUTPUTS if o.optional}
     assert sliding.summary()["not_applicable"] == registry.not_applicable(sliding)
@@ -90,7 +92,8 @@ def test_study_rows_carry_exactly_the_registry_names(tmp_path):
         row = run_point(study, study.points[0])
         assert row["status"] == "ok:rebound"
         assert set(keys) <= set(row), name
-        unknown = set(row) - set(keys) - set(study.points[0]) - {"seconds", "version"}
+        settings = set(setting_names())  # the point's run settings
+        unknown = set(row) - set(keys) - settings - set(study.points[0]) - {"seconds", "version"}
         assert unknown <= {"St", "eps", "delta", "p_cav"}, unknown
 
 
@@ -121,7 +124,7 @@ def test_si_values_are_the_scaled_ones_times_the_units_of_their_scales():
     sin(30 deg) and U0/a, formed here from the inputs; equal to 1e-14 relative (two roundings
     of a product)."""
     physical = from_presets(**EXAMPLE)
-    summary = collide(physical, nodes=40).summary()
+    summary = collide(physical, NODES_40).summary()
     x0, a, mu = physical.layer_thickness, physical.radius, physical.liquid.viscosity
     v0 = physical.speed * math.cos(math.radians(physical.angle))
     u0 = physical.speed * math.sin(math.radians(physical.angle))
@@ -153,14 +156,14 @@ def test_a_new_entry_reaches_the_summary_the_study_row_and_the_table(tmp_path, m
         lambda p: p.scales().gap,
     )
     monkeypatch.setattr(registry, "OUTPUTS", (*registry.OUTPUTS, new))
-    result = collide(OBLIQUE, nodes=40)
+    result = collide(OBLIQUE, NODES_40)
     summary = result.summary()
     assert summary["central_film_at_exit"] == result.normal.history.central_film[-1]
     assert "central_film_at_exit" in registry.format_table(summary)
     (tmp_path / "study.toml").write_text(STUDY)
     study = Study(tmp_path / "study.toml")
     assert run_point(study, study.points[0])["central_film_at_exit"] > 0
-    physical = collide(from_presets(**EXAMPLE), nodes=40).summary()
+    physical = collide(from_presets(**EXAMPLE), NODES_40).summary()
     assert physical["si"]["central_film_at_exit_m"] == pytest.approx(
         physical["central_film_at_exit"] * EXAMPLE["layer_thickness"], rel=1e-15
     )
@@ -179,7 +182,7 @@ def test_a_new_entry_reaches_the_summary_the_study_row_and_the_table(tmp_path, m
 def test_energy_error_only_without_a_cavitation_limit(changes, applies):
     """The balance is reported without a cavitation limit, else None with the reason; the
     raw number stays available either way."""
-    result = collide(replace(CollisionParameters(St=10.0, eps=1e-3), **changes), nodes=40)
+    result = collide(replace(CollisionParameters(St=10.0, eps=1e-3), **changes), NODES_40)
     summary = result.summary()
     raw = registry.computed(result)["energy_error"]
     assert raw == result.normal.energy_error

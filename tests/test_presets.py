@@ -8,6 +8,7 @@ import pytest
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.console import progress
 from ehdfem.inputs.presets import (
     LIQUIDS,
@@ -111,7 +112,9 @@ def test_physical_inputs_from_values_equal_the_presets():
         **EXAMPLE,
     )
     assert values.dimensionless() == presets.dimensionless()
-    first, second = (collide(c, nodes=60).summary() for c in (presets, values))
+    first, second = (
+        collide(c, RunConfig.from_settings(nodes=60)).summary() for c in (presets, values)
+    )
     assert first["e_n"] == second["e_n"] and first["si"] == second["si"]
 
 
@@ -156,7 +159,7 @@ def test_physical_study_runs_the_collisions_of_its_inputs(tmp_path):
             layer_thickness=3e-4,
             speed=float(row["speed"]),
         )
-        expected = collide(inputs, nodes=60).summary()
+        expected = collide(inputs, RunConfig.from_settings(nodes=60)).summary()
         assert row["e_n"] == expected["e_n"] and row["St"] == expected["St"]
         assert row["max_force_N"] == expected["si"]["max_force_N"]
 

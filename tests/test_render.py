@@ -7,6 +7,7 @@ import pytest
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.outputs.render import animate_film, render_solids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
@@ -19,7 +20,7 @@ def fe_collision():
     params = CollisionParameters(
         St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, delta=0.01, angle=30.0
     )
-    return collide(params, model="fem", nodes=40)
+    return collide(params, RunConfig.from_settings(model="fem", nodes=40))
 
 
 def test_render_is_a_picture_of_the_solids(fe_collision, tmp_path):

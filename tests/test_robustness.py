@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import NormalSolverError
 
@@ -53,7 +54,7 @@ def test_valid_inputs_give_a_physical_result_or_a_solver_error(St, eps, layer, p
     positive finite film and force, or a NormalSolverError that says why."""
     params = CollisionParameters(St=St, eps=eps, layer=layer, p_cav=p_cav, angle=angle)
     try:
-        result = collide(params, nodes=40, refinements=0)
+        result = collide(params, RunConfig.from_settings(nodes=40, refinements=0))
     except NormalSolverError as err:
         assert "T =" in str(err)
         return

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+from ehdfem.config import Numerics, RunConfig
 from ehdfem.film.reynolds import Film, radial_grid
 from ehdfem.solids.fe.solids import FESolids
 from ehdfem.solids.halfspace import (
@@ -106,7 +107,8 @@ def test_energy_balance_with_the_shear_traction():
     options = IntegratorOptions(rtol=2e-6)
     results = [
         collide(
-            CollisionParameters(St=10.0, eps=1e-3, delta=0.05, shear_traction=s), options=options
+            CollisionParameters(St=10.0, eps=1e-3, delta=0.05, shear_traction=s),
+            RunConfig(numerics=Numerics(integrator=options)),
         )
         for s in (False, True)
     ]
@@ -135,4 +137,4 @@ def test_energy_is_never_created_with_the_shear_traction(St, eps, delta, layer):
     from ehdfem import CollisionParameters, collide
 
     params = CollisionParameters(St=St, eps=eps, delta=delta, layer=layer, shear_traction=True)
-    assert collide(params, nodes=120).normal.energy_error < 3e-3
+    assert collide(params, RunConfig.from_settings(nodes=120)).normal.energy_error < 3e-3

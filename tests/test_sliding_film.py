@@ -5,11 +5,14 @@ The tangential kinetic energy obeys dE_t/dT = -dissipation - (delta/6) dE_1/dT +
 by the trapezoid rule, so the balance closes to the time-discretisation error.
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from ehdfem import checks
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity
+from ehdfem.config import Numerics, RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
@@ -19,7 +22,7 @@ from ehdfem.tangential.motion import SlidingFilmError, solve_tangential, viscosi
 
 pytestmark = pytest.mark.serial
 
-FAST = dict(nodes=80, tangential="lubrication")
+FAST = RunConfig.from_settings(nodes=80, tangential="lubrication")
 
 
 def thin(eps, St, **extra):
@@ -49,7 +52,7 @@ def test_on_elastic_half_spaces_no_energy_is_created(eps, St):
     exchange X closes within 1e-2 of the energy lost (the time-discretisation error of the
     default step control, largest at eps = 1e-5, St = 20, where less is lost: measured 5.1e-3,
     1.1e-2 on the earlier order-3 steps; it falls to 8e-4 at rtol = 5e-7)."""
-    energy = collide(thin(eps, St), **FAST).tangential.energy
+    energy = collide(thin(eps, St), FAST).tangential.energy
     assert np.all(np.diff(energy.kinetic) <= 1e-12 * energy.kinetic[0])
     assert energy.balance_error < 1e-2
 
@@ -58,7 +61,8 @@ def test_tangential_displacements_in_the_slip_keep_the_balance():
     """deformation "full" (the Couette traction's tangential displacement rate in the slip):
     the same balance, and e_t within 1e-5 of the mode-1 gap alone at eps = 0.1, St = 1000."""
     results = {
-        d: collide(thin(0.1, 1000.0), deformation=d, **FAST).tangential for d in ("gap", "full")
+        d: collide(thin(0.1, 1000.0), replace(FAST, deformation=d)).tangential
+        for d in ("gap", "full")
     }
     full = results["full"]
     assert np.all(np.diff(full.energy.kinetic) <= 1e-12 * full.energy.kinetic[0])
@@ -74,8 +78,10 @@ def test_a_rigid_mode_one_film_on_deformed_solids_gains_its_energy_from_x():
     balance's power integrals are trapezoidal in time, so it closes only as the steps shrink
     (7.1e-3 at the default rtol 2e-4, 2.5e-3 at 2e-5, 7.9e-4 at 2e-6) while e_t is within 5e-4
     of its converged value at any of them: the run uses rtol 2e-5 to resolve the balance."""
-    options = IntegratorOptions(rtol=2e-5)
-    tangential = collide(thin(0.1, 1000.0), deformation="none", options=options, **FAST).tangential
+    slow = Numerics(nodes=80, integrator=IntegratorOptions(rtol=2e-5))
+    tangential = collide(
+        thin(0.1, 1000.0), replace(FAST, deformation="none", numerics=slow)
+    ).tangential
     assert tangential.e_t > 1.0
     assert tangential.energy.exchanged[-1] > tangential.energy.dissipated[-1]
     assert tangential.energy.balance_error < 5e-3
@@ -88,18 +94,18 @@ def test_a_prebuilt_mode_one_compliance_gives_the_same_collision():
     refused."""
     params = thin(1e-3, 20.0)
     radii = film_radii(params, 60)
-    compliance = elasticity(params, radii, "halfspace")
+    compliance = elasticity(params, radii)
     prebuilt = mode_one_elasticity(thin(0.1, 20.0), compliance.with_eps(0.1))
-    own = collide(params, compliance=compliance, **FAST).tangential
-    given = collide(params, compliance=compliance, mode_one=prebuilt, **FAST).tangential
+    own = collide(params, FAST, compliance=compliance).tangential
+    given = collide(params, FAST, compliance=compliance, mode_one=prebuilt).tangential
     assert given.e_t == pytest.approx(own.e_t, rel=0.0, abs=1e-12)
     assert given.spin_change == pytest.approx(own.spin_change, rel=0.0, abs=1e-12)
     assert prebuilt.eps == 0.1
-    other = elasticity(params, film_radii(params, 50), "halfspace")
+    other = elasticity(params, film_radii(params, 50))
     with pytest.raises(checks.InputError, match="mode_one"):
-        collide(params, compliance=other, mode_one=prebuilt, **FAST)
+        collide(params, FAST, compliance=other, mode_one=prebuilt)
     with pytest.raises(checks.InputError, match="mode_one"):
-        collide(params, mode_one=prebuilt, **FAST)
+        collide(params, FAST, mode_one=prebuilt)
 
 
 def test_viscosity_tilt_is_the_linearised_change_of_ln_mu():
@@ -126,10 +132,10 @@ def test_a_film_frozen_by_its_viscosity_stops_the_sliding_film():
             St=20.0, eps=1e-3, delta=0.01, angle=30.0, viscosity="barus", alpha=alpha
         )
 
-    valid = collide(barus(5e-3), nodes=120, tangential="lubrication")
+    valid = collide(barus(5e-3), RunConfig.from_settings(nodes=120, tangential="lubrication"))
     assert not valid.superposition.flagged
     assert 0.0 < valid.superposition.largest_viscosity_tilt < 0.3
     frozen = barus(0.01)
     with pytest.raises(SlidingFilmError, match=r"d ln\(mu\)/dP = .* >= 1"):
-        collide(frozen, nodes=120, tangential="lubrication")
-    assert 0.0 < collide(frozen, nodes=120).tangential.e_t < 1.0
+        collide(frozen, RunConfig.from_settings(nodes=120, tangential="lubrication"))
+    assert 0.0 < collide(frozen, RunConfig.from_settings(nodes=120)).tangential.e_t < 1.0

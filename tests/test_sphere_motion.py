@@ -8,6 +8,7 @@ import pytest
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.presets import Liquid, Material
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
@@ -66,7 +67,7 @@ def test_energy_balance_with_the_work_of_a_constant_force(force):
     energy, so leaving it out would break the balance 100 times over."""
     params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", external_force=force)
     coarse = collide(params).normal
-    fine = collide(params, options=IntegratorOptions(rtol=2e-7)).normal
+    fine = collide(params, RunConfig.from_settings(rtol=2e-7)).normal
     assert coarse.status == ("rebound" if force > 0 else "stick")
     assert coarse.energy_error < 1e-3 and fine.energy_error < 5e-5
     assert fine.energy_error < coarse.energy_error

@@ -15,6 +15,7 @@ from mpi4py import MPI
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.study.sweep import Study, critical_speed, critical_stokes, run_study
 
@@ -97,13 +98,14 @@ def test_critical_stokes_number_agrees_with_a_scan():
     """Bisection on the outcome brackets St_c to 1e-3; a scan in 1 % steps finds the first
     rebound inside the bracket widened by one scan step."""
     params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0)
-    found = critical_stokes(params, bracket=(1.0, 20.0), rtol=1e-3, nodes=60)
+    found = critical_stokes(params, (1.0, 20.0), 1e-3, RunConfig.from_settings(nodes=60))
     lo, hi = found["bracket"]
     assert hi / lo - 1 <= 1e-3
     scan = found["St_c"] * np.exp(np.linspace(-0.05, 0.05, 11))
     outcome = [
         collide(
-            CollisionParameters(St=s, eps=1e-2, layer="thin", p_cav=-5.0), nodes=60
+            CollisionParameters(St=s, eps=1e-2, layer="thin", p_cav=-5.0),
+            RunConfig.from_settings(nodes=60),
         ).normal.rebound
         for s in scan
     ]
@@ -159,6 +161,10 @@ def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):
 def test_critical_stokes_number_of_the_fe_model():
     """At delta = 1e-3 the FE solids are half-spaces to 1 %: St_c agrees within 1 %."""
     params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0, delta=1e-3)
-    half_space = critical_stokes(params, bracket=(1.0, 20.0), nodes=60)["St_c"]
-    fem = critical_stokes(params, bracket=(1.0, 20.0), nodes=60, model="fem")["St_c"]
+    half_space = critical_stokes(params, (1.0, 20.0), config=RunConfig.from_settings(nodes=60))[
+        "St_c"
+    ]
+    fem = critical_stokes(
+        params, (1.0, 20.0), config=RunConfig.from_settings(nodes=60, model="fem")
+    )["St_c"]
     assert fem == pytest.approx(half_space, rel=0.01)

@@ -14,6 +14,7 @@ from scipy.integrate import quad
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
+from ehdfem.config import Numerics, RunConfig
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.tangential.superposition import (
@@ -30,7 +31,13 @@ def sliding_collision(eps, St, p_cav, options=None, **extra):
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SuperpositionWarning)
-        return collide(params, nodes=120, tangential="lubrication", options=options)
+        return collide(
+            params,
+            RunConfig(
+                tangential="lubrication",
+                numerics=Numerics(nodes=120, integrator=options or IntegratorOptions()),
+            ),
+        )
 
 
 def report(text):
@@ -121,7 +128,7 @@ def test_large_tilt_is_flagged_with_a_warning_and_in_the_summary():
         St=1000.0, eps=0.1, delta=0.01, layer="thin", p_cav=-10.0, angle=30.0
     )
     with pytest.warns(SuperpositionWarning, match="tilt"):
-        result = collide(params, nodes=80, tangential="lubrication")
+        result = collide(params, RunConfig.from_settings(nodes=80, tangential="lubrication"))
     summary = result.summary()
     assert summary["superposition_flag"] is True
     assert summary["superposition_tilt"] == result.superposition.largest_tilt > TILT_LIMIT
@@ -140,17 +147,20 @@ def test_check_refuses_what_the_disk_film_cannot_represent(extra, message):
     values.update(extra)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SuperpositionWarning)
-        result = collide(CollisionParameters(**values), nodes=40, tangential="lubrication")
+        result = collide(
+            CollisionParameters(**values),
+            RunConfig.from_settings(nodes=40, tangential="lubrication"),
+        )
     with pytest.raises(InputError, match=re.escape(message)):
         check_superposition(result)
 
 
 def test_check_needs_the_sliding_film_and_steps_in_range():
     params = CollisionParameters(St=20.0, eps=1e-3, delta=0.01, angle=30.0)
-    couette = collide(params, nodes=40)
+    couette = collide(params, RunConfig.from_settings(nodes=40))
     assert couette.superposition is None
     with pytest.raises(InputError, match="needs an oblique tangential='lubrication'"):
         check_superposition(couette)
-    result = collide(params, nodes=40, tangential="lubrication")
+    result = collide(params, RunConfig.from_settings(nodes=40, tangential="lubrication"))
     with pytest.raises(InputError, match="step"):
         check_superposition(result, [0])

@@ -6,6 +6,7 @@ from scipy.integrate import quad, solve_ivp, trapezoid
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide, with_tangential
+from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import Film, radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
@@ -68,7 +69,9 @@ def test_one_minus_e_t_is_linear_in_delta(model):
     agree to 1 %, and e_t -> 1 as delta -> 0. For the Couette model the slope is known:
     1 - e_t -> k/(1+k) (1 + 1/k) delta/(3 St) int J dT = delta int_0^exit J dT / (3 St)."""
     results = {
-        d: collide(CollisionParameters(**{**PARAMS, "delta": d}), tangential=model)
+        d: collide(
+            CollisionParameters(**{**PARAMS, "delta": d}), RunConfig.from_settings(tangential=model)
+        )
         for d in (5e-4, 1e-3, 2e-3)
     }
     slopes = [(1 - r.tangential.e_t) / d for d, r in results.items()]
@@ -187,7 +190,7 @@ def test_reduced_models_lose_energy_and_keep_their_balance(model):
     error: the integrated force gives U at exit within 1e-3 of 1 - e_t)."""
     for eps, St in ((0.1, 1000.0), (1e-3, 20.0)):
         params = CollisionParameters(**{**PARAMS, "eps": eps, "St": St})
-        result = collide(params, nodes=80, tangential=model)
+        result = collide(params, RunConfig.from_settings(nodes=80, tangential=model))
         t, k = result.tangential, params.inertia_factor
         kinetic = t.velocity**2 + k * t.spin**2
         assert np.all(np.diff(kinetic) <= 1e-14)
@@ -202,10 +205,10 @@ def test_another_tangential_model_on_the_same_normal_motion():
     model its e_t, spin change and histories equal a new collide call's exactly (same
     arithmetic), and the normal result is the same object."""
     params = CollisionParameters(**PARAMS)
-    first = collide(params, nodes=80)
+    first = collide(params, RunConfig.from_settings(nodes=80))
     for model in ("lubrication", "gcb", "flat", "couette"):
         again = with_tangential(first, model)
-        direct = collide(params, nodes=80, tangential=model)
+        direct = collide(params, RunConfig.from_settings(nodes=80, tangential=model))
         assert again.normal is first.normal and again.tangential.model == model
         assert again.tangential.e_t == direct.tangential.e_t
         assert again.tangential.spin_change == direct.tangential.spin_change
@@ -213,7 +216,9 @@ def test_another_tangential_model_on_the_same_normal_motion():
     assert first.tangential.model == "couette"  # the first result is left as it was
     with pytest.raises(InputError, match="tangential"):
         with_tangential(first, "coulomb")
-    head_on = collide(CollisionParameters(**{**PARAMS, "angle": 0.0}), nodes=80)
+    head_on = collide(
+        CollisionParameters(**{**PARAMS, "angle": 0.0}), RunConfig.from_settings(nodes=80)
+    )
     with pytest.raises(InputError, match="oblique"):
         with_tangential(head_on, "gcb")
 
@@ -226,6 +231,8 @@ def test_couette_loss_is_the_exponential_decay_of_the_slip():
     k = 0.4
     c = {}
     for delta in (0.003, 0.03, 0.1):
-        e_t = collide(CollisionParameters(**{**PARAMS, "delta": delta}), nodes=80).tangential.e_t
+        e_t = collide(
+            CollisionParameters(**{**PARAMS, "delta": delta}), RunConfig.from_settings(nodes=80)
+        ).tangential.e_t
         c[delta] = -np.log(1 - (1 - e_t) * (1 + k) / k) / ((1 + 1 / k) * delta)
     assert max(c.values()) / min(c.values()) - 1 < 1e-9

@@ -44,7 +44,8 @@ from scipy.integrate import solve_ivp, trapezoid
 from scipy.optimize import brentq
 
 from .. import checks
-from ..collision import DEFAULT_NODES, collide, film_radii
+from ..collision import collide, film_radii
+from ..config import DEFAULT_NODES, Numerics, RunConfig
 from ..dem.closedform import legendre
 from ..film import cavitation
 from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
@@ -602,7 +603,8 @@ class _Bounce:
     """The loop of :func:`bounce`: flight legs and contacts, with the trajectory's samples."""
 
     def __init__(self, far: FarField, model, nodes, options, rest_apex):
-        self.far, self.model, self.nodes, self.options = far, model, nodes, options
+        self.far, self.model, self.nodes = far, model, nodes
+        self.config = RunConfig(numerics=Numerics(nodes=nodes, integrator=options))  # half-space
         self.rest_apex = rest_apex * far.inputs.diameter
         self.samples = {name: [] for name in TRAJECTORY_COLUMNS}
         self.contacts: list[Contact] = []
@@ -724,9 +726,9 @@ class _Bounce:
         if self.model == "rigid":
             params = physical.dimensionless()
             solids = RigidSolids(film_radii(params, self.nodes))
-            result = collide(physical, options=self.options, compliance=solids)
+            result = collide(physical, self.config, compliance=solids)
         else:
-            result = collide(physical, model=self.model, nodes=self.nodes, options=self.options)
+            result = collide(physical, self.config)
         return result, physical.scales()
 
     def _record_contact(self, normal, start, scales, energy_unit) -> dict:

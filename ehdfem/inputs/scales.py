@@ -31,6 +31,7 @@ from ..film.viscosity import (
     roelands_index,
 )
 from .presets import Liquid, Material, body, check_vapour_pressure
+from .settings import setting, validate
 
 ATMOSPHERE = 101325.0  # Pa
 
@@ -100,57 +101,89 @@ class CollisionParameters:
     likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`).
     """
 
-    St: float
-    eps: float
-    delta: float = 0.01
-    p_cav: float = cavitation.NO_LIMIT
-    e_dry: float = 1.0
-    layer: str = "thin"
-    angle: float = 0.0
-    spin: float = 0.0
-    inertia_factor: float = 0.4
-    cavitation: str = "truncate"
-    viscosity: str = "constant"
-    alpha: float = 0.0
-    roelands_pressure: float | None = None
-    roelands_index: float = ROELANDS_INDEX
-    gap: str | None = None
-    shear_traction: bool | None = None
-    external_force: float = 0.0
-    buoyant_weight: float = 0.0
+    St: float = setting(help="Stokes number m V0 / (6 pi mu a^2)", lower=0.0, lower_open=True)
+    eps: float = setting(
+        help="elasticity parameter 4 theta mu V0 a^1.5 / x0^2.5", lower=0.0, lower_open=True
+    )
+    delta: float = setting(
+        0.01, help="layer thickness x0 / a", lower=0.0, upper=1.0, lower_open=True,
+        upper_open=True,
+    )  # fmt: skip
+    p_cav: float = setting(
+        cavitation.NO_LIMIT,
+        help="cavitation pressure (p_cav - p_ambient), <= 0 (none: no limit)",
+        unit="by mu V0 a / x0^2",
+        default_text="none",
+        checked=False,
+    )
+    e_dry: float = setting(
+        1.0, help="dry restitution (1: pure EHD)", lower=0.0, upper=1.0, lower_open=True
+    )
+    layer: str = setting("thin", help="liquid layer: thin, or the sphere immersed", choices=LAYERS)
+    angle: float = setting(
+        0.0, help="impact angle from the wall normal", unit="deg", lower=0.0, upper=90.0,
+        upper_open=True,
+    )  # fmt: skip
+    spin: float = setting(0.0, help="initial spin, rolling sense positive", unit="a Omega0 / V0")
+    inertia_factor: float = setting(
+        0.4, help="sphere inertia I / (m a^2) (2/5 solid, 2/3 thin shell)", lower=0.0,
+        upper=2 / 3, lower_open=True,
+    )  # fmt: skip
+    cavitation: str = setting(
+        "truncate",
+        help="cavitation model: truncate at P_cav (the source's), mass-conserving (JFO), none",
+        choices=cavitation.MODELS,
+    )
+    viscosity: str = setting("constant", help="viscosity against pressure", choices=VISCOSITY_LAWS)
+    alpha: float = setting(
+        0.0, help="pressure-viscosity coefficient (with viscosity barus or roelands)",
+        unit="by the pressure scale x0^2 / (mu V0 a)", lower=0.0,
+    )  # fmt: skip
+    roelands_pressure: float | None = setting(
+        None, help="Roelands p_r = 1.96e8 Pa (viscosity roelands)", unit="by mu V0 a / x0^2",
+        lower=0.0, lower_open=True,
+    )  # fmt: skip
+    roelands_index: float = setting(
+        ROELANDS_INDEX, help="Roelands index Z", lower=0.0, upper=2.0, lower_open=True
+    )
+    gap: str | None = setting(
+        None,
+        help="undeformed gap: the theory's paraboloid or the true spheres (thin layer only)",
+        choices=GAPS,
+        default_text="exact for FE solids with a thin layer, paraboloid otherwise",
+    )
+    shear_traction: bool | None = setting(
+        None,
+        help="load the solids with the squeeze flow's shear traction too",
+        default_text="on for FE solids, off for the half-space theory",
+    )
+    external_force: float = setting(
+        0.0,
+        help="constant force on the sphere, positive away from the wall",
+        unit="by 6 pi mu V0 a^2 / x0",
+    )
+    buoyant_weight: float = setting(
+        0.0,
+        help="the sphere's weight less its buoyancy, positive towards the wall",
+        unit="by 6 pi mu V0 a^2 / x0",
+    )
 
     def __post_init__(self):
-        checks.positive("St", self.St)
-        checks.number("external_force", self.external_force)
-        checks.number("buoyant_weight", self.buoyant_weight)
-        checks.positive("eps", self.eps)
-        checks.number("delta", self.delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
+        validate(self)
         cavitation.suction_limit(self.p_cav)
-        checks.number("e_dry", self.e_dry, lower=0.0, upper=1.0, lower_open=True)
-        checks.choice("layer", self.layer, LAYERS)
-        checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
-        checks.number("spin", self.spin)
         if self.spin != 0.0 and self.tangential_speed == 0.0:
             raise checks.InputError(
                 f"spin = {self.spin!r} needs an oblique impact (angle > 0): the tangential "
-                "motion of a head-on impact is not solved, so its spin would be ignored"
+                "motion of a head-on impact is not solved, so its spin would be ignored",
+                "spin",
             )
-        checks.number(
-            "inertia_factor", self.inertia_factor, lower=0.0, upper=2 / 3, lower_open=True
-        )
-        checks.choice("cavitation", self.cavitation, cavitation.MODELS)
-        self.viscosity_law()  # validates viscosity, alpha and the Roelands constants
-        if self.shear_traction not in (None, True, False):
+        self.viscosity_law()  # validates the Roelands constants together
+        if self.gap == "exact" and self.layer == "immersed":
             raise checks.InputError(
-                f"shear_traction must be True, False or None, got {self.shear_traction!r}"
+                "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
+                "sphere and its far-field closure assumes the paraboloid",
+                "gap",
             )
-        if self.gap is not None:
-            checks.choice("gap", self.gap, GAPS)
-            if self.gap == "exact" and self.layer == "immersed":
-                raise checks.InputError(
-                    "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
-                    "sphere and its far-field closure assumes the paraboloid"
-                )
 
     def cavitation_model(self):
         """The film's cavitation model with its limit P_cav (:mod:`ehdfem.film.cavitation`)."""
@@ -195,23 +228,34 @@ class PhysicalCollision:
     buoyancy is neglected (rho_f = 0).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
-    radius: float
-    sphere: Material
-    wall: Material
-    liquid: Liquid
-    speed: float
-    layer_thickness: float
+    radius: float = setting(help="sphere radius a", unit="m", checked=False)
+    sphere: Material = field()
+    wall: Material = field()
+    liquid: Liquid = field()
+    speed: float = setting(help="impact speed |v|", unit="m/s", checked=False)
+    layer_thickness: float = setting(help="liquid layer thickness x0", unit="m", checked=False)
     angle: float = 0.0
     layer: str = "thin"
     e_dry: float = 1.0
-    spin: float = 0.0
-    ambient_pressure: float = ATMOSPHERE
-    cavitation_pressure: float | None = None
+    spin: float = setting(
+        0.0, help="initial spin, rolling sense positive", unit="rad/s", flag="spin-rate",
+        checked=False,
+    )  # fmt: skip
+    ambient_pressure: float = setting(ATMOSPHERE, help="ambient pressure", unit="Pa", checked=False)
+    cavitation_pressure: float | None = setting(
+        None, help="cavitation pressure, absolute", unit="Pa",
+        default_text="the liquid's vapour pressure", checked=False,
+    )  # fmt: skip
     inertia_factor: float = 0.4
-    sphere_mass: float | None = field(default=None)
+    sphere_mass: float | None = setting(
+        None, help="sphere mass", unit="kg", default_text="4/3 pi a^3 rho", checked=False
+    )
     cavitation: str = "truncate"
     viscosity: str = "constant"
-    pressure_viscosity: float | None = None
+    pressure_viscosity: float | None = setting(
+        None, help="pressure-viscosity coefficient alpha, [0, 1e-6]", unit="1/Pa",
+        default_text="the liquid's", checked=False,
+    )  # fmt: skip
     gap: str | None = None
     shear_traction: bool | None = None
     gravity: float = 0.0

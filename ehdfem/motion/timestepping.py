@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import checks
+from ..inputs.settings import setting, validate
 
 
 @dataclass(frozen=True)
@@ -34,29 +34,42 @@ class IntegratorOptions:
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
     """
 
-    rtol: float = 2e-4
-    film_control: bool = True
-    order: int = 4
-    max_growth: float = 1.5
-    newton_tol: float = 1e-7
-    max_newton: int = 30
-    first_step: float = 1e-3
-    max_steps: int = 50000
-    max_time: float = 1e4
+    rtol: float = setting(
+        2e-4,
+        help="time-step tolerance: local error per step",
+        unit="relative",
+        lower=1e-10,
+        upper=0.1,
+    )
+    film_control: bool = setting(
+        True, help="control the film thickness's local error too", default_text="on"
+    )
+    order: int = setting(4, help="highest BDF order", lower=1, upper=5)
+    max_growth: float = setting(
+        1.5, help="largest step growth per step", unit="ratio", lower=1.1, upper=3.0
+    )
+    newton_tol: float = setting(
+        1e-7,
+        help="Newton increments relative to the solution size",
+        unit="relative",
+        lower=1e-14,
+        upper=1e-3,
+    )
+    max_newton: int = setting(30, help="most Newton iterations per step", lower=2, upper=100)
+    first_step: float = setting(
+        1e-3, help="initial time step", unit="by x0/V0", lower=1e-12, upper=0.1
+    )
+    max_steps: int = setting(50000, help="most time steps", lower=10)
+    max_time: float = setting(
+        1e4,
+        help="give up after this time (sticking by stalling)",
+        unit="by x0/V0",
+        lower=0.0,
+        lower_open=True,
+    )
 
     def __post_init__(self):
-        checks.number("rtol", self.rtol, lower=1e-10, upper=0.1)
-        if not isinstance(self.film_control, bool):
-            raise checks.InputError(
-                f"film_control must be True or False, got {self.film_control!r}"
-            )
-        checks.integer("order", self.order, lower=1, upper=5)
-        checks.number("max_growth", self.max_growth, lower=1.1, upper=3.0)
-        checks.number("newton_tol", self.newton_tol, lower=1e-14, upper=1e-3)
-        checks.integer("max_newton", self.max_newton, lower=2, upper=100)
-        checks.number("first_step", self.first_step, lower=1e-12, upper=0.1)
-        checks.integer("max_steps", self.max_steps, lower=10)
-        checks.positive("max_time", self.max_time)
+        validate(self)
 
 
 def derivative_weights(nodes):

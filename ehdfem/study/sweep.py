@@ -5,10 +5,13 @@ A study is a TOML file (see studies/*.toml):
     [grid]                        # every combination is one point
     St = {geomspace = [3, 1000, 12]}   # or a list, or {linspace = [a, b, n]}
     eps = [1e-5, 1e-3]
-    layer = ["thin"]              # any CollisionParameters field, plus "tangential", e.g.
+    layer = ["thin"]              # any CollisionParameters field, e.g.
     cavitation = ["truncate", "mass-conserving"]
     viscosity = ["barus"]         # with alpha (scaled), see ehdfem.film.viscosity
-    [numerics]
+    model = ["halfspace", "fem"]  # or any run setting (ehdfem.config.setting_names)
+    [run]                         # run settings held fixed, e.g.
+    tangential = "lubrication"
+    [numerics]                    # the numerics among them (also allowed in [run])
     nodes = 240
     rtol = 5e-5
     [output]
@@ -16,7 +19,7 @@ A study is a TOML file (see studies/*.toml):
 
 or, with physical inputs (SI), a ``[physical]`` table of
 :class:`ehdfem.inputs.scales.PhysicalCollision` fields held fixed, and a ``[grid]`` over
-PhysicalCollision fields (plus "tangential"):
+PhysicalCollision fields (plus run settings):
 
     [physical]
     sphere = "steel"              # a preset name, or a table of values, with an optional preset
@@ -28,8 +31,9 @@ PhysicalCollision fields (plus "tangential"):
     speed = {geomspace = [0.05, 2.0, 8]}
     angle = [0.0, 30.0]
 
-Their rows also give St, eps, delta, P_cav and the SI results (``*_m``, ``*_N``, ...). The
-outputs of a row are those of :mod:`ehdfem.outputs.registry`.
+Every row gives the point's run settings (:meth:`ehdfem.config.RunConfig.settings`)
+and the outputs of :mod:`ehdfem.outputs.registry`; those of a physical study also give St, eps,
+delta, P_cav and the SI results (``*_m``, ``*_N``, ...).
 Points are claimed dynamically by the ranks (an exclusive file per point), so ranks that draw
 cheap points take more of them. Each finished point is written atomically as its own JSON file
 next to the table (``<table>.points/``); a run that is killed and started again skips the
@@ -56,27 +60,31 @@ from pathlib import Path
 import numpy as np
 
 from .. import checks
-from ..collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
+from ..collision import collide, elasticity, film_radii
+from ..config import Numerics, RunConfig, setting_names
 from ..console.progress import Counter
 from ..film import cavitation
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from ..inputs.settings import described
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import registry as outputs
 from ..version import __version__
 
 PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
-GRID_KEYS = (*PARAMETERS, "tangential")
+RUN_SETTINGS = setting_names()
+GRID_KEYS = (*PARAMETERS, *RUN_SETTINGS)
 PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
 PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
-NUMERICS = ("nodes", "rtol")
+NUMERICS = tuple(f.name for cls in (Numerics, IntegratorOptions) for f in described(cls))
 
 
 class Study:
-    """A parsed study file: the points (dicts of CollisionParameters fields plus "tangential",
-    or with a [physical] table, of PhysicalCollision fields plus "tangential"), the fixed
-    physical inputs (None for a dimensionless study), the numerics and the table path."""
+    """A parsed study file: the points (dicts of CollisionParameters fields, or with a
+    [physical] table of PhysicalCollision fields, and of run settings), the fixed physical
+    inputs (None for a dimensionless study), the fixed run settings ([run] and [numerics])
+    and the table path."""
 
     def __init__(self, path: str | Path):
         self.path = Path(path)
@@ -86,17 +94,15 @@ class Study:
             spec = tomllib.loads(self.path.read_text())
         except tomllib.TOMLDecodeError as err:
             raise checks.InputError(f"study file {self.path}: {err}") from err
-        _known_keys("study file", spec, ("name", "grid", "physical", "numerics", "output"))
+        _known_keys("study file", spec, ("name", "grid", "physical", "run", "numerics", "output"))
         grid = spec.get("grid", {})
         self.physical = spec.get("physical")
         _check_grid(grid, self.physical)
         self.name = spec.get("name", self.path.stem)
         numerics = spec.get("numerics", {})
         _known_keys("[numerics]", numerics, NUMERICS)
-        self.nodes = checks.integer(
-            "numerics.nodes", numerics.get("nodes", DEFAULT_NODES), lower=20
-        )
-        self.options = IntegratorOptions(rtol=numerics.get("rtol", IntegratorOptions.rtol))
+        _known_keys("[run]", spec.get("run", {}), RUN_SETTINGS)
+        self.run = {**spec.get("run", {}), **numerics}
         output = spec.get("output", {})
         _known_keys("[output]", output, ("table",))
         self.table = self.path.parent / output.get("table", f"results/{self.path.stem}.csv")
@@ -109,7 +115,7 @@ class Study:
             inputs = self.inputs(point)
             scaled = inputs.dimensionless() if self.physical is not None else inputs
             self.stokes_numbers.append(scaled.St)
-            checks.choice("grid.tangential", point.get("tangential", "couette"), TANGENTIAL_MODELS)
+            self.config(point)
 
     @property
     def point_dir(self) -> Path:
@@ -120,8 +126,13 @@ class Study:
         (SI) with the point's."""
         if self.physical is None:
             return _parameters(point)
-        values = {k: v for k, v in {**self.physical, **point}.items() if k != "tangential"}
+        values = {k: v for k, v in {**self.physical, **point}.items() if k not in RUN_SETTINGS}
         return from_presets(**values)
+
+    def config(self, point: dict) -> RunConfig:
+        """The run configuration of ``point``: the fixed run settings with the point's."""
+        swept = {k: v for k, v in point.items() if k in RUN_SETTINGS}
+        return RunConfig.from_settings(**{**self.run, **swept})
 
     def key(self, point: dict) -> str:
         """The name of ``point``'s result file: a hash of its inputs (with the [physical]
@@ -142,7 +153,7 @@ def _check_grid(grid: dict, physical: dict | None) -> None:
     if not isinstance(physical, dict):
         raise checks.InputError("[physical] must be a table of PhysicalCollision fields")
     _known_keys("[physical]", physical, PHYSICAL_FIELDS)
-    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, "tangential"))
+    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, *RUN_SETTINGS))
     missing = [name for name in PHYSICAL_REQUIRED if name not in physical and name not in grid]
     if missing:
         raise checks.InputError(f"[physical] (or [grid]) needs {', '.join(missing)}")
@@ -184,7 +195,7 @@ def point_key(point) -> str:
     return hashlib.sha1(text.encode()).hexdigest()[:16]
 
 
-def _write_atomic(path: Path, text: str) -> None:
+def write_atomic(path: Path, text: str) -> None:
     """Write to a temporary file in the same folder, fsync, then rename over ``path``."""
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     with tmp.open("w") as f:
@@ -197,14 +208,10 @@ def _write_atomic(path: Path, text: str) -> None:
 def run_point(study: Study, point: dict) -> dict:
     """One collision; failures are recorded with their reason instead of stopping the study."""
     start = time.perf_counter()
-    row = {**point}
+    config = study.config(point)
+    row = {**point, **{k: v for k, v in config.settings().items() if k not in point}}
     try:
-        result = collide(
-            study.inputs(point),
-            nodes=study.nodes,
-            options=study.options,
-            tangential=point.get("tangential", "couette"),
-        )
+        result = collide(study.inputs(point), config)
         summary = result.summary()
         if study.physical is not None:
             row.update({name: summary[name] for name in SCALED_GROUPS})
@@ -281,7 +288,7 @@ def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
     os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
     os.close(fd)
     row = run_point(study, point)
-    _write_atomic(done, json.dumps(row))
+    write_atomic(done, json.dumps(row))
     (claims / key).unlink(missing_ok=True)
     return row
 
@@ -315,7 +322,7 @@ def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
     writer = csv.DictWriter(text, fieldnames=names)
     writer.writeheader()
     writer.writerows(rows)
-    _write_atomic(path, text.getvalue())
+    write_atomic(path, text.getvalue())
     return path
 
 
@@ -365,16 +372,14 @@ def critical_stokes(
     params: CollisionParameters,
     bracket=(1.0, 1000.0),
     rtol: float = 1e-3,
-    nodes: int = DEFAULT_NODES,
-    options: IntegratorOptions | None = None,
-    model: str = "halfspace",
+    config: RunConfig | None = None,
     progress_label: str | None = None,
 ) -> dict:
     """St_c: the smallest St at which the sphere leaves the layer (e_n > 0), by bisection in
-    log St on the outcome of the collision (other inputs from ``params``). Returns St_c, the
-    final bracket [sticks, rebounds], the relative tolerance and the number of collisions.
-    ``progress_label``: label of a progress bar over the collisions (terminal only; None: no
-    bar).
+    log St on the outcome of the collision (other inputs from ``params``, computed as
+    ``config`` says). Returns St_c, the final bracket [sticks, rebounds], the relative
+    tolerance and the number of collisions. ``progress_label``: label of a progress bar over
+    the collisions (terminal only; None: no bar).
 
     The film grid is chosen once, for the top of the bracket (the widest contact), and the
     compliance is built once on it: the FE solids are factorised a single time."""
@@ -387,11 +392,12 @@ def critical_stokes(
     checks.number("rtol", rtol, lower=1e-8, upper=0.5)
     values = {name: getattr(params, name) for name in PARAMETERS}
     widest = CollisionParameters(**{**values, "St": 4 * hi})
-    compliance = elasticity(widest, film_radii(widest, nodes), model)
+    config = RunConfig() if config is None else config
+    compliance = elasticity(widest, film_radii(widest, config.numerics.nodes), config)
 
     def rebounds(St):
         params = CollisionParameters(**{**values, "St": St})
-        return collide(params, options=options, compliance=compliance).normal.rebound
+        return collide(params, config, compliance=compliance).normal.rebound
 
     try:
         lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)
@@ -456,13 +462,13 @@ def critical_speed(
     physical: PhysicalCollision,
     bracket=(0.01, 10.0),
     rtol: float = 0.01,
-    model: str = "halfspace",
+    config: RunConfig | None = None,
     rebounds=None,
 ) -> dict:
     """The critical impact speed [m/s] of a physical collision (its other inputs fixed; eps,
     P_cav and alpha change with the speed) and St_c, the Stokes number there, by bisection in
     log speed on the rebound outcome. ``rebounds(speed)``: the outcome (default: a collision
-    with ``model``; pass a cached one to resume a study)."""
+    computed as ``config`` says; pass a cached one to resume a study)."""
     checks.number("rtol", rtol, lower=1e-8, upper=0.5)
     lo, hi = (
         checks.positive("bracket low", bracket[0]),
@@ -471,7 +477,7 @@ def critical_speed(
     if rebounds is None:
 
         def rebounds(speed):
-            result = collide(replace(physical, speed=speed), model=model)
+            result = collide(replace(physical, speed=speed), config)
             result.compliance.close()
             return result.normal.rebound
 

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from ehdfem.collision import collide
+from ehdfem.config import RunConfig
 from ehdfem.dem.closedform import fit_normal, fit_power_law
 from ehdfem.inputs import literature as lit
 from ehdfem.inputs.scales import CollisionParameters
@@ -76,5 +77,5 @@ def test_tangential_restitution_is_close_to_one(eps, St):
     models of the tangential motion)."""
     params = CollisionParameters(St=St, eps=eps, p_cav=-10.0, angle=30.0)
     for model in ("couette", "lubrication"):
-        e_t = collide(params, tangential=model).tangential.e_t
+        e_t = collide(params, RunConfig.from_settings(tangential=model)).tangential.e_t
         assert lit.TANGENTIAL_CLOSE_TO_ONE.band[0] <= e_t <= 1.0

@@ -1,0 +1,134 @@
+"""Command-line options built from the input dataclasses' field metadata
+(:mod:`ehdfem.inputs.settings`), and the output helpers shared by the commands.
+
+Each field becomes ``--name`` (underscores as dashes, or the field's ``flag``) with its help,
+unit or scale, allowed values and default in ``--help``. Options are not set unless given
+(their default is the dataclass's), so :func:`given` returns only what the user typed.
+Negative numbers in scientific notation (``--p-cav -1e1``) are values, not options.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ..inputs.settings import allowed_text, default_text, described, kind, meta
+from ..study.sweep import write_atomic
+
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$")
+
+
+class Parser(argparse.ArgumentParser):
+    """An argument parser that reads -1e1, -.5 and -inf as numbers (argparse's own reads
+    only -1 and -1.5 so; its subcommands' parsers are of this class too)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER
+
+
+def option(f) -> str:
+    """The command-line name of field ``f``: --p-cav for p_cav, or its ``flag``."""
+    return "--" + (meta(f, "flag") or f.name.replace("_", "-"))
+
+
+def destination(f) -> str:
+    """The argparse destination of field ``f``."""
+    return option(f)[2:].replace("-", "_")
+
+
+def help_text(cls, f) -> str:
+    """Help of field ``f`` of ``cls``: what it is, [unit], allowed values, default."""
+    unit = meta(f, "unit")
+    allowed = "" if kind(cls, f) is bool or meta(f, "choices") else allowed_text(f)
+    return (
+        meta(f, "help")
+        + (f" [{unit}]" if unit else "")
+        + (f", {allowed}" if allowed else "")
+        + f"; default: {default_text(f)}"
+    ).replace("%", "%%")
+
+
+def _on_off(text: str) -> bool:
+    if text not in ("on", "off"):
+        raise argparse.ArgumentTypeError(f"expected on or off, got {text!r}")
+    return text == "on"
+
+
+def add_fields(group, cls, names=None, exclude=()) -> None:
+    """An option per scalar field of the dataclass ``cls`` (those in ``names`` if given, none
+    in ``exclude``): floats and integers typed, strings with their choices, booleans as
+    on/off; unset unless given."""
+    for f in described(cls):
+        if (names is not None and f.name not in names) or f.name in exclude:
+            continue
+        base = kind(cls, f)
+        extra = {"choices": meta(f, "choices")} if meta(f, "choices") else {}
+        if base is bool:
+            extra = {"type": _on_off, "metavar": "{on,off}"}
+        elif base in (int, float):
+            extra = {"type": base, "metavar": f.name.upper() if len(f.name) < 4 else "X"}
+        group.add_argument(
+            option(f),
+            dest=destination(f),
+            default=argparse.SUPPRESS,
+            help=help_text(cls, f),
+            **extra,
+        )
+
+
+def given(args, cls, names=None) -> dict:
+    """The values of ``cls``'s fields given on the command line, by field name."""
+    fields = [f for f in described(cls) if names is None or f.name in names]
+    return {f.name: getattr(args, destination(f)) for f in fields if hasattr(args, destination(f))}
+
+
+def report_stream(args):
+    """Where the human-readable report goes: standard error when ``--json -`` takes standard
+    output for the JSON alone, else standard output."""
+    return sys.stderr if getattr(args, "json", None) == "-" else sys.stdout
+
+
+def print_table(summary: dict, stream) -> None:
+    """The results of a summary, one per line (the SI ones after the scaled ones; the inputs
+    are in the JSON only)."""
+    rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict)]
+    rows += list(summary.get("si", {}).items())
+    width = max(len(k) for k, _ in rows)
+    for key, value in rows:
+        text = f"{value:.6g}" if isinstance(value, float) else str(value)
+        print(f"  {key:<{width}}  {text}", file=stream)
+
+
+def json_ready(value):
+    """``value`` with every non-finite float (NaN, +-inf) as None and tuples as lists, so that
+    the text is strict JSON (jq, JSON.parse and json.load all read it)."""
+    if isinstance(value, dict):
+        return {key: json_ready(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [json_ready(item) for item in value]
+    if isinstance(value, float | np.floating) and not np.isfinite(value):
+        return None
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def write_json(data: dict, target: str | None) -> None:
+    """Write ``data`` as strict JSON to the file ``target``, or alone to standard output when
+    ``target`` is "-"; nothing when it is None."""
+    if not target:
+        return
+    text = json.dumps(json_ready(data), indent=2, allow_nan=False)
+    if target == "-":
+        sys.stdout.write(text + "\n")
+        sys.stdout.flush()
+    else:
+        Path(target).parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(Path(target), text + "\n")
+
+
+JSON_HELP = "write the results as JSON ('-' for standard output alone); default: none"

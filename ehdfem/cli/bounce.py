@@ -1,0 +1,151 @@
+"""``ehdfem bounce``: a sphere released in a liquid settles onto a wall and bounces until it
+rests; each contact is an immersed EHD collision (docs/bounce.md). Inputs in SI."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .. import BounceInputs, IntegratorOptions, bounce, checks
+from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP
+from ..bounce.trajectory import MODELS as BOUNCE_MODELS
+from ..config import DEFAULT_NODES
+from ..film import cavitation
+from ..inputs.scales import ATMOSPHERE
+from ..outputs import plots
+from ..study.sweep import write_csv
+from .arguments import report_stream, write_json
+from .inputs import BODIES, add_body_arguments, body_hint, body_of
+
+HELP = (
+    "a sphere released in a liquid settles onto a wall and bounces until it rests; each "
+    "contact is an immersed EHD collision (docs/bounce.md)"
+)
+
+
+def add_bounce(b) -> None:
+    """The inputs of ``ehdfem bounce``: materials, liquid, start, modelling choices, output."""
+    phys = b.add_argument_group("physical inputs (SI)")
+    add_body_arguments(phys)
+    phys.add_argument("--radius", type=float, help="sphere radius a [m], (0, 1]")
+    phys.add_argument(
+        "--release-height", type=float, help="gap [m] at which the sphere is released at rest"
+    )
+    phys.add_argument("--start-gap", type=float, help="or: start gap [m], with --start-speed")
+    phys.add_argument("--start-speed", type=float, help="speed [m/s] towards the wall at the start")
+    model = b.add_argument_group("modelling choices")
+    model.add_argument(
+        "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
+    )
+    model.add_argument("--drag", choices=DRAG_LAWS, default=DRAG_LAWS[0], help="steady drag law")
+    model.add_argument(
+        "--added-mass", type=float, default=0.5, help="added-mass coefficient C_M, [0, 1]"
+    )
+    model.add_argument("--gravity", type=float, default=GRAVITY, help="g [m/s^2]")
+    model.add_argument(
+        "--cavitation",
+        choices=cavitation.MODELS,
+        default="truncate",
+        help="film cavitation at the liquid's vapour pressure: truncate, mass-conserving or none",
+    )
+    model.add_argument(
+        "--ambient-pressure", type=float, default=ATMOSPHERE, help="ambient pressure [Pa]"
+    )
+    model.add_argument(
+        "--model",
+        choices=BOUNCE_MODELS,
+        default="halfspace",
+        help="solids of the contacts: elastic half-spaces, or rigid (eps -> 0)",
+    )
+    num = b.add_argument_group("numerics and output")
+    num.add_argument(
+        "--handover-jump",
+        type=float,
+        default=HANDOVER_JUMP,
+        help="largest relative force jump at the hand-over to the film model, (0, 0.5)",
+    )
+    num.add_argument(
+        "--ehd-multiple",
+        type=float,
+        default=EHD_MULTIPLE,
+        help="hand over at the latest at this multiple of the EHD gap, >= 1",
+    )
+    num.add_argument("--max-bounces", type=int, default=30, help="most contacts computed")
+    num.add_argument(
+        "--rest-apex", type=float, default=1e-3, help="an apex below this fraction of D ends it"
+    )
+    num.add_argument("--nodes", type=int, default=DEFAULT_NODES, help="film nodes")
+    num.add_argument(
+        "--rtol", type=float, default=IntegratorOptions.rtol, help="film time-step tolerance"
+    )
+    num.add_argument(
+        "--out",
+        metavar="DIR",
+        help="write trajectory.csv, contacts.csv, bounce.json and bounce.png into DIR",
+    )
+    num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
+
+
+def _bounce_inputs(args) -> BounceInputs:
+    """The bounce's inputs from the arguments; a missing material or liquid is named."""
+    bodies = {name: body_of(args, name, getattr(args, name)) for name in BODIES}
+    missing = [body_hint(name) for name, value in bodies.items() if value is None]
+    if args.radius is None:
+        missing.append("--radius")
+    if missing:
+        raise checks.InputError(f"ehdfem bounce needs {', '.join(missing)}")
+    return BounceInputs(
+        radius=args.radius,
+        **bodies,
+        release_height=args.release_height,
+        start_gap=args.start_gap,
+        start_speed=args.start_speed,
+        e_dry=args.e_dry,
+        drag=args.drag,
+        added_mass=args.added_mass,
+        gravity=args.gravity,
+        cavitation=args.cavitation,
+        ambient_pressure=args.ambient_pressure,
+    )
+
+
+def bounce_command(args) -> int:
+    inputs = _bounce_inputs(args)
+    result = bounce(
+        inputs,
+        model=args.model,
+        nodes=args.nodes,
+        options=IntegratorOptions(rtol=args.rtol),
+        handover_jump=args.handover_jump,
+        ehd_multiple=args.ehd_multiple,
+        max_bounces=args.max_bounces,
+        rest_apex=args.rest_apex,
+    )
+    summary = result.summary()
+    report = report_stream(args)
+    diameter = inputs.diameter
+    print(
+        f"ehdfem bounce: {result.status}; terminal velocity {result.terminal_velocity:.4g} m/s, "
+        f"energy balance {summary['energy_error']:.2g}",
+        file=report,
+    )
+    print("  contact  impact [m/s]  St       h_c [m]    e       apex/D    outcome", file=report)
+    for i, c in enumerate(result.contacts, 1):
+        apex = "-" if c.apex_gap is None else f"{c.apex_gap / diameter:.4g}"
+        print(
+            f"  {i:<7d}  {c.impact_speed:<12.4g}  {c.St:<7.4g}  {c.handover_gap:<9.3g}  "
+            f"{c.e:<6.4f}  {apex:<8s}  {c.status}",
+            file=report,
+        )
+    write_json(summary, args.json)
+    if args.out:
+        out = Path(args.out)
+        write_json(summary, str(out / "bounce.json"))
+        wrote = [
+            write_csv(out / "trajectory.csv", result.trajectory_rows()),
+            write_csv(out / "contacts.csv", result.contact_rows()),
+            out / "bounce.json",
+            plots.plot_bounce(result, out / "bounce.png"),
+        ]
+        for path in wrote:
+            print(f"  wrote {path}", file=report)
+    return 0

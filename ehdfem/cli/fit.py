@@ -1,0 +1,76 @@
+"""``ehdfem fit``: closed-form fits (and DEM formulas) against a sweep table."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+from .. import checks
+from ..dem.closedform import GROUPED, describe_ranges, fit_table, python_source
+from ..study.sweep import write_atomic
+from ..version import __version__
+from .arguments import report_stream, write_json
+
+HELP = "closed-form fits (and DEM formulas) against a sweep table"
+
+
+def add_fit(parser) -> None:
+    parser.add_argument("table", help="CSV table written by ehdfem sweep")
+    parser.add_argument(
+        "--json", metavar="FILE", help="write the fits as JSON ('-': stdout); default: none"
+    )
+    parser.add_argument(
+        "--python",
+        metavar="FILE",
+        help="write the closed forms for DEM (e_n, e_t, spin change) as a Python module to "
+        "copy; default: none",
+    )
+
+
+def fit_command(args) -> int:
+    path = Path(args.table)
+    if not path.is_file():
+        raise checks.InputError(f"table {args.table!r} does not exist")
+    with path.open() as f:
+        fits = fit_table(list(csv.DictReader(f)))
+    report = report_stream(args)
+    for group in fits["normal"]:
+        print(
+            f"{_labels(group)}, eps = {group['eps']:g}: "
+            f"e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
+            f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}",
+            file=report,
+        )
+    for law in fits["critical_stokes_laws"]:
+        print(
+            f"St_c ({_labels(law['model'])}): {law['coefficient']:.4g} eps^{law['eps']:.4g}"
+            f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}",
+            file=report,
+        )
+    forms = fits.get("closed_forms")
+    if forms is not None:
+        print(f"closed forms for DEM over {describe_ranges(forms['ranges'])}:", file=report)
+        for name in ("normal", "tangential_loss", "spin_change"):
+            form = forms[name]
+            relative = form.get("max_relative_error")
+            print(
+                f"  {form['form']}\n    max error {form['max_error']:.3g}, rms "
+                f"{form['rms_error']:.3g}"
+                + ("" if relative is None else f", max relative error {relative:.3g}"),
+                file=report,
+            )
+    elif args.python:
+        raise checks.InputError(f"--python: {fits['closed_forms_skipped']}")
+    for name, errors in fits["dem_formulas"].items():
+        error, rms = errors["max_error"], errors["rms_error"]
+        print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
+    write_json(fits, args.json)
+    if args.python:
+        write_atomic(Path(args.python), python_source(forms, path.name, __version__))
+        print(f"wrote {args.python}", file=report)
+    return 0
+
+
+def _labels(group: dict) -> str:
+    """The model labels of a fit group (delta, layer, P_cav, cavitation, viscosity, alpha)."""
+    return ", ".join(f"{k} = {group[k]}" for k in ("delta", *(k for k, _ in GROUPED)) if k in group)

@@ -1,0 +1,213 @@
+"""The inputs of one collision on the command line (collide, render): dimensionless
+(CollisionParameters' fields, DSH scales) or physical (PhysicalCollision's, SI, with the
+sphere, wall and liquid as presets and/or values), the options shared by both, and the run
+configuration (:class:`ehdfem.RunConfig`'s flat settings). All generated from the
+dataclasses' fields (:mod:`ehdfem.cli.arguments`)."""
+
+from __future__ import annotations
+
+import argparse
+
+from .. import CollisionParameters, PhysicalCollision, RunConfig, checks, from_presets
+from ..config import LOWER_BODIES, Numerics, setting_classes
+from ..inputs.presets import (
+    EXAMPLE,
+    LIQUID_RANGES,
+    MATERIAL_RANGES,
+    custom_liquid,
+    custom_material,
+)
+from ..inputs.settings import described
+from ..motion.timestepping import IntegratorOptions
+from .arguments import add_fields, given
+
+BODIES = ("sphere", "wall", "liquid")
+PHYSICAL_TRIGGERS = ("radius", "speed", "layer_thickness")  # with a body: physical inputs
+MATERIAL_OPTIONS = {  # option suffix: (Material field, metavar, help)
+    "modulus": ("young_modulus", "E", "Young's modulus [Pa]"),
+    "poisson": ("poisson_ratio", "NU", "Poisson's ratio"),
+    "density": ("density", "RHO", "density [kg/m^3]"),
+}
+LIQUID_OPTIONS = {  # option: (Liquid field, metavar, help)
+    "liquid_viscosity": ("viscosity", "MU", "liquid viscosity [Pa s] at ambient pressure"),
+    "liquid_density": ("density", "RHO", "liquid density [kg/m^3]"),
+    "vapour_pressure": ("vapour_pressure", "P", "vapour pressure [Pa, absolute], below ambient"),
+}
+SCALED = {"alpha": "pressure_viscosity", "p_cav": "cavitation_pressure"}  # scaled: SI
+
+
+def _names(cls) -> set[str]:
+    return {f.name for f in described(cls)}
+
+
+def shared() -> set[str]:
+    """Fields of both input kinds with the same meaning (spin differs in unit)."""
+    return (_names(CollisionParameters) & _names(PhysicalCollision)) - {"spin"}
+
+
+def add_collision_arguments(parser) -> None:
+    """Every input of one collision and its run configuration."""
+    both = shared()
+    add_fields(
+        parser.add_argument_group("dimensionless inputs (DSH scales)"),
+        CollisionParameters,
+        exclude=both,
+    )
+    phys = parser.add_argument_group("physical inputs (SI)")
+    add_body_arguments(phys)
+    add_fields(phys, PhysicalCollision, exclude=both)
+    phys.add_argument(
+        "--example",
+        action="store_true",
+        help="steel sphere (a = 6.35 mm) on glass through 0.3 mm of 100 cSt silicone oil, "
+        "1 m/s at 30 deg; default: off",
+    )
+    add_fields(parser.add_argument_group("both"), CollisionParameters, names=both)
+    add_run_arguments(parser)
+
+
+def add_run_arguments(parser, exclude=()) -> None:
+    """The run configuration's settings, by group (``exclude``: names left out)."""
+    run = parser.add_argument_group("run configuration")
+    add_fields(run, RunConfig, exclude=exclude)
+    fe = parser.add_argument_group("lower body of the FE solids (--model fem)")
+    fe.add_argument(
+        "--lower",
+        choices=tuple(LOWER_BODIES),
+        default=argparse.SUPPRESS,
+        help="body below the sphere: wall block, coated wall block, or a second sphere; "
+        "default: wall",
+    )
+    for body in LOWER_BODIES.values():
+        add_fields(fe, body, exclude=exclude)
+    num = parser.add_argument_group("numerics")
+    for part in (Numerics, IntegratorOptions):
+        add_fields(num, part, exclude=exclude)
+
+
+def run_config(args) -> RunConfig:
+    """The run configuration of the given settings (the others at their defaults)."""
+    values = {} if not hasattr(args, "lower") else {"lower": args.lower}
+    for cls in setting_classes():
+        values.update(given(args, cls))
+    return RunConfig.from_settings(**values)
+
+
+def add_body_arguments(phys) -> None:
+    """The sphere, wall and liquid: presets and their values (collide, render, bounce)."""
+    phys.add_argument(
+        "--sphere", help="sphere material preset (e.g. steel, glass; see ehdfem presets); "
+        "default: none",
+    )  # fmt: skip
+    phys.add_argument("--wall", help="wall material preset; default: none")
+    phys.add_argument(
+        "--liquid",
+        help="liquid preset (e.g. water, silicone_oil_100cst; see ehdfem presets); default: none",
+    )
+    for body in ("sphere", "wall"):
+        for suffix, (field, metavar, text) in MATERIAL_OPTIONS.items():
+            phys.add_argument(
+                f"--{body}-{suffix}",
+                type=float,
+                metavar=metavar,
+                help=f"{body} {text}, {checks.range_text(**MATERIAL_RANGES[field])}; changes "
+                f"--{body}'s value, or with no preset give all three; default: the preset's",
+            )
+    for name, (field, metavar, text) in LIQUID_OPTIONS.items():
+        phys.add_argument(
+            _option(name),
+            type=float,
+            metavar=metavar,
+            help=f"{text}, {checks.range_text(**LIQUID_RANGES[field])}; changes --liquid's "
+            "value, or with no preset give all three; default: the preset's",
+        )
+
+
+def collision_inputs(args) -> CollisionParameters | PhysicalCollision:
+    """The collision inputs of the arguments, refusing mixed or incomplete sets."""
+    values = _physical_values(args)
+    scaled_only = given(args, CollisionParameters).keys() - shared()
+    physical_only = given(args, PhysicalCollision).keys() - shared()
+    if values is None:
+        for name in sorted(physical_only):
+            counterpart = {v: k for k, v in SCALED.items()}.get(name)
+            instead = f"; give the scaled {_option(counterpart)} instead" if counterpart else ""
+            raise checks.InputError(f"{_option(name)} needs physical inputs{instead}", name)
+        return _dimensionless(args)
+    missing = [body_hint(name) for name in (*BODIES, *PHYSICAL_TRIGGERS) if name not in values]
+    if missing:
+        raise checks.InputError(f"physical inputs need {', '.join(missing)}")
+    if scaled_only:
+        names = sorted(scaled_only)
+        instead = [_option(SCALED[n]) + " [SI]" for n in names if n in SCALED]
+        raise checks.InputError(
+            "give either dimensionless or physical inputs, not both: "
+            f"{', '.join(map(_option, names))} are scaled"
+            + (f"; physical inputs take {', '.join(instead)}" if instead else ""),
+            names[0],
+        )
+    values.update(given(args, PhysicalCollision))
+    values.update(given(args, CollisionParameters, shared()))
+    own_liquid = args.liquid is None and not args.example
+    viscosity = values.get("viscosity", "constant")
+    if own_liquid and viscosity != "constant" and "pressure_viscosity" not in values:
+        raise checks.InputError(
+            f"--viscosity {viscosity} with a liquid of your own needs its "
+            "--pressure-viscosity [1/Pa], [0, 1e-6]"
+        )
+    return from_presets(**values)
+
+
+def _dimensionless(args) -> CollisionParameters:
+    """The dimensionless inputs (DSH scales) of the arguments."""
+    values = given(args, CollisionParameters)
+    for name in ("St", "eps"):
+        if name not in values:
+            raise checks.InputError(
+                f"--{name} is required (or give physical inputs, or --example)", name
+            )
+    return CollisionParameters(**values)
+
+
+def _option(dest: str) -> str:
+    """The command-line spelling of an argument's name: layer_thickness -> --layer-thickness."""
+    return "--" + dest.replace("_", "-")
+
+
+def body_hint(name: str) -> str:
+    """How to give the physical input ``name`` (for the message listing what is missing)."""
+    if name == "liquid":
+        return f"--liquid (or {', '.join(map(_option, LIQUID_OPTIONS))})"
+    if name in BODIES:
+        values = ", ".join(_option(f"{name}_{suffix}") for suffix in MATERIAL_OPTIONS)
+        return f"--{name} (or {values})"
+    return _option(name)
+
+
+def _physical_values(args) -> dict | None:
+    """The physical inputs that select physical mode (SI; with --example, its values where not
+    given), the sphere, wall and liquid as Material and Liquid; None when there are none."""
+    values = dict(EXAMPLE) if args.example else {}
+    values.update({n: getattr(args, n) for n in PHYSICAL_TRIGGERS if hasattr(args, n)})
+    for name in BODIES:
+        body = body_of(args, name, getattr(args, name) or values.get(name))
+        values.pop(name, None)
+        if body is not None:
+            values[name] = body
+    return values or None
+
+
+def body_of(args, name: str, preset: str | None):
+    """The sphere's or wall's Material, or the liquid's Liquid, from its preset and the values
+    given on the command line (which change the preset's); None when neither is given."""
+    if name == "liquid":
+        options, build = LIQUID_OPTIONS, custom_liquid
+    else:
+        options = {f"{name}_{suffix}": spec for suffix, spec in MATERIAL_OPTIONS.items()}
+        build = custom_material
+    values = {dest: getattr(args, dest) for dest in options if getattr(args, dest) is not None}
+    if preset is None and not values:
+        return None
+    field = {dest: spec[0] for dest, spec in options.items()}
+    labels = {field[dest]: _option(dest) for dest in options}
+    return build(preset, labels=labels.get, **{field[dest]: v for dest, v in values.items()})

@@ -1,0 +1,24 @@
+"""``ehdfem sweep``: a study file (TOML) over the MPI ranks; resumable (docs/studies.md)."""
+
+from __future__ import annotations
+
+from ..study.sweep import Study, run_study
+
+HELP = "run a study file (TOML) over the MPI ranks; resumable"
+
+
+def add_sweep(parser) -> None:
+    parser.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
+
+
+def sweep_command(args) -> int:
+    from mpi4py import MPI
+
+    comm = MPI.COMM_WORLD
+    study = Study(args.study)
+    if comm.rank == 0:
+        print(f"ehdfem sweep {study.name}: {len(study.points)} points on {comm.size} rank(s)")
+    run_study(study, comm, progress=print if comm.rank == 0 else None)
+    if comm.rank == 0:
+        print(f"wrote {study.table}")
+    return 0

@@ -1,0 +1,260 @@
+"""The run configuration: how a collision is computed, beside what collides
+(:class:`ehdfem.inputs.scales.CollisionParameters` or ``PhysicalCollision``).
+
+:class:`RunConfig` holds the elasticity model, the lower body of the FE model
+(:class:`Wall`, :class:`CoatedWall`, :class:`LowerSphere`), the tangential film model and its
+mode-1 deformation, and the numerics (:class:`Numerics`: film nodes, refinements and the time
+integration's :class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its
+help, unit or scale and allowed values (:mod:`ehdfem.inputs.settings`); lengths of the lower
+body are scaled by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
+
+Its flat form (:meth:`RunConfig.settings`, :meth:`RunConfig.from_settings`) names every
+setting once (model, lower, coating_thickness, ..., nodes, rtol, order, ...): the keys of
+study files, of the command line and of the JSON ``inputs["run"]``. :func:`read_inputs`
+rebuilds the inputs and the configuration of a collision from its JSON ``inputs``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+from . import checks
+from .film import cavitation
+from .inputs.presets import Liquid, Material
+from .inputs.scales import CollisionParameters, PhysicalCollision
+from .inputs.settings import described, setting, validate
+from .motion.timestepping import IntegratorOptions
+from .tangential.motion import DEFORMATIONS
+from .tangential.motion import MODELS as TANGENTIAL_MODELS
+
+MODELS = ("halfspace", "fem")
+DEFAULT_NODES = 240
+
+
+@dataclass(frozen=True)
+class Wall:
+    """The FE model's default lower body: an elastic wall block of the wall's material."""
+
+    kind: ClassVar[str] = "wall"
+
+    def __post_init__(self):
+        validate(self)
+
+    def solids(self, wall_modulus: float) -> dict:
+        """Arguments of :class:`ehdfem.solids.fe.solids.FESolids` for this body."""
+        return {}
+
+
+@dataclass(frozen=True)
+class CoatedWall:
+    """A wall block under a coating of thickness t (by a) and Young's modulus E_c (by the
+    wall's, the substrate's) with its Poisson ratio."""
+
+    kind: ClassVar[str] = "coated"
+    coating_thickness: float = setting(
+        help="coating thickness t", unit="by a", lower=0.0, lower_open=True
+    )
+    coating_stiffness: float = setting(
+        1.0, help="coating Young's modulus E_c", unit="by the wall's", lower=0.0, lower_open=True
+    )
+    coating_poisson: float = setting(
+        0.3, help="coating Poisson ratio", lower=-1.0, upper=0.5, lower_open=True, upper_open=True
+    )
+
+    def __post_init__(self):
+        validate(self)
+
+    def solids(self, wall_modulus: float) -> dict:
+        """Arguments of FESolids: the coating as (E_c, nu_c), E_c in the wall's unit."""
+        coating = (self.coating_stiffness * wall_modulus, self.coating_poisson)
+        return {"coating": coating, "coating_thickness": self.coating_thickness}
+
+
+@dataclass(frozen=True)
+class LowerSphere:
+    """A second, free sphere below: a is the reduced radius a1 a2 / (a1 + a2)."""
+
+    kind: ClassVar[str] = "sphere"
+    radius_ratio: float = setting(
+        1.0, help="upper sphere radius / lower sphere radius a1/a2", lower=0.0, lower_open=True
+    )
+
+    def __post_init__(self):
+        validate(self)
+
+    def solids(self, wall_modulus: float) -> dict:
+        """Arguments of FESolids: the radius ratio."""
+        return {"radius_ratio": self.radius_ratio}
+
+
+LOWER_BODIES = {body.kind: body for body in (Wall, CoatedWall, LowerSphere)}
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Film nodes, grid refinements after a closed film, and the time integration."""
+
+    nodes: int = setting(DEFAULT_NODES, help="film nodes", lower=20, upper=5000)
+    refinements: int = setting(
+        2, help="times the film grid is doubled when the film closes on it", lower=0, upper=4
+    )
+    integrator: IntegratorOptions = field(default_factory=IntegratorOptions)
+
+    def __post_init__(self):
+        validate(self)
+        if not isinstance(self.integrator, IntegratorOptions):
+            raise checks.InputError(
+                f"integrator must be IntegratorOptions, got {self.integrator!r}", "integrator"
+            )
+
+
+LOWER_SPHERE_SLIDING = (
+    "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower = "
+    "'sphere' is not supported: the sliding film's force and torque are derived for a sphere "
+    "on a wall); use tangential = 'couette'"
+)
+
+
+@dataclass(frozen=True)
+class RunConfig:
+    """How one collision is computed: the elasticity model, the FE model's lower body, the
+    tangential film model (solved for oblique impacts) with the mode-1 deformation of its
+    solids, and the numerics. See the module docstring for the flat settings."""
+
+    model: str = setting(
+        "halfspace",
+        help="elasticity of the solids: half-space kernel or FE solids",
+        choices=MODELS,
+    )
+    lower: Wall | CoatedWall | LowerSphere = field(default_factory=Wall)
+    tangential: str = setting(
+        "couette",
+        help="film model of the tangential motion: 'couette' (the source's shear only), "
+        "'lubrication' (the sliding film), or the reduced 'gcb' and 'flat' "
+        "(docs/tangential.md)",
+        choices=TANGENTIAL_MODELS,
+    )
+    deformation: str = setting(
+        "gap",
+        help="mode-1 deformation of the solids under the sliding film (tangential "
+        "lubrication): the normal displacements, also the tangential ones, or rigid ('none', "
+        "exact for rigid solids only)",
+        choices=DEFORMATIONS,
+        flag="sliding-deformation",
+    )
+    numerics: Numerics = field(default_factory=Numerics)
+
+    def __post_init__(self):
+        validate(self)
+        if type(self.lower) not in LOWER_BODIES.values():
+            raise checks.InputError(
+                f"lower must be Wall, CoatedWall or LowerSphere, got {self.lower!r}", "lower"
+            )
+        if not isinstance(self.numerics, Numerics):
+            raise checks.InputError(f"numerics must be Numerics, got {self.numerics!r}")
+        if self.lower.kind != "wall" and self.model != "fem":
+            raise checks.InputError(
+                f"lower = {self.lower.kind!r} needs model = 'fem' (the half-space is a wall)",
+                "lower",
+            )
+        if self.tangential == "lubrication" and self.lower.kind == "sphere":
+            raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
+
+    @property
+    def options(self) -> IntegratorOptions:
+        """The time integration's options."""
+        return self.numerics.integrator
+
+    def settings(self) -> dict:
+        """The flat settings: every field by its name, the lower body's kind as "lower"."""
+        out = {f.name: getattr(self, f.name) for f in described(RunConfig)}
+        out["lower"] = self.lower.kind
+        for part in (self.lower, self.numerics, self.numerics.integrator):
+            out.update({f.name: getattr(part, f.name) for f in described(type(part))})
+        return out
+
+    @classmethod
+    def from_settings(cls, **values) -> RunConfig:
+        """The configuration of flat settings (any subset of :func:`setting_names`; the others
+        at their defaults), e.g. ``RunConfig.from_settings(model="fem", nodes=120)``. A lower
+        body's field needs that lower body."""
+        unknown = sorted(set(values) - set(setting_names()))
+        if unknown:
+            raise checks.InputError(
+                f"unknown run setting(s) {', '.join(unknown)}; allowed: "
+                f"{', '.join(setting_names())}",
+                unknown[0],
+            )
+        kind = checks.choice("lower", values.pop("lower", "wall"), tuple(LOWER_BODIES))
+        for other, body in LOWER_BODIES.items():
+            for f in described(body):
+                if f.name in values and other != kind:
+                    raise checks.InputError(
+                        f"{f.name} needs lower = {other!r}, not {kind!r}", f.name
+                    )
+        parts = {
+            part: {f.name: values.pop(f.name) for f in described(part) if f.name in values}
+            for part in (LOWER_BODIES[kind], Numerics, IntegratorOptions)
+        }
+        numerics = Numerics(
+            **parts[Numerics], integrator=IntegratorOptions(**parts[IntegratorOptions])
+        )
+        return cls(
+            **values, lower=LOWER_BODIES[kind](**parts[LOWER_BODIES[kind]]), numerics=numerics
+        )
+
+
+def setting_classes() -> tuple:
+    """The dataclasses whose fields are run settings, in the order of the flat settings."""
+    return (RunConfig, *LOWER_BODIES.values(), Numerics, IntegratorOptions)
+
+
+def setting_names() -> tuple[str, ...]:
+    """Every flat setting's name: RunConfig's fields, "lower", the lower bodies', the
+    numerics' and the integrator's."""
+    names = [f.name for cls in setting_classes() for f in described(cls)]
+    return (*names[:1], "lower", *names[1:])
+
+
+def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, RunConfig]:
+    """The collision inputs (dimensionless or physical) and the run configuration of a
+    collision's JSON ``inputs`` (:meth:`ehdfem.collision.CollisionResult.inputs`): its
+    "parameters", "physical" and "run". Also reads the earlier format, whose run options
+    (model, nodes, rtol, tangential, deformation, solids) were at the top level."""
+    if inputs.get("physical") is not None:
+        collision = _physical(inputs["physical"])
+    else:
+        parameters = dict(inputs["parameters"])
+        parameters["p_cav"] = cavitation.parse_suction_limit(parameters["p_cav"])
+        collision = CollisionParameters(**parameters)
+    if "run" in inputs:
+        return collision, RunConfig.from_settings(**inputs["run"])
+    return collision, RunConfig.from_settings(**_earlier_run(inputs, collision))
+
+
+def _physical(values: dict) -> PhysicalCollision:
+    """A PhysicalCollision from its JSON dict (materials and liquid as dicts, SI)."""
+    bodies = {"sphere": Material, "wall": Material, "liquid": Liquid}
+    return PhysicalCollision(**{k: bodies[k](**v) if k in bodies else v for k, v in values.items()})
+
+
+def _earlier_run(inputs: dict, collision) -> dict:
+    """The flat settings of the earlier JSON format: model, nodes, rtol, tangential,
+    deformation and FESolids' ``solids`` (coating as (E, nu), E in the wall's unit: its
+    Young's modulus for physical inputs, else 1) at the top level of ``inputs``."""
+    run = {
+        k: inputs[k] for k in ("model", "nodes", "rtol", "tangential", "deformation") if k in inputs
+    }
+    solids = inputs.get("solids") or {}
+    if solids.get("lower", "wall") != "wall":
+        run["lower"] = solids["lower"]
+    if "radius_ratio" in solids:
+        run["radius_ratio"] = solids["radius_ratio"]
+    if "coating_thickness" in solids:
+        run["coating_thickness"] = solids["coating_thickness"]
+    if "coating" in solids:
+        wall = collision.wall.young_modulus if isinstance(collision, PhysicalCollision) else 1.0
+        run["coating_stiffness"] = solids["coating"][0] / wall
+        run["coating_poisson"] = solids["coating"][1]
+    return run

@@ -1,0 +1,127 @@
+"""The run configuration: its JSON round trip (and the earlier JSON format), studies sweeping
+its fields, and the command line generated from the fields' metadata."""
+
+import csv
+import json
+
+import pytest
+
+from ehdfem import RunConfig, collide
+from ehdfem.checks import InputError
+from ehdfem.cli.main import main, parsers
+from ehdfem.config import CoatedWall, read_inputs, setting_names
+from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from ehdfem.study.sweep import PARAMETERS, PHYSICAL_FIELDS, Study, run_study
+
+pytestmark = pytest.mark.serial
+
+
+def test_every_collide_option_has_help_and_a_shown_default():
+    _, commands = parsers()
+    for action in commands["collide"]._actions:
+        if action.option_strings == ["-h", "--help"]:
+            continue
+        assert action.help, action.option_strings
+        assert "default:" in action.help, action.option_strings
+
+
+def test_setting_names_are_disjoint_from_the_inputs():
+    """A study's grid keys name one thing each: no run setting is also an input field."""
+    assert not set(setting_names()) & (set(PARAMETERS) | set(PHYSICAL_FIELDS))
+
+
+def test_config_round_trips_through_the_json():
+    """summary()["inputs"] -> read_inputs gives the same parameters and configuration
+    (exactly: the JSON holds the values as they were), dimensionless and physical."""
+    config = RunConfig.from_settings(nodes=40, tangential="gcb", rtol=1e-3, order=3)
+    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=20.0)
+    inputs = json.loads(json.dumps(collide(params, config).summary()["inputs"]))
+    assert read_inputs(inputs) == (params, config)
+    physical = from_presets(
+        sphere="steel", wall="glass", liquid="silicone_oil_100cst", radius=6.35e-3, speed=1.0,
+        layer_thickness=3e-4,
+    )  # fmt: skip
+    inputs = json.loads(json.dumps(collide(physical, config).summary()["inputs"]))
+    assert read_inputs(inputs) == (physical, config)
+
+
+def test_a_lower_body_round_trips_through_its_settings():
+    config = RunConfig.from_settings(model="fem", lower="coated", coating_thickness=0.05)
+    assert config.lower == CoatedWall(coating_thickness=0.05)
+    assert RunConfig.from_settings(**config.settings()) == config
+
+
+def test_the_earlier_json_format_is_read():
+    """The earlier `inputs`: parameters, physical, and the run options at the top level (a
+    coating as (E, nu) in Pa for physical inputs: its stiffness is E over the wall's)."""
+    earlier = {
+        "parameters": {"St": 10.0, "eps": 1e-3, "p_cav": None, "angle": 30.0},
+        "physical": None,
+        "model": "fem",
+        "rtol": 1e-3,
+        "nodes": 60,
+        "tangential": "lubrication",
+        "solids": {"lower": "coated", "coating": (30e9, 0.25), "coating_thickness": 0.1},
+    }
+    params, config = read_inputs(earlier)
+    assert params == CollisionParameters(St=10.0, eps=1e-3, angle=30.0)
+    assert (config.model, config.tangential, config.numerics.nodes) == ("fem", "lubrication", 60)
+    assert config.options.rtol == 1e-3 and config.lower.coating_stiffness == 30e9
+    physical = from_presets(
+        sphere="steel", wall="glass", liquid="water", radius=1e-3, speed=1.0,
+        layer_thickness=1e-4,
+    )  # fmt: skip
+    inputs = json.loads(json.dumps(collide(physical).summary()["inputs"]))
+    earlier = {**earlier, "physical": inputs["physical"], "parameters": inputs["parameters"]}
+    found, config = read_inputs(earlier)
+    assert isinstance(found, PhysicalCollision) and found == physical
+    assert config.lower.coating_stiffness == pytest.approx(30e9 / 60e9, rel=1e-15)
+
+
+def test_a_study_sweeps_the_model_and_a_lower_body_field(tmp_path):
+    """[grid] over run settings: the half-space and the FE wall, and a coated wall's
+    thickness; the rows carry each point's settings. At delta = 1e-3 the FE solids are
+    half-spaces to about 1 % (docs/fem.md): e_n agrees to 2 %."""
+    study_file = tmp_path / "s.toml"
+    study_file.write_text(
+        "[grid]\nSt = [10.0]\neps = [1e-3]\ndelta = [1e-3]\np_cav = [-2.0]\n"
+        'model = ["halfspace", "fem"]\n[numerics]\nnodes = 40\n'
+    )
+    rows = run_study(Study(study_file), None, progress=None)
+    assert [row["model"] for row in rows] == ["halfspace", "fem"]
+    assert all(row["nodes"] == 40 and row["lower"] == "wall" for row in rows)
+    assert rows[1]["e_n"] == pytest.approx(rows[0]["e_n"], rel=0.02)
+    with open(Study(study_file).table) as f:
+        assert {"model", "lower", "rtol"} <= set(next(csv.DictReader(f)))
+    coated = tmp_path / "c.toml"
+    coated.write_text(
+        "[grid]\nSt = [10.0]\neps = [1e-3]\ncoating_thickness = [0.05, 0.1]\n"
+        '[run]\nmodel = "fem"\nlower = "coated"\n'
+    )
+    study = Study(coated)
+    assert [study.config(p).lower.coating_thickness for p in study.points] == [0.05, 0.1]
+    bad = tmp_path / "b.toml"
+    bad.write_text("[grid]\nSt = [10.0]\neps = [1e-3]\nradius_ratio = [2.0]\n")
+    with pytest.raises(InputError, match="radius_ratio needs lower = 'sphere'"):
+        Study(bad)
+
+
+def test_negative_numbers_in_scientific_notation_are_values(capsys):
+    assert main(["collide", "--St", "10", "--eps", "1e-3", "--p-cav", "-1e1", "--nodes", "40",
+                 "--json", "-"]) == 0  # fmt: skip
+    assert json.loads(capsys.readouterr().out)["p_cav"] == -10.0
+
+
+@pytest.mark.parametrize(
+    ("args", "flag", "allowed"),
+    [
+        (["--St", "10", "--eps", "1e-3", "--delta", "2"], "--delta", "(0, 1)"),
+        (["--St", "10", "--eps", "1e-3", "--nodes", "5"], "--nodes", "[20, 5000]"),
+        (["--St", "10", "--eps", "1e-3", "--coating-poisson", "0.6"], "--coating-poisson", ""),
+        (["--St", "10", "--eps", "1e-3", "--lower", "sphere"], "--lower", "fem"),
+    ],
+)
+def test_a_bad_value_names_the_flag_and_the_allowed_range(args, flag, allowed, capsys):
+    assert main(["collide", *args]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"ehdfem collide: error: {flag}: ") and allowed in err

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from ..inputs.settings import allowed_text, default_text, described, kind, meta
+from ..outputs import registry
 from ..study.sweep import write_atomic
 
 NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$")
@@ -95,14 +96,16 @@ def report_stream(args):
 
 
 def print_table(summary: dict, stream) -> None:
-    """The results of a summary, one per line (the SI ones after the scaled ones; the inputs
-    are in the JSON only)."""
-    rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict)]
-    rows += list(summary.get("si", {}).items())
+    """The collision's groups, models and time-step control, one per line, then its outputs
+    with their scale and meaning, the SI values last (:func:`ehdfem.outputs.registry.format_table`;
+    an output that does not apply shows n/a and why; the inputs are in the JSON only)."""
+    outputs = set(registry.names()) | {"not_applicable"}
+    rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict) and k not in outputs]
     width = max(len(k) for k, _ in rows)
     for key, value in rows:
         text = f"{value:.6g}" if isinstance(value, float) else str(value)
         print(f"  {key:<{width}}  {text}", file=stream)
+    print(registry.format_table(summary), file=stream)
 
 
 def json_ready(value):

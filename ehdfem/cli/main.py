@@ -57,7 +57,7 @@ from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import plots as viz
 from ..outputs.fields import field_snapshots, write_fields
-from ..solids.fe.solids import LOWER_BODIES
+from ..solids.fe.bodies import LOWER_BODIES
 from ..study.sweep import Study, _write_atomic, critical_stokes, run_study, write_csv
 from ..tangential.motion import DEFORMATIONS
 from ..version import __version__

@@ -14,12 +14,13 @@ from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
+from . import checks
 from .film import cavitation
 from .film.reynolds import contact_grid
-from .inputs import checks
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .motion.timestepping import IntegratorOptions
+from .outputs import registry as outputs
 from .solids.compliance import Compliance, ModeOneCompliance
 from .solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from .tangential.motion import DEFORMATIONS, TangentialResult, solve_tangential
@@ -148,10 +149,12 @@ class CollisionResult:
     superposition: SuperpositionValidity | None = None
 
     def summary(self, run: dict | None = None) -> dict:
-        """Dimensionless results (DSH scales) as a JSON-ready dict; SI values under "si"; the
-        ehdfem version; and under "inputs" everything needed to run the collision again (see
-        :meth:`inputs`; ``run``: the options of the :func:`collide` call, e.g. model, nodes,
-        rtol, tangential, solids)."""
+        """A JSON-ready dict: the ehdfem version and the collision's groups and models; the
+        outputs of :mod:`ehdfem.outputs.registry` (dimensionless, DSH scales), with the reasons
+        of those that do not apply under "not_applicable" and, for physical inputs, the SI
+        values under "si"; the time-step control and the tangential model used; and under
+        "inputs" everything needed to run the collision again (see :meth:`inputs`; ``run``: the
+        options of the :func:`collide` call, e.g. model, nodes, rtol, tangential, solids)."""
         n = self.normal
         p = self.params
         out = {
@@ -169,58 +172,19 @@ class CollisionResult:
             "shear_traction": getattr(self.compliance, "shear_matrix", None) is not None,
             "e_dry": p.e_dry,
             "angle": p.angle,
-            "rebound": n.rebound,
-            "status": n.status,
-            "e_n": n.e_n,
-            "exit_velocity": n.exit_velocity,
-            "max_rebound_velocity": n.max_rebound_velocity,
-            "min_film_thickness": n.min_film_thickness,
-            "max_force": n.max_force,
-            "contact_time": n.contact_time,
-            "max_compression": n.max_compression,
-            "energy_error": n.energy_error,
+            **outputs.values(self),
             "rtol": n.rtol,
             "film_control": n.film_control,
             "bdf_order": n.order,
-            "film_nodes": len(n.radii),
-            "time_steps": n.steps,
-            "e_t": None,
-            "spin_change": None,
         }
         if self.tangential is not None:
             t = self.tangential
-            out.update(
-                e_t=t.e_t, spin_change=t.spin_change, tangential_model=t.model, tangential_at=t.at
-            )
+            out.update(tangential_model=t.model, tangential_at=t.at)
             if t.energy is not None:
-                out.update(
-                    sliding_deformation=t.deformation,
-                    tangential_balance_error=t.energy.balance_error,
-                    tangential_work_exchanged=float(t.energy.exchanged[-1]),
-                    tangential_dissipated=float(t.energy.dissipated[-1]),
-                )
-            if self.superposition is not None:
-                v = self.superposition
-                out.update(
-                    superposition_flag=v.flagged,
-                    superposition_sensitivity=v.sensitivity,
-                    superposition_tilt=v.largest_tilt,
-                    superposition_viscosity_tilt=v.largest_viscosity_tilt,
-                    superposition_overlap=v.suction_overlap,
-                )
+                out["sliding_deformation"] = t.deformation
+        out["not_applicable"] = outputs.not_applicable(self)
         if self.physical is not None:
-            s = self.physical.scales()
-            out["si"] = {
-                "min_film_thickness_m": n.min_film_thickness * s.gap,
-                "max_force_N": n.max_force * s.force,
-                "contact_time_s": n.contact_time * s.time,
-                "max_compression_m": n.max_compression * s.gap,
-                "rebound_normal_speed_m_s": n.e_n * s.velocity,
-            }
-            if self.tangential is not None and self.tangential.e_t is not None:
-                u0 = self.physical.tangential_speed
-                out["si"]["exit_tangential_speed_m_s"] = self.tangential.e_t * u0
-                out["si"]["spin_change_rad_s"] = self.tangential.spin_change * u0 / s.sphere_radius
+            out["si"] = outputs.si_values(self)
         out["inputs"] = self.inputs(run)
         return out
 

@@ -11,6 +11,7 @@ from ehdfem.film.reynolds import Film, radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.implicit_step import ImplicitStep
 from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.sphere import Sphere
 from ehdfem.motion.timestepping import IntegratorOptions
 
 pytestmark = pytest.mark.serial
@@ -47,10 +48,12 @@ def solve_step(n):
     (St = 1e30 keeps the sphere still): the complementarity film solver alone."""
     radii = radial_grid(n, 0.5, 1.1)
     options = IntegratorOptions(newton_tol=1e-10, max_newton=100)
-    step = ImplicitStep(Film(radii, "thin"), np.zeros((n, n)), MassConserving(P_CAV), 1e30, options)
+    still = Sphere(1e30)
+    film, cavitation = Film(radii, "thin"), MassConserving(P_CAV)
+    step = ImplicitStep(film, np.zeros((n, n)), cavitation, still, options)
     _, theta, before = manufactured(radii)
     guess = (np.zeros(n), GAP, 0.0, np.ones(n), np.zeros(n, bool))
-    s = step.solve(guess, STEP, 1.0, (-before, -GAP, 0.0))
+    s = step.solve(guess, STEP, 1.0, (-before, -GAP, 0.0), STEP)
     assert s.gap == pytest.approx(GAP, abs=1e-12)
     return radii, s.pressure, s.fill, s.cavitated, s.state
 

@@ -10,8 +10,8 @@ import sys
 import numpy as np
 import pytest
 
+from ehdfem.checks import InputError
 from ehdfem.cli.main import main
-from ehdfem.inputs.checks import InputError
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.outputs.fields import write_fields
 from ehdfem.solids.fe import mesh as fem_mesh

@@ -7,8 +7,8 @@ import ufl
 from dolfinx import fem, mesh
 from mpi4py import MPI
 
+from ehdfem.checks import InputError
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.solids.compliance import MODE_ONE_LOADS
 from ehdfem.solids.fe import dolfinx_compat as compat
 from ehdfem.solids.fe.mode_one import (

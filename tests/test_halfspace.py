@@ -5,9 +5,9 @@ import pytest
 from scipy.integrate import quad
 from scipy.special import ellipkm1
 
+from ehdfem.checks import InputError
 from ehdfem.collision import DEFAULT_NODES
 from ehdfem.film.reynolds import Film, radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.solids.halfspace import HalfSpaceCompliance, influence_matrix
 
 pytestmark = pytest.mark.serial

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from ehdfem.checks import InputError
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.solids.halfspace_mode_one import (
     HalfSpaceModeOne,
     ring_kernel,

@@ -6,9 +6,9 @@ import math
 
 import pytest
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.console import progress
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.presets import (
     LIQUIDS,
     MATERIALS,

@@ -1,6 +1,6 @@
 """Refactoring guard: the outputs of 23 collisions equal the stored table to 1e-10 relative.
 
-The outputs are those of a sweep table row (ehdfem.study.sweep.OUTPUTS): rebound and status, e_n,
+The outputs are those of a sweep table row (ehdfem.study.OUTPUTS): rebound and status, e_n,
 the largest rebound velocity, the thinnest film, the largest force, the contact time, the
 largest compression, e_t, the spin change, the energy error and the film nodes used.
 

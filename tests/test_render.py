@@ -5,8 +5,8 @@ import imageio.v2 as imageio
 import numpy as np
 import pytest
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.outputs.render import animate_film, render_solids
 from ehdfem.solids.halfspace import HalfSpaceCompliance

@@ -8,9 +8,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.collision import collide
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import NormalSolverError
 

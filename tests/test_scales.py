@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from ehdfem.inputs.checks import InputError
+from ehdfem.checks import InputError
 from ehdfem.inputs.presets import LIQUIDS, MATERIALS, liquid, material
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 

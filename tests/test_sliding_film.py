@@ -8,9 +8,9 @@ by the trapezoid rule, so the balance closes to the time-discretisation error.
 import numpy as np
 import pytest
 
+from ehdfem import checks
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs import checks
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions

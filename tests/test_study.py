@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.study.sweep import Study, critical_speed, critical_stokes, run_study
 

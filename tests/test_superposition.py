@@ -12,8 +12,8 @@ import pytest
 from mpi4py import MPI
 from scipy.integrate import quad
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.tangential.superposition import (

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp, trapezoid
 
+from ehdfem.checks import InputError
 from ehdfem.collision import collide, with_tangential
 from ehdfem.film.reynolds import Film, radial_grid
-from ehdfem.inputs.checks import InputError
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.solids.compliance import RigidSolids

@@ -43,11 +43,11 @@ import numpy as np
 from scipy.integrate import solve_ivp, trapezoid
 from scipy.optimize import brentq
 
+from .. import checks
 from ..collision import DEFAULT_NODES, collide, film_radii
 from ..dem.closedform import legendre
 from ..film import cavitation
-from ..inputs import checks
-from ..inputs.presets import Liquid, Material, body
+from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import (
     ATMOSPHERE,
     PhysicalCollision,
@@ -56,6 +56,7 @@ from ..inputs.scales import (
     stokes_number,
 )
 from ..motion.timestepping import IntegratorOptions
+from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
 from ..version import __version__
 
@@ -217,12 +218,7 @@ class BounceInputs:
         checks.number("gravity", self.gravity, lower=0.0, upper=100.0, lower_open=True)
         checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         checks.positive("ambient_pressure", self.ambient_pressure)
-        if self.liquid.vapour_pressure >= self.ambient_pressure:
-            raise checks.InputError(
-                f"vapour_pressure of liquid {self.liquid.name!r} = "
-                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
-                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
-            )
+        check_vapour_pressure(self.liquid, self.ambient_pressure)
 
     @property
     def diameter(self) -> float:
@@ -412,20 +408,25 @@ class Contact:
     """One contact (film model, :func:`ehdfem.collision.collide`) within a bounce (SI).
 
     ``impact_speed``: the largest approach speed since the last apex (the release); the
-    restitution ``e`` = ``rebound_speed`` / ``impact_speed``, as measured in experiments
-    (rebound_speed = e_dry V_exit V0 at the hand-over gap, the largest rising speed after it);
+    restitution ``e`` = rebound speed / ``impact_speed``, as measured in experiments (the
+    rebound speed e_dry V_exit V0 at the hand-over gap, the largest rising speed after it);
     ``St``: rho_p D impact_speed / (9 mu). ``handover_gap`` h_c and ``handover_speed`` V0 =
-    |v(h_c)|; ``contact_St``, ``eps``, ``p_cav``: the film model's groups (effective mass);
-    ``status`` "rebound" or "stick"; ``exit_velocity``: V_exit (by V0, before e_dry);
-    ``duration`` [s]; ``min_film`` [m]; ``max_force`` [N]. Force jumps (relative, flight to
-    film, both at the same h and v): ``entry_jump`` once the film pressure has built up (the
-    first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
+    |v(h_c)|; ``contact_St``, ``eps``, ``p_cav``: the film model's groups (effective mass).
+    ``film``: every output of the film model (:mod:`ehdfem.outputs.registry`,
+    :func:`ehdfem.outputs.registry.in_si_where_possible`): in SI under its SI key where it has
+    one (``min_film_thickness_m`` [m], ``max_force_N`` [N], ``contact_time_s`` [s],
+    ``max_compression_m`` [m], ``rebound_normal_speed_m_s`` the rebound speed [m/s]), else
+    under its name scaled by the contact's own scales, x0 = h_c and V0 (``exit_velocity``
+    V_exit by V0, before e_dry; ``status`` "rebound" or "stick"; ``energy_error`` the film
+    model's relative balance error, None with a cavitation limit). Force jumps (relative,
+    flight to film, both at the same h and v): ``entry_jump`` once the film pressure has built
+    up (the first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
     Impulses not applied during the contact, relative to the hand-over momentum
     (m + C_M m_f) V0: ``gravity_impulse`` ((m - m_f) g duration) and ``remainder_impulse``
     (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest film). Energies [J]:
     ``film_dissipated`` (the film's viscous dissipation up to exit), ``exit_loss`` (the dry
     loss (1 - e_dry^2) times the exit's kinetic energy, plus the elastic energy left in the
-    solids), ``energy_error`` (the film model's relative balance error)."""
+    solids)."""
 
     impact_speed: float
     St: float
@@ -434,22 +435,27 @@ class Contact:
     contact_St: float
     eps: float
     p_cav: float | None
-    status: str
-    exit_velocity: float
-    rebound_speed: float
     e: float
-    duration: float
-    min_film: float
-    max_force: float
     entry_jump: float
     exit_jump: float
     gravity_impulse: float
     remainder_impulse: float
     film_dissipated: float
     exit_loss: float
-    energy_error: float
+    film: dict
     apex_gap: float | None = None
     apex_time: float | None = None
+
+    @property
+    def status(self) -> str:
+        """The film model's outcome, "rebound" or "stick" (``film["status"]``)."""
+        return self.film["status"]
+
+    def row(self) -> dict:
+        """The contact as one flat dict: its fields, then the film model's outputs."""
+        fields = asdict(self)
+        film = fields.pop("film")
+        return {**fields, **film}
 
 
 TRAJECTORY_COLUMNS = (
@@ -504,8 +510,8 @@ class BounceResult:
         return [dict(zip(TRAJECTORY_COLUMNS, row, strict=True)) for row in rows]
 
     def contact_rows(self) -> list[dict]:
-        """The contacts as rows (dicts of the :class:`Contact` fields, numbered from 1)."""
-        return [{"contact": i + 1, **asdict(c)} for i, c in enumerate(self.contacts)]
+        """The contacts as rows (:meth:`Contact.row`, numbered from 1)."""
+        return [{"contact": i + 1, **c.row()} for i, c in enumerate(self.contacts)]
 
     def summary(self) -> dict:
         """The results as a JSON-ready dict: status, contacts, apexes, energy balance, the
@@ -655,6 +661,53 @@ class _Bounce:
         far, inputs = self.far, self.far.inputs
         t0, gap, velocity, drag = _last(leg)
         speed = -velocity
+        result, scales = self._film_collision(gap, speed)
+        normal, params = result.normal, result.params
+        energy_unit = far.effective_mass * speed**2 / params.St
+        at_end = self._record_contact(normal, (t0, gap, speed, drag), scales, energy_unit)
+        exit_speed = normal.exit_velocity * speed
+        rebound_speed = inputs.e_dry * exit_speed
+        film_dissipated = at_end["dissipated"] * energy_unit
+        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * far.effective_mass * exit_speed**2
+        exit_loss += at_end["elastic"] * energy_unit
+        self.film_dissipated += film_dissipated
+        self.exit_loss += exit_loss
+        impact = float(np.max(np.abs(leg.velocity)))
+        contact = Contact(
+            impact_speed=impact,
+            St=inputs.stokes_number(impact),
+            handover_gap=gap,
+            handover_speed=speed,
+            contact_St=params.St,
+            eps=params.eps,
+            p_cav=cavitation.suction_limit_output(params.p_cav),
+            e=rebound_speed / impact,
+            **self._jumps(normal.history, normal, scales),
+            **self._omitted(normal.history, normal.contact_time, scales, speed),
+            film_dissipated=film_dissipated,
+            exit_loss=exit_loss,
+            film=outputs.in_si_where_possible(result),
+        )
+        self.contacts.append(contact)
+        exit_state = (t0 + normal.contact_time * scales.time, gap, rebound_speed, drag)
+        if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
+            self._append(
+                time=[exit_state[0]],
+                gap=[gap],
+                velocity=[rebound_speed],
+                phase=["flight"],
+                kinetic=[0.5 * far.effective_mass * rebound_speed**2],
+                potential=[far.net_weight * gap],
+                elastic=[0.0],
+                drag_dissipated=[drag],
+            )
+        return contact, exit_state
+
+    def _film_collision(self, gap: float, speed: float):
+        """The immersed EHD collision from the hand-over at ``gap`` (m, the contact's layer
+        thickness x0) and approach ``speed`` (m/s, its V0), with the sphere's effective mass;
+        returns the collision result (scaled) and its SI scales."""
+        far, inputs = self.far, self.far.inputs
         physical = PhysicalCollision(
             radius=inputs.radius,
             sphere=inputs.sphere,
@@ -674,16 +727,21 @@ class _Bounce:
             result = collide(physical, options=self.options, compliance=solids)
         else:
             result = collide(physical, model=self.model, nodes=self.nodes, options=self.options)
-        normal, scales, params = result.normal, physical.scales(), result.params
-        hist = normal.history
-        energy_unit = far.effective_mass * speed**2 / params.St
-        end = normal.contact_time
+        return result, physical.scales()
+
+    def _record_contact(self, normal, start, scales, energy_unit) -> dict:
+        """Append the contact's samples (SI) to the trajectory, from the hand-over ``start`` =
+        (t0 [s], x0 [m], V0 [m/s], drag work so far [J]) to the exit or the stop, the exit
+        interpolated between the last two steps; returns the scaled gap, velocity, dissipated
+        and elastic energy there (energies by ``energy_unit`` = m V0^2 / St, in J)."""
+        far, hist, end = self.far, normal.history, normal.contact_time
+        t0, gap, speed, drag = start
         names = ("gap", "velocity", "dissipated", "elastic")
         at_end = {name: float(np.interp(end, hist.time, getattr(hist, name))) for name in names}
         shown = hist.time <= end
         times = hist.time[shown]
         samples = {name: getattr(hist, name)[shown] for name in names}
-        if normal.rebound:  # the exit, interpolated between the last two steps
+        if normal.rebound:
             times = np.append(times, end)
             samples = {name: np.append(samples[name], at_end[name]) for name in names}
         self._append(
@@ -698,49 +756,7 @@ class _Bounce:
             drag_dissipated=np.full(len(times), drag),
             film_dissipated=self.film_dissipated + samples["dissipated"] * energy_unit,
         )
-        exit_speed = normal.exit_velocity * speed
-        rebound_speed = inputs.e_dry * exit_speed
-        film_dissipated = at_end["dissipated"] * energy_unit
-        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * far.effective_mass * exit_speed**2
-        exit_loss += at_end["elastic"] * energy_unit
-        self.film_dissipated += film_dissipated
-        self.exit_loss += exit_loss
-        impact = float(np.max(np.abs(leg.velocity)))
-        contact = Contact(
-            impact_speed=impact,
-            St=inputs.stokes_number(impact),
-            handover_gap=gap,
-            handover_speed=speed,
-            contact_St=params.St,
-            eps=params.eps,
-            p_cav=cavitation.suction_limit_output(params.p_cav),
-            status=normal.status,
-            exit_velocity=normal.exit_velocity,
-            rebound_speed=rebound_speed,
-            e=rebound_speed / impact,
-            duration=end * scales.time,
-            min_film=normal.min_film_thickness * scales.gap,
-            max_force=normal.max_force * scales.force,
-            **self._jumps(hist, normal, scales),
-            **self._omitted(hist, end, scales, speed),
-            film_dissipated=film_dissipated,
-            exit_loss=exit_loss,
-            energy_error=normal.energy_error,
-        )
-        self.contacts.append(contact)
-        exit_state = (t0 + end * scales.time, gap, rebound_speed, drag)
-        if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
-            self._append(
-                time=[exit_state[0]],
-                gap=[gap],
-                velocity=[rebound_speed],
-                phase=["flight"],
-                kinetic=[0.5 * far.effective_mass * rebound_speed**2],
-                potential=[far.net_weight * gap],
-                elastic=[0.0],
-                drag_dissipated=[drag],
-            )
-        return contact, exit_state
+        return at_end
 
     def _jumps(self, hist, normal, scales) -> dict:
         """Relative force jumps flight -> film at entry (X <= SETTLED_FILM) and before exit."""

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import checks
 from ..bounce.trajectory import (
     DRAG_LAWS,
     EHD_MULTIPLE,
@@ -42,7 +43,6 @@ from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
 from ..film.viscosity import ROELANDS_INDEX
-from ..inputs import checks
 from ..inputs.presets import (
     EXAMPLE,
     LIQUID_RANGES,

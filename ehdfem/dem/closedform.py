@@ -27,7 +27,7 @@ from itertools import product
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..inputs import checks
+from .. import checks
 
 # the labels besides eps and delta that tell the fit groups apart, with their defaults
 GROUPED = (

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 
 MODELS = ("truncate", "mass-conserving", "none")
 NO_LIMIT = -math.inf  # P_cav of a film without a cavitation limit

@@ -55,7 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 from ..solids.fe import dolfinx_compat
 
 DEGREE = 1  # of the Lagrange elements of the pressure and of the interpolated data

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 
 GAPS = ("paraboloid", "exact")
 

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 from .gap import Paraboloid
 from .viscosity import Viscosity
 
@@ -269,6 +269,48 @@ class ModeOneFilm:
         return _cell_hat_weights(el, self._film.radii, values)
 
 
+def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
+    """The mode-1 film's P1 matrices on the elements ``el`` (n nodes), by Gauss quadrature with
+    ``weight`` = R dR at the Gauss points, H0 ``thickness`` there and the fluidity mu0/mu with
+    its pressure derivative (``fluidities``):
+
+        conductance_ab        = (1/12) int (mu0/mu) H0^3 (phi_a' phi_b' + phi_a phi_b / R^2) R dR,
+        thickness_coupling_ab = (1/4)  int (mu0/mu) H0^2 dP0/dR phi_a' phi_b R dR,
+        pressure_coupling_ab  = (1/12) int d(mu0/mu)/dP H0^3 dP0/dR phi_a' phi_b R dR
+
+    (scaled as the axisymmetric film: H by x0, R by sqrt(a x0), P by mu V0 a / x0^2). The cut
+    element's right end is no unknown, so its rows and columns are left out."""
+    fluidity, dfluidity = fluidities
+    regular = el.right >= 0
+    hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
+    hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
+    nodes = (el.left, np.where(regular, el.right, el.left))
+    live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
+    cube = fluidity * thickness**3
+    conductance = np.zeros((n, n))
+    thickness_coupling = np.zeros((n, n))
+    pressure_coupling = np.zeros((n, n))
+    for a in range(2):
+        ia, va, sa = nodes[a], live[a], hat_slopes[a]
+        for b in range(2):
+            ib, on = nodes[b], va * live[b]
+            stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
+            hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
+            np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
+            grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
+            np.add.at(
+                thickness_coupling,
+                (ia, ib),
+                on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
+            )
+            np.add.at(
+                pressure_coupling,
+                (ia, ib),
+                on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
+            )
+    return conductance, thickness_coupling, pressure_coupling
+
+
 def _hat_weights(el: _Elements, values: np.ndarray, n: int) -> np.ndarray:
     """w with w . f = int f g R dR over the elements, for a nodal (P1) f that is 0 at a cut
     edge and g given at the elements' Gauss points, ``values`` (elements, 3)."""
@@ -484,44 +526,16 @@ class Film:
             self.radii[el.left], el.length, _GAUSS_XI
         )
         weight = el.length[:, None] * _GAUSS_W * el.gauss_r  # R dR at the Gauss points
-        hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
-        hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
-        nodes = (el.left, np.where(regular, el.right, el.left))
-        live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
         pressure_slope = np.zeros(len(el.left))
         if pressure is not None:
             pressure_slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / (
                 el.length
             )
-        cube = fluidity * thickness**3
-        conductance = np.zeros((n, n))
-        thickness_coupling = np.zeros((n, n))
-        pressure_coupling = np.zeros((n, n))
         dfluidity = -fluidity * (0.0 if dlog is None else dlog)
-        for a in range(2):
-            ia, va, sa = nodes[a], live[a], hat_slopes[a]
-            for b in range(2):
-                ib, on = nodes[b], va * live[b]
-                stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
-                hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
-                np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
-                grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
-                np.add.at(
-                    thickness_coupling,
-                    (ia, ib),
-                    on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
-                )
-                np.add.at(
-                    pressure_coupling,
-                    (ia, ib),
-                    on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
-                )
-        free = np.zeros(n, bool)  # q = 0 on the axis, at dry nodes and at the immersed end
-        free[el.left[1:]] = True
-        if self.layer == "immersed" and len(el.left):
-            free[el.right[-1]] = False
-        if cavitated is not None:
-            free &= ~np.asarray(cavitated, bool)
+        conductance, thickness_coupling, pressure_coupling = _mode_one_matrices(
+            el, n, weight, thickness, (fluidity, dfluidity), pressure_slope
+        )
+        free = self._mode_one_free(el, n, cavitated)
         shear, tail = self.couette_weights(h, outer_radius, pressure, fill)
         return ModeOneFilm(
             free=free,
@@ -537,6 +551,17 @@ class Film:
             _elements=el,
             _pressure_slope=pressure_slope,
         )
+
+    def _mode_one_free(self, el, n, cavitated) -> np.ndarray:
+        """The nodes where the mode-1 flux unknown q is free: not on the axis, not dry, not at the
+        immersed film's last node and not cavitated (q = 0 there)."""
+        free = np.zeros(n, bool)
+        free[el.left[1:]] = True
+        if self.layer == "immersed" and len(el.left):
+            free[el.right[-1]] = False
+        if cavitated is not None:
+            free &= ~np.asarray(cavitated, bool)
+        return free
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
         """T at the nodes: the radial shear traction -(H/2) dP/dR that the pressure-driven flow

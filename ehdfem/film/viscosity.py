@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 
 LAWS = ("constant", "barus", "roelands")
 ROELANDS_PRESSURE = 1.96e8  # Pa, the reference pressure p_r of the Roelands law
@@ -37,6 +37,18 @@ def roelands_index(pressure_viscosity: float, viscosity: float) -> float:
     """Z = alpha p_r / (ln(mu0 / Pa s) + 9.67): the Roelands index with the low-pressure slope
     alpha (pressure_viscosity in 1/Pa, viscosity mu0 in Pa s)."""
     return pressure_viscosity * ROELANDS_PRESSURE / (math.log(viscosity) + ROELANDS_LOG_VISCOSITY)
+
+
+def check_roelands_viscosity(liquid: str, viscosity: float) -> None:
+    """Refuse a liquid (name ``liquid``, viscosity mu0 in Pa s) at or below the Roelands
+    asymptote exp(-ROELANDS_LOG_VISCOSITY) = 6.31e-5 Pa s, where the law's ln(mu0) + 9.67 is
+    not positive."""
+    floor = math.exp(-ROELANDS_LOG_VISCOSITY)
+    if viscosity <= floor:
+        raise checks.InputError(
+            f"the Roelands law needs a viscosity above {floor:.3g} Pa s; "
+            f"{liquid} has {viscosity} Pa s"
+        )
 
 
 @dataclass(frozen=True)

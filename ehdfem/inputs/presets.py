@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import MISSING, dataclass, fields, replace
 
-from . import checks
+from .. import checks
 
 USER_SOURCE = "given by the user"
 
@@ -22,7 +22,7 @@ MATERIAL_RANGES = {
     "density": dict(lower=0.0, lower_open=True, upper=3e4),  # kg/m^3; osmium is 22,590
 }
 """Allowed ranges of a material's values (SI), as keyword arguments of
-:func:`ehdfem.inputs.checks.number`."""
+:func:`ehdfem.checks.number`."""
 
 LIQUID_RANGES = {
     "viscosity": dict(lower=0.0, lower_open=True),  # Pa s
@@ -31,7 +31,7 @@ LIQUID_RANGES = {
     "pressure_viscosity": dict(lower=0.0, upper=1e-6),  # 1/Pa
 }
 """Allowed ranges of a liquid's values (SI), as keyword arguments of
-:func:`ehdfem.inputs.checks.number`."""
+:func:`ehdfem.checks.number`."""
 
 
 def _check_values(values: dict, ranges: dict, labels) -> dict:
@@ -206,3 +206,14 @@ EXAMPLE = dict(
 """The main job (``ehdfem collide --example``, ``bash make.sh example``): a steel sphere of
 radius 6.35 mm hits a glass plate at 1 m/s, 30 degrees from the normal, through a 0.3 mm layer
 of 100 cSt silicone oil (SI inputs of :func:`ehdfem.inputs.scales.from_presets`)."""
+
+
+def check_vapour_pressure(liquid: Liquid, ambient_pressure: float) -> None:
+    """Refuse a liquid whose vapour pressure (Pa) is not below the ambient pressure (Pa): the
+    cavitation limit p_vap - p_ambient (Pa) would not be a suction."""
+    if liquid.vapour_pressure >= ambient_pressure:
+        raise checks.InputError(
+            f"vapour_pressure of liquid {liquid.name!r} = {liquid.vapour_pressure!r} Pa must be "
+            f"below the ambient pressure {ambient_pressure!r} Pa (the allowed range is "
+            "[0, ambient_pressure))"
+        )

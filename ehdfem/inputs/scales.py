@@ -18,19 +18,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .. import checks
 from ..film import cavitation
 from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
 from ..film.viscosity import (
     ROELANDS_INDEX,
-    ROELANDS_LOG_VISCOSITY,
     ROELANDS_PRESSURE,
     Viscosity,
+    check_roelands_viscosity,
     roelands_index,
 )
-from . import checks
-from .presets import Liquid, Material, body
+from .presets import Liquid, Material, body, check_vapour_pressure
 
 ATMOSPHERE = 101325.0  # Pa
 
@@ -60,6 +60,14 @@ def hertz_max_compression(eps: float, St: float) -> float:
     return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
 
 
+def buoyant_weight(mass, volume, fluid_density, gravity, viscosity, speed, radius, layer_thickness):
+    """W = (m - rho_f V_s) g x0 / (6 pi mu V0 a^2): the sphere's weight less the weight of the
+    fluid it displaces, scaled by the force scale (SI inputs: m [kg], V_s [m^3], rho_f [kg/m^3],
+    g [m/s^2], mu [Pa s], V0 [m/s], a, x0 [m]); it pushes the sphere towards the wall when > 0."""
+    force_scale = 6.0 * math.pi * viscosity * speed * radius**2 / layer_thickness
+    return (mass - fluid_density * volume) * gravity / force_scale
+
+
 def reduced_radius(a1: float, a2: float) -> float:
     """a = a1 a2 / (a1 + a2) for two spheres (a2 = inf: a wall)."""
     return a1 if math.isinf(a2) else a1 * a2 / (a1 + a2)
@@ -86,7 +94,10 @@ class CollisionParameters:
     spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.film.gap`);
     shear_traction: load the solids with the squeeze flow's shear traction too (True), only
     with the pressure (False), or None, the model's default (on for the FE solids, off for the
-    half-space theory; :mod:`ehdfem.solids.halfspace`).
+    half-space theory; :mod:`ehdfem.solids.halfspace`); external_force: a constant force on the
+    sphere, scaled by 6 pi mu V0 a^2 / x0, positive away from the wall (finite; 0: none);
+    buoyant_weight: the sphere's weight less the displaced fluid's, (m - rho_f V_s) g, scaled
+    likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`).
     """
 
     St: float
@@ -105,9 +116,13 @@ class CollisionParameters:
     roelands_index: float = ROELANDS_INDEX
     gap: str | None = None
     shear_traction: bool | None = None
+    external_force: float = 0.0
+    buoyant_weight: float = 0.0
 
     def __post_init__(self):
         checks.positive("St", self.St)
+        checks.number("external_force", self.external_force)
+        checks.number("buoyant_weight", self.buoyant_weight)
         checks.positive("eps", self.eps)
         checks.number("delta", self.delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True)
         cavitation.suction_limit(self.p_cav)
@@ -173,7 +188,11 @@ class PhysicalCollision:
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
     inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
     the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
-    preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`).
+    preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`), the
+    gravity g [m/s^2] >= 0, towards the wall (default 0: none). Gravity acts through the
+    buoyant weight (m - rho_f V_s) g (:func:`buoyant_weight`), with rho_f the liquid's density
+    when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
+    buoyancy is neglected (rho_f = 0).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float
@@ -195,6 +214,7 @@ class PhysicalCollision:
     pressure_viscosity: float | None = None
     gap: str | None = None
     shear_traction: bool | None = None
+    gravity: float = 0.0
 
     def __post_init__(self):
         for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):
@@ -212,6 +232,7 @@ class PhysicalCollision:
                 f"{self.radius!r} m (the allowed range is (0, radius))"
             )
         checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
+        checks.number("gravity", self.gravity, lower=0.0)
         checks.positive("ambient_pressure", self.ambient_pressure)
         if self.cavitation_pressure is not None:
             checks.number(
@@ -220,24 +241,15 @@ class PhysicalCollision:
                 lower=0.0,
                 upper=self.ambient_pressure,
             )
-        elif self.liquid.vapour_pressure >= self.ambient_pressure:
-            raise checks.InputError(
-                f"vapour_pressure of liquid {self.liquid.name!r} = "
-                f"{self.liquid.vapour_pressure!r} Pa must be below the ambient pressure "
-                f"{self.ambient_pressure!r} Pa (the allowed range is [0, ambient_pressure))"
-            )
+        else:
+            check_vapour_pressure(self.liquid, self.ambient_pressure)
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
         if self.pressure_viscosity is not None:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
         checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
-        if self.viscosity == "roelands" and self.liquid.viscosity <= math.exp(
-            -ROELANDS_LOG_VISCOSITY
-        ):
-            raise checks.InputError(
-                f"the Roelands law needs a viscosity above 6.31e-5 Pa s; "
-                f"{self.liquid.name} has {self.liquid.viscosity} Pa s"
-            )
+        if self.viscosity == "roelands":
+            check_roelands_viscosity(self.liquid.name, self.liquid.viscosity)
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
 
     @property
@@ -269,6 +281,23 @@ class PhysicalCollision:
             return self.pressure_viscosity
         return self.liquid.pressure_viscosity
 
+    @property
+    def scaled_buoyant_weight(self) -> float:
+        """(m - rho_f V_s) g by 6 pi mu V0 a^2 / x0 (:func:`buoyant_weight`), rho_f the liquid's
+        density when immersed, 0 (the ambient gas neglected) in a thin layer."""
+        fluid_density = self.liquid.density if self.layer == "immersed" else 0.0
+        volume = 4.0 / 3.0 * math.pi * self.radius**3
+        return buoyant_weight(
+            self.mass,
+            volume,
+            fluid_density,
+            self.gravity,
+            self.liquid.viscosity,
+            self.normal_speed,
+            self.radius,
+            self.layer_thickness,
+        )
+
     def dimensionless(self) -> CollisionParameters:
         """St, eps, delta, P_cav, e_dry, alpha, ... for these inputs."""
         mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
@@ -298,6 +327,7 @@ class PhysicalCollision:
             else ROELANDS_INDEX,
             gap=self.gap,
             shear_traction=self.shear_traction,
+            buoyant_weight=self.scaled_buoyant_weight,
         )
 
     def scales(self) -> Scales:

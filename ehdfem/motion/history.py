@@ -5,9 +5,11 @@ P by mu V0 a / x0^2 at the film nodes, force by 6 pi mu V0 a^2 / x0, radius by s
 Energies are by m V0^2 / St, so that the kinetic energy is St V^2 / 2 (St / 2 at impact), the
 elastic energy stored in the solids is (1/6) P.M C P (M the film's lumped mass, C the
 compliance; with the squeeze-shear traction, plus the pressure's work on the shear opening,
-(1/3) int P.M dW_shear) and the dissipation is the time integral of the film's viscous
-dissipation rate (:meth:`ehdfem.film.reynolds.Film.dissipation_rate`). Without cavitation and with
-e_dry = 1 the balance kinetic + elastic + dissipated = St / 2 holds to discretisation error.
+(1/3) int P.M dW_shear), the dissipation is the time integral of the film's viscous
+dissipation rate (:meth:`ehdfem.film.reynolds.Film.dissipation_rate`) and the work is that of the
+forces applied to the sphere since first touch (:class:`ehdfem.motion.forces.SphereForce`;
+F_ext (X - 1) for a constant force). Without cavitation and with e_dry = 1 the balance
+kinetic + elastic + dissipated - work = St / 2 holds to discretisation error.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..film.reynolds import FilmState
+from .forces import SphereState
 
 
 @dataclass
@@ -25,7 +28,8 @@ class NormalHistory:
 
     ``pressure``, ``fill`` and ``film_thickness`` are (steps, nodes): ``fill`` is the liquid
     fraction theta of the gap (1 where the film is full, and everywhere but in mass-conserving
-    cavities), so theta H is the liquid per area (by x0).
+    cavities), so theta H is the liquid per area (by x0). ``force`` is the film's force
+    (1/3) int P R dR; ``work`` the applied forces' work on the sphere.
     """
 
     time: list = field(default_factory=list)
@@ -38,6 +42,7 @@ class NormalHistory:
     kinetic: list = field(default_factory=list)
     elastic: list = field(default_factory=list)
     dissipated: list = field(default_factory=list)
+    work: list = field(default_factory=list)
     pressure: list = field(default_factory=list)
     fill: list = field(default_factory=list)
     film_thickness: list = field(default_factory=list)
@@ -49,10 +54,11 @@ class NormalHistory:
         return self
 
     def record(self, time, gap, velocity, pressure, fill, h, state: FilmState, energies):
-        """Append one accepted step. ``energies``: (St, compliance matrix, full lumped mass,
-        dissipation so far, the pressure's work on the shear opening so far), from which the
-        kinetic and elastic energies are formed."""
-        St, compliance, mass, dissipated, shear_work = energies
+        """Append one accepted step. ``energies``: (the sphere
+        (:class:`ehdfem.motion.sphere.Sphere`), compliance matrix, full lumped mass, dissipation
+        so far, the pressure's work on the shear opening so far), from which the kinetic and
+        elastic energies and the applied forces' work are formed."""
+        sphere, compliance, mass, dissipated, shear_work = energies
         self.time.append(time)
         self.gap.append(gap)
         self.velocity.append(velocity)
@@ -60,9 +66,10 @@ class NormalHistory:
         self.central_film.append(h[0])
         self.min_film.append(h.min())
         self.edge_radius.append(state.edge_radius)
-        self.kinetic.append(0.5 * St * velocity**2)
+        self.kinetic.append(sphere.kinetic_energy(velocity))
         self.elastic.append(float(mass * pressure @ (compliance @ pressure)) / 6.0 + shear_work)
         self.dissipated.append(dissipated)
+        self.work.append(sphere.work(SphereState(time, gap, velocity, h)))
         self.pressure.append(pressure)
         self.fill.append(fill)
         self.film_thickness.append(h)

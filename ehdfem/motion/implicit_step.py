@@ -5,11 +5,13 @@ x0, velocity V by V0, time by x0/V0. With the compliance C (W = C P, by x0) and 
 dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.motion.timestepping`) the step solves
 
     m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
-    a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt f.P = 0,
+    a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt (f.P + sum_i F_i) = 0,
     H = X + S(R) + C P + C_T T(H0, P),   H0 = X + S(R) + C P,
 
 with P = 0 at dry nodes and the rows and unknowns of the cavitation model
-(:mod:`ehdfem.film.cavitation`). S is the undeformed gap (:mod:`ehdfem.film.gap`; R^2/2 for the
+(:mod:`ehdfem.film.cavitation`). The last two rows and their Jacobian entries are the sphere's
+(:class:`ehdfem.motion.sphere.Sphere`: f the film's force weights, F_i the applied forces,
+force by 6 pi mu V0 a^2 / x0). S is the undeformed gap (:mod:`ehdfem.film.gap`; R^2/2 for the
 paraboloid). C_T T is the opening by the squeeze-shear traction T = -(H/2) dP/dR
 (:meth:`ehdfem.film.reynolds.Film.squeeze_shear`) when the compliance applies it: T is formed with
 H0, the film without its own shear opening (the neglected product is of relative size
@@ -31,6 +33,7 @@ from functools import partial
 import numpy as np
 
 from ..film.reynolds import Film, FilmState
+from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
 from .timestepping import IntegratorOptions
 
@@ -63,6 +66,7 @@ class _Iterate:
 
     rhs: np.ndarray
     state: FilmState
+    motion: SphereState
     film_thickness: np.ndarray
     fixed: np.ndarray
     theta_nodes: np.ndarray
@@ -74,19 +78,20 @@ class ImplicitStep:
 
     ``film``: :class:`ehdfem.film.reynolds.Film`; ``compliance_matrix``: C (by x0 per unit
     pressure);
-    ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``St``: the Stokes number;
-    ``shear_matrix``: C_T (by x0 per unit T) or None.
+    ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the sphere's equation
+    of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T (by x0 per unit T)
+    or None.
     """
 
     def __init__(
-        self, film: Film, compliance_matrix, cavitation, St: float, options=None, shear_matrix=None
+        self, film: Film, compliance_matrix, cavitation, sphere, options=None, shear_matrix=None
     ):
         self.film = film
         self.compliance = np.asarray(compliance_matrix, dtype=float)
         self.shear = shear_matrix
         self.compliance_diagonal = np.diag(self.compliance).copy()
         self.cavitation = cavitation
-        self.St = St
+        self.sphere = sphere
         self.options = options or IntegratorOptions()
         self.undeformed = film.gap.height(film.radii)
         self.factor = None
@@ -105,9 +110,10 @@ class ImplicitStep:
         opening = self.shear @ self.film.squeeze_shear(h0, pressure)
         return h0 + opening, opening
 
-    def solve(self, guess, step, a0, past) -> StepSolution:
-        """Newton for one step of dy/dT ~ (a0 y + past_y) / step, where past_y is the weighted
-        sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V, theta, cavitated).
+    def solve(self, guess, step, a0, past, time) -> StepSolution:
+        """Newton for one step of dy/dT ~ (a0 y + past_y) / step to the time ``time``, where
+        past_y is the weighted sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V,
+        theta, cavitated).
         Raises StepFailed. The node unknown is P, except at nodes the cavitation model solves
         for theta (mass-conserving cavities, P = P_cav there)."""
         pressure, gap, velocity, fill, cavitated = guess
@@ -116,7 +122,7 @@ class ImplicitStep:
         refresh = False
         for iteration in range(1, self.options.max_newton + 1):
             it, cavitated, fill = self._residual(
-                pressure, gap, velocity, fill, cavitated, step, a0, past
+                pressure, gap, velocity, fill, cavitated, step, a0, past, time
             )
             if refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
                 self._factorise(it, step, a0, fill)
@@ -153,9 +159,9 @@ class ImplicitStep:
         self.factor = None
         raise StepFailed("Newton did not converge", np.abs(it.rhs).max())
 
-    def _residual(self, pressure, gap, velocity, fill, cavitated, step, a0, past):
-        """The residual at an iterate, with the cavitation model's rows; returns
-        (iterate, cavitated, theta)."""
+    def _residual(self, pressure, gap, velocity, fill, cavitated, step, a0, past, time):
+        """The residual at an iterate, with the cavitation model's rows and the sphere's;
+        returns (iterate, cavitated, theta)."""
         content_past, gap_past, velocity_past = past
         h = self.thickness(pressure, gap)
         if h.min() <= 0.0:
@@ -169,13 +175,14 @@ class ImplicitStep:
 
         cavitated = self.cavitation.limit(residual, pressure, cavitated, state.dry, sensitivity)
         residual[state.dry] = pressure[state.dry]
-        r_gap = a0 * gap + gap_past - step * velocity
-        r_vel = self.St * (a0 * velocity + velocity_past) - step * (state.force_weights @ pressure)
-        rhs = -np.concatenate([residual, [r_gap, r_vel]])
+        motion = SphereState(time, gap, velocity, h)
+        film_force = state.force_weights @ pressure
+        r_sphere = self.sphere.residual(step, a0, (gap_past, velocity_past), motion, film_force)
+        rhs = -np.concatenate([residual, r_sphere])
         fixed = self.cavitation.fixed_nodes(state.dry, cavitated)
         theta_nodes = self.cavitation.theta_nodes(cavitated)
         sets = (int((~state.dry).sum()), fixed.tobytes(), theta_nodes.tobytes())
-        return _Iterate(rhs, state, h, fixed, theta_nodes, sets), cavitated, fill
+        return _Iterate(rhs, state, motion, h, fixed, theta_nodes, sets), cavitated, fill
 
     def _newton_update(self, it: _Iterate, step, a0, fill):
         """(dP, d theta, dX, dV) from the (possibly reused) factorisation."""
@@ -217,7 +224,7 @@ class ImplicitStep:
     def _newton_matrix(self, it: _Iterate, step, a0, fill):
         """The Jacobian in the Newton unknowns: at mass-conserving cavities the unknown is
         theta, whose column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
-        jacobian = self._jacobian(it.state, it.fixed, step, a0, fill)
+        jacobian = self._jacobian(it.state, it.motion, it.fixed, step, a0, fill)
         nodes = np.flatnonzero(it.theta_nodes)
         jacobian[:, nodes] = 0.0
         jacobian[nodes, nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
@@ -256,15 +263,14 @@ class ImplicitStep:
             out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out
 
-    def _jacobian(self, state: FilmState, fixed, step, a0, fill):
-        """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the X and V rows."""
+    def _jacobian(self, state: FilmState, motion: SphereState, fixed, step, a0, fill):
+        """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the sphere's X and V
+        rows (:meth:`ehdfem.motion.sphere.Sphere.jacobian_rows`)."""
         n = len(state.mass)
         jac = np.zeros((n + 2, n + 2))
         jac[:n] = self._rows(state, np.arange(n), step=step, a0=a0, fill=fill)
         fixed_rows = np.flatnonzero(fixed)
         jac[fixed_rows, :] = 0.0
         jac[fixed_rows, fixed_rows] = 1.0
-        jac[n, n], jac[n, n + 1] = a0, -step
-        jac[n + 1, :n] = -step * state.force_weights
-        jac[n + 1, n + 1] = self.St * a0
+        jac[n:] = self.sphere.jacobian_rows(step, a0, motion, state.force_weights)
         return jac

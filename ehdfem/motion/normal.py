@@ -6,8 +6,13 @@ while approaching). With the compliance C of the solids (W = C P, by x0) and the
 gap S(R) (R^2/2 in the asymptotic theory, the true spheres with ``gap = "exact"``:
 :mod:`ehdfem.film.gap`),
 
-    H = X + S(R) + C P,     m dH/dT + K(H) P = 0  (film),
-    St dV/dT = F = (1/3) int P R dR,     dX/dT = V,     X(0) = 1, V(0) = -1, P(0) = 0.
+    H = X + S(R) + C P,     m dH/dT + K(H) P = 0  (film),     P(0) = 0,
+    St dV/dT = (1/3) int P R dR + sum_i F_i,     dX/dT = V,     X(0) = 1, V(0) = -1,
+
+force by 6 pi mu V0 a^2 / x0, the F_i the forces applied to the sphere (an external force, the
+buoyant weight; positive away from the wall). The sphere's equation, its rows of the implicit
+step and its energies are :class:`ehdfem.motion.sphere.Sphere`; its forces
+:mod:`ehdfem.motion.forces`.
 
 The parts: the film (:mod:`ehdfem.film.reynolds`), the cavitation model
 (:mod:`ehdfem.film.cavitation`), the viscosity law (:mod:`ehdfem.film.viscosity`), the elasticity
@@ -34,6 +39,7 @@ from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed
+from .sphere import IMPACT_VELOCITY, LAYER_SURFACE, Sphere
 from .timestepping import (
     BDFStepper,
     IntegratorOptions,
@@ -76,9 +82,9 @@ class NormalResult:
     spheres). ``min_film_thickness``: min over R and T of H (by x0). ``max_force``: by
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
     stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
-    the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation| / KE0
-    at the end (meaningful without cavitation). ``status``: "rebound", "stick"
-    or "stalled".
+    the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation + work| /
+    KE0 at the end, with the applied forces' work (meaningful without cavitation). ``status``:
+    "rebound", "stick" or "stalled".
     Exit, the stop and the extremes are located on the dense output between accepted steps
     (the interpolating polynomials of the BDF history; :func:`ehdfem.motion.timestepping.peak`).
     ``rtol``, ``film_control`` and ``order`` (the highest BDF order): the time-step control
@@ -114,9 +120,10 @@ def solve_normal(
 ) -> NormalResult:
     """Integrate the normal collision from first touch of the layer to exit or sticking.
 
-    ``params``: dimensionless inputs (St, e_dry, layer, the cavitation model and the viscosity
-    law are used here; eps is already in the compliance). ``compliance``: the elasticity, W =
-    matrix @ P at the film nodes ``radii`` (by x0, P by mu V0 a / x0^2, R by sqrt(a x0)).
+    ``params``: dimensionless inputs (St, the applied forces, e_dry, layer, the cavitation model
+    and the viscosity law are used here; eps is already in the compliance). ``compliance``: the
+    elasticity, W = matrix @ P at the film nodes ``radii`` (by x0, P by mu V0 a / x0^2, R by
+    sqrt(a x0)).
     Returns a :class:`NormalResult`.
     """
     return _NormalIntegration(params, compliance, options or IntegratorOptions()).run()
@@ -132,18 +139,19 @@ class _NormalIntegration:
         self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
         self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
         self.cavitation = params.cavitation_model()
+        self.sphere = Sphere.of(params)
         self.step_solver = ImplicitStep(
             self.film,
             compliance.matrix,
             self.cavitation,
-            params.St,
+            self.sphere,
             options,
             compliance.shear_matrix,
         )
         self.hist = NormalHistory()
         self.stepper = BDFStepper(options, self.hist.time)
         n = len(self.radii)
-        self.pressure, self.gap, self.velocity = np.zeros(n), 1.0, -1.0
+        self.pressure, self.gap, self.velocity = np.zeros(n), LAYER_SURFACE, IMPACT_VELOCITY
         self.cavitated = np.zeros(n, bool)
         self.dissipation_rates, self.shear_work = [0.0], 0.0
         self.rejected = self.iterations = 0
@@ -167,7 +175,7 @@ class _NormalIntegration:
             self.shear_work += float(mass * mean @ (opening - self.opening)) / 3.0
         self.opening = opening
         compliance = self.step_solver.compliance
-        energies = (self.params.St, compliance, mass, dissipated, self.shear_work)
+        energies = (self.sphere, compliance, mass, dissipated, self.shear_work)
         self.hist.record(time, self.gap, self.velocity, self.pressure, fill, h, state, energies)
 
     def run(self) -> NormalResult:
@@ -195,7 +203,7 @@ class _NormalIntegration:
         guess[0] = np.where(self.cavitated, self.cavitation.p_cav, guess[0])
         try:
             solution = self.step_solver.solve(
-                (*guess, hist.fill[-1], self.cavitated), stepper.step, weights[0], past
+                (*guess, hist.fill[-1], self.cavitated), stepper.step, weights[0], past, t_new
             )
         except (StepFailed, FilmError) as failure:
             self._failed(failure, t_old)
@@ -294,9 +302,9 @@ class _NormalIntegration:
         self.thinnest = min(self.thinnest, float(np.min(thickness[0])))
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         self.rebounding = self.rebounding or self.velocity > 0
-        if self.gap >= 1.0 and self.velocity > 0:  # exit: X back to 1, on the dense output
+        if self.sphere.left_layer(self.gap, self.velocity):  # exit, on the dense output
             times = latest(self.hist.time, 3)
-            self.end_time = crossing(times, latest(self.hist.gap, 3), 1.0)
+            self.end_time = crossing(times, latest(self.hist.gap, 3), LAYER_SURFACE)
             self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.end_time)
             return "rebound"
         if self.rebounding and self.velocity <= 0:  # the stop: V back to 0, on the dense output
@@ -314,8 +322,8 @@ class _NormalIntegration:
         hist = self.hist.arrays()
         params = self.params
         rebound = status == "rebound"
-        kinetic0 = 0.5 * params.St
-        balance = hist.kinetic[-1] + hist.elastic[-1] + hist.dissipated[-1]
+        kinetic0 = self.sphere.kinetic_energy(IMPACT_VELOCITY)
+        balance = hist.kinetic[-1] + hist.elastic[-1] + hist.dissipated[-1] - hist.work[-1]
         return NormalResult(
             params=params,
             radii=self.radii,

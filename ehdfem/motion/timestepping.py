@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 
 
 @dataclass(frozen=True)

@@ -1,2 +1,2 @@
-"""What a collision gives back: field files for ParaView (fields), matplotlib plots (plots) and
-pyvista pictures (render)."""
+"""What a collision gives back: the registry of its outputs (registry), field files for
+ParaView (fields), matplotlib plots (plots) and pyvista pictures (render)."""

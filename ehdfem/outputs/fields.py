@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..inputs import checks
+from .. import checks
 from ..solids.fe.solids import solids_of
 
 CELL_FIELDS = ("von_mises", "hydrostatic")

@@ -20,8 +20,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import checks
 from ..console.quiet import quiet_vtk
-from ..inputs import checks
 from ..solids.fe.solids import solids_of
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")

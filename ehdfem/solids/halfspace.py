@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import ellipkm1
 
-from ..inputs.checks import InputError, number
+from ..checks import InputError, number
 from .compliance import LinearCompliance
 
 IDENTICAL_SOLIDS = (

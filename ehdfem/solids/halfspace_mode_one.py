@@ -49,7 +49,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import ellipe, ellipkm1
 
-from ..inputs.checks import InputError, number, positive
+from ..checks import InputError, number, positive
 from ..inputs.presets import MATERIAL_RANGES
 from .compliance import ModeOneCompliance
 from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, theta_shares

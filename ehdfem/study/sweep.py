@@ -28,7 +28,8 @@ PhysicalCollision fields (plus "tangential"):
     speed = {geomspace = [0.05, 2.0, 8]}
     angle = [0.0, 30.0]
 
-Their rows also give St, eps, delta, P_cav and the SI results (``*_m``, ``*_N``, ...).
+Their rows also give St, eps, delta, P_cav and the SI results (``*_m``, ``*_N``, ...). The
+outputs of a row are those of :mod:`ehdfem.outputs.registry`.
 Points are claimed dynamically by the ranks (an exclusive file per point), so ranks that draw
 cheap points take more of them. Each finished point is written atomically as its own JSON file
 next to the table (``<table>.points/``); a run that is killed and started again skips the
@@ -54,13 +55,14 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import checks
 from ..collision import DEFAULT_NODES, TANGENTIAL_MODELS, collide, elasticity, film_radii
 from ..console.progress import Counter
 from ..film import cavitation
-from ..inputs import checks
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
+from ..outputs import registry as outputs
 from ..version import __version__
 
 PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
@@ -69,20 +71,6 @@ PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
 PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
 NUMERICS = ("nodes", "rtol")
-OUTPUTS = (
-    "rebound",
-    "status",
-    "e_n",
-    "max_rebound_velocity",
-    "min_film_thickness",
-    "max_force",
-    "contact_time",
-    "max_compression",
-    "e_t",
-    "spin_change",
-    "energy_error",
-    "film_nodes",
-)
 
 
 class Study:
@@ -220,15 +208,24 @@ def run_point(study: Study, point: dict) -> dict:
         summary = result.summary()
         if study.physical is not None:
             row.update({name: summary[name] for name in SCALED_GROUPS})
-        row.update({name: summary.get(name) for name in OUTPUTS})
-        row.update(summary.get("si", {}))
+        row.update(_output_columns(study, summary))
         row["status"] = "ok:" + summary["status"]
     except (NormalSolverError, checks.InputError, np.linalg.LinAlgError) as err:
-        row.update({name: None for name in OUTPUTS})
+        row.update(_output_columns(study, {}))
         row["status"] = f"failed: {type(err).__name__}: {err}"
     row["seconds"] = round(time.perf_counter() - start, 3)
     row["version"] = __version__
     return row
+
+
+def _output_columns(study: Study, summary: dict) -> dict:
+    """A row's outputs from a summary: every output of :mod:`ehdfem.outputs.registry` (scaled;
+    None where the summary has none) and, for a physical study, every SI value."""
+    columns = {name: summary.get(name) for name in outputs.names()}
+    if study.physical is not None:
+        si = summary.get("si", {})
+        columns.update({key: si.get(key) for key in outputs.si_keys()})
+    return columns
 
 
 def run_study(study: Study, comm=None, progress=print) -> list[dict]:

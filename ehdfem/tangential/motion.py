@@ -62,8 +62,8 @@ import numpy as np
 import scipy.integrate
 import scipy.linalg
 
+from .. import checks
 from ..film.reynolds import Film, ModeOneFilm
-from ..inputs import checks
 from ..motion.normal import NormalResult, NormalSolverError
 from ..solids.compliance import ModeOneCompliance
 

@@ -42,8 +42,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import checks
 from ..film.reynolds import Film
-from ..inputs import checks
 from .motion import (
     TangentialResult,
     cavitated_nodes,

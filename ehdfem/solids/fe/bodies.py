@@ -20,7 +20,7 @@ from typing import Protocol
 
 from meshes import contact
 
-from ...inputs import checks
+from ... import checks
 
 
 @dataclass(frozen=True)

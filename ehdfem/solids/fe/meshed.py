@@ -20,7 +20,7 @@ import numpy as np
 
 from meshes import contact
 
-from ...inputs import checks
+from ... import checks
 from . import dolfinx_compat
 from .bodies import FreeBody, LowerBody, checked_material
 from .linear_algebra import interpolation_matrix, matrix_product

@@ -52,8 +52,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ... import checks
 from ...console.progress import progress
-from ...inputs import checks
 from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
 from . import dolfinx_compat
 from .linear_algebra import CholeskySolver, interpolation_matrix

@@ -40,7 +40,7 @@ from functools import cached_property
 
 import numpy as np
 
-from ...inputs import checks
+from ... import checks
 from ..compliance import LinearCompliance
 from . import dolfinx_compat, linear_algebra, meshed
 from .bodies import LowerBody, lower_body

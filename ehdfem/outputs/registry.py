@@ -1,0 +1,260 @@
+"""Every output of a collision, once: its name, meaning, scale, SI unit and how to compute it.
+
+The summary of a collision (:meth:`ehdfem.collision.CollisionResult.summary`), the rows of a
+study (:mod:`ehdfem.study.sweep`), the contacts of a bounce (:mod:`ehdfem.bounce.trajectory`)
+and the command line's result table all read :data:`OUTPUTS`: a new output is one
+:class:`Output` entry here (docs/outputs.md lists them).
+
+Values are scaled (Davis, Serayssol & Hinch 1986): gap and film thickness by x0, time by
+x0/V0, normal velocity by V0, force by 6 pi mu V0 a^2 / x0; the tangential velocity by U0 and
+the spin by U0/a. For physical inputs an output with an SI key also has its SI value, the scaled
+value times its factor (:attr:`Output.si_factor`, from the inputs' :class:`Scales
+<ehdfem.inputs.scales.Scales>`, or U0 for the tangential outputs).
+
+An output is None where the collision has none (e_t of a head-on impact; the sliding film's
+diagnostics, which the summary then leaves out) or where it does not apply
+(:attr:`Output.applies`: the energy balance with a cavitation limit), the reason then under
+the summary's "not_applicable".
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from ..film import cavitation
+
+if TYPE_CHECKING:
+    from ..collision import CollisionResult
+    from ..inputs.scales import PhysicalCollision
+
+
+@dataclass(frozen=True)
+class Output:
+    """One output of a collision.
+
+    ``name``: its key in the summary and in a study row; ``meaning``: one line; ``scale``: what
+    the value is scaled by ("-": a pure number, a count, a flag or a word); ``unit``: the SI
+    unit of the quantity (None for a pure number); ``compute(result)``: the scaled value from
+    a :class:`ehdfem.collision.CollisionResult` (None where the collision has none);
+    ``si_key`` and ``si_factor(physical)``: the key of the SI value and the SI unit of its scale
+    from the :class:`ehdfem.inputs.scales.PhysicalCollision` (None: no SI value reported);
+    ``applies(result)``: False where the value means nothing (then None, with ``reason``);
+    ``optional``: the summary leaves the key out where the value is None.
+    """
+
+    name: str
+    meaning: str
+    scale: str
+    unit: str | None
+    compute: Callable[[CollisionResult], Any]
+    si_key: str | None = None
+    si_factor: Callable[[PhysicalCollision], float] | None = None
+    applies: Callable[[CollisionResult], bool] | None = None
+    reason: str = ""
+    optional: bool = False
+
+    def __post_init__(self):
+        if not (self.name and self.meaning and self.scale):
+            raise ValueError(f"output {self.name!r} needs a name, a meaning and a scale")
+        if (self.si_key is None) != (self.si_factor is None):
+            raise ValueError(f"output {self.name!r}: si_key and si_factor go together")
+        if self.si_key is not None and self.unit is None:
+            raise ValueError(f"output {self.name!r}: an SI value needs a unit")
+        if (self.applies is None) != (not self.reason):
+            raise ValueError(f"output {self.name!r}: applies and reason go together")
+
+    def value(self, result: CollisionResult):
+        """The scaled value, None where it does not apply."""
+        if self.applies is not None and not self.applies(result):
+            return None
+        return self.compute(result)
+
+
+def _without_suction_limit(result: CollisionResult) -> bool:
+    """No cavitation limit: cavitation "none", or P_cav = -inf."""
+    p = result.params
+    return p.cavitation == "none" or p.p_cav == cavitation.NO_LIMIT
+
+
+def _tangential(name):
+    """The TangentialResult's attribute ``name`` (None for a head-on impact)."""
+    return lambda r: None if r.tangential is None else getattr(r.tangential, name)
+
+
+def _tangential_energy(read):
+    """``read(energy)`` of the sliding film's energy balance (None without one)."""
+    return lambda r: (
+        None if r.tangential is None or r.tangential.energy is None else read(r.tangential.energy)
+    )
+
+
+def _superposition(name):
+    """The SuperpositionValidity's attribute ``name`` (None for the Couette film)."""
+    return lambda r: None if r.superposition is None else getattr(r.superposition, name)
+
+
+FORCE = "6 pi mu V0 a^2 / x0"
+TANGENTIAL_ENERGY = "m U0^2 / St"
+NO_BALANCE = (
+    "a cavitation limit caps the film's suction, and the balance does not count that work: "
+    "it checks the time integration only without one (docs/model.md)"
+)
+
+# fmt: off
+OUTPUTS: tuple[Output, ...] = (
+    Output("rebound", "the sphere left the layer (gap back to x0, moving away)", "-", None,
+           lambda r: r.normal.rebound),
+    Output("status", "how the normal motion ended: rebound, stick or stalled", "-", None,
+           lambda r: r.normal.status),
+    Output("e_n", "normal restitution e_dry V_exit (0 if the sphere sticks)", "V0", "m/s",
+           lambda r: r.normal.e_n, "rebound_normal_speed_m_s", lambda p: p.scales().velocity),
+    Output("exit_velocity", "normal velocity V_exit when the gap is back to x0, before e_dry",
+           "V0", "m/s", lambda r: r.normal.exit_velocity),
+    Output("max_rebound_velocity", "largest rebound velocity (DSH 1986's immersed restitution)",
+           "V0", "m/s", lambda r: r.normal.max_rebound_velocity),
+    Output("min_film_thickness", "thinnest film over radius and time", "x0", "m",
+           lambda r: r.normal.min_film_thickness, "min_film_thickness_m",
+           lambda p: p.scales().gap),
+    Output("max_force", "largest film force on the sphere", FORCE, "N",
+           lambda r: r.normal.max_force, "max_force_N", lambda p: p.scales().force),
+    Output("contact_time", "time from first touch of the layer to exit or stop", "x0/V0", "s",
+           lambda r: r.normal.contact_time, "contact_time_s", lambda p: p.scales().time),
+    Output("max_compression", "largest overlap -min X of the undeformed surfaces", "x0", "m",
+           lambda r: r.normal.max_compression, "max_compression_m", lambda p: p.scales().gap),
+    Output("energy_error", "|KE0 - KE - E_elastic - dissipated| / KE0 at the end", "-", None,
+           lambda r: r.normal.energy_error, applies=_without_suction_limit, reason=NO_BALANCE),
+    Output("film_nodes", "film nodes used (after any refinement)", "-", None,
+           lambda r: len(r.normal.radii)),
+    Output("time_steps", "accepted time steps of the normal motion", "-", None,
+           lambda r: r.normal.steps),
+    Output("e_t", "tangential restitution U/U0 of the centre at exit or stop", "U0", "m/s",
+           _tangential("e_t"), "exit_tangential_speed_m_s", lambda p: p.tangential_speed),
+    Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop", "U0/a",
+           "rad/s", _tangential("spin_change"), "spin_change_rad_s",
+           lambda p: p.tangential_speed / p.radius),
+    Output("tangential_balance_error", "sliding film's energy balance error over its loss",
+           "-", None, _tangential_energy(lambda e: e.balance_error), optional=True),
+    Output("tangential_work_exchanged", "work the normal motion gave the sliding film",
+           TANGENTIAL_ENERGY, "J", _tangential_energy(lambda e: float(e.exchanged[-1])),
+           optional=True),
+    Output("tangential_dissipated", "sliding film's viscous dissipation", TANGENTIAL_ENERGY,
+           "J", _tangential_energy(lambda e: float(e.dissipated[-1])), optional=True),
+    Output("superposition_flag", "the sliding film's mode-1 superposition is out of range",
+           "-", None, _superposition("flagged"), optional=True),
+    Output("superposition_sensitivity", "relative change of e_t or spin with the cavity rule",
+           "-", None, _superposition("sensitivity"), optional=True),
+    Output("superposition_tilt", "largest mode-1 tilt s|H1|/H0", "-", None,
+           _superposition("largest_tilt"), optional=True),
+    Output("superposition_viscosity_tilt", "largest viscosity tilt s|q| d ln(mu)/dP", "-",
+           None, _superposition("largest_viscosity_tilt"), optional=True),
+    Output("superposition_overlap", "largest overlap of the mode-1 suction with the cavity",
+           "-", None, _superposition("suction_overlap"), optional=True),
+)
+# fmt: on
+
+
+def names() -> tuple[str, ...]:
+    """The outputs' names, in registry order."""
+    return tuple(o.name for o in OUTPUTS)
+
+
+def si_keys() -> tuple[str, ...]:
+    """The keys of the outputs that have an SI value, in registry order."""
+    return tuple(o.si_key for o in OUTPUTS if o.si_key is not None)
+
+
+def computed(result: CollisionResult) -> dict:
+    """Every output as computed, whether or not it applies (scaled): the raw numbers, e.g.
+    for a table of reference values."""
+    return {o.name: o.compute(result) for o in OUTPUTS}
+
+
+def values(result: CollisionResult) -> dict:
+    """The outputs of a summary (scaled): None where not applicable; an optional output
+    left out where it is None."""
+    out = {o.name: o.value(result) for o in OUTPUTS}
+    return {o.name: out[o.name] for o in OUTPUTS if not (o.optional and out[o.name] is None)}
+
+
+def not_applicable(result: CollisionResult) -> dict:
+    """{name: reason} of the outputs that do not apply to ``result``."""
+    return {o.name: o.reason for o in OUTPUTS if o.applies is not None and not o.applies(result)}
+
+
+def si_values(result: CollisionResult) -> dict:
+    """The SI values {si_key: scaled value * factor} of a collision with physical inputs
+    (empty without them), where the value exists and applies."""
+    if result.physical is None:
+        return {}
+    out = {}
+    for o in OUTPUTS:
+        value = o.value(result) if o.si_key is not None else None
+        if value is not None:
+            out[o.si_key] = value * o.si_factor(result.physical)
+    return out
+
+
+def in_si_where_possible(result: CollisionResult) -> dict:
+    """Every output once, for a collision with physical inputs: its SI value under its SI key
+    where it has one, else its scaled value under its name (None where there is none)."""
+    si = si_values(result)
+    out = {}
+    for o in OUTPUTS:
+        if o.si_key is None:
+            out[o.name] = o.value(result)
+        else:
+            out[o.si_key] = si.get(o.si_key)
+    return out
+
+
+def _text(value) -> str:
+    """A value in a table: 6 significant digits for a float, "-" for None."""
+    return "-" if value is None else f"{value:.6g}" if isinstance(value, float) else str(value)
+
+
+def table_rows(summary: dict) -> list[tuple[str, str, str, str]]:
+    """The result table of a summary: (name, value, scale, meaning) of every output it holds,
+    then (SI key, value, unit, meaning) of its SI values; values as text (6 digits, "-" for
+    None, "n/a" for an output that does not apply, its reason after its meaning)."""
+    reasons = summary.get("not_applicable", {})
+    si = summary.get("si", {})
+    rows, si_rows = [], []
+    for o in OUTPUTS:
+        if o.name in summary:
+            meaning = o.meaning
+            if o.name in reasons:
+                meaning += f" (not applicable: {reasons[o.name]})"
+            value = "n/a" if o.name in reasons else _text(summary[o.name])
+            rows.append((o.name, value, o.scale, meaning))
+        if o.si_key in si:
+            si_rows.append((o.si_key, _text(si[o.si_key]), o.unit, o.meaning))
+    return rows + si_rows
+
+
+def format_table(summary: dict) -> str:
+    """:func:`table_rows` as aligned lines of text, one output a line."""
+    rows = table_rows(summary)
+    widths = [max(len(row[i]) for row in rows) for i in range(3)]
+    lines = []
+    for row in rows:
+        cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
+        lines.append("  " + "  ".join([*cells, row[3]]))
+    return "\n".join(lines)
+
+
+def markdown_table() -> str:
+    """The registry as the Markdown table of docs/outputs.md: name, meaning, scale, SI unit, SI
+    key, and a note where an output may be missing (optional) or may not apply (the reason)."""
+    lines = [
+        "| name | meaning | scaled by | SI unit | SI key | note |",
+        "|---|---|---|---|---|---|",
+    ]
+    for o in OUTPUTS:
+        note = "left out of the summary where there is none" if o.optional else ""
+        note = f"None where not applicable: {o.reason}" if o.applies is not None else note
+        si_key = f"`{o.si_key}`" if o.si_key else "-"
+        cells = (f"`{o.name}`", o.meaning, o.scale, o.unit or "-", si_key, note)
+        lines.append("| " + " | ".join(cell.replace("|", "\\|") for cell in cells) + " |")
+    return "\n".join(lines)

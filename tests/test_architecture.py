@@ -1,0 +1,128 @@
+"""The package's structure (docs/architecture.md): packages in layers whose imports point down,
+no import cycle between modules, no function over 80 lines, and every DOLFINx call in the
+compatibility seam. These read the source, not run it."""
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
+
+# Bottom to top. A module may import from its own package and from the layers below.
+LAYERS = (
+    ("checks", "version", "console"),
+    ("film",),
+    ("inputs",),
+    ("solids",),
+    ("motion",),
+    ("tangential",),
+    ("outputs",),
+    ("collision",),
+    ("dem",),
+    ("study", "bounce"),
+    ("cli",),
+    ("__init__", "__main__"),
+)
+LONGEST_FUNCTION = 80  # lines, decorators excluded
+DOLFINX_SEAM = "ehdfem.solids.fe.dolfinx_compat"
+
+
+def _modules():
+    """(module name, path, syntax tree) of every module of the package."""
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        yield name, path, ast.parse(path.read_text())
+
+
+def _imports(name, path, tree):
+    """The ehdfem modules (or packages) that a module imports at run time, absolute (imports
+    for type annotations only, under ``if TYPE_CHECKING:``, are left out)."""
+    here = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    typing_only = {
+        id(inner)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"
+        for inner in ast.walk(node)
+    }
+    for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
+        if isinstance(node, ast.ImportFrom) and node.level:
+            base = here[: len(here) - node.level + 1]
+            target = ".".join(base + ([node.module] if node.module else []))
+            modules = [  # "from .. import checks": a module of that package
+                f"{target}.{alias.name}"
+                for alias in node.names
+                if (PACKAGE.parent / f"{target}.{alias.name}".replace(".", "/"))
+                .with_suffix(".py")
+                .exists()
+            ]
+            yield from modules or [target]
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("ehdfem"):
+            yield node.module
+
+
+def _layer(module: str) -> int:
+    """The layer of a module: that of its top-level package (or of itself, at the top)."""
+    top = module.split(".")[1] if "." in module else "__init__"
+    for index, names in enumerate(LAYERS):
+        if top in names:
+            return index
+    raise AssertionError(f"{module} is in no layer: add its package to LAYERS")
+
+
+def test_imports_point_down():
+    upward = []
+    for name, path, tree in _modules():
+        top = name.split(".")[1] if "." in name else name
+        for target in _imports(name, path, tree):
+            target_top = target.split(".")[1] if "." in target else target
+            if target_top != top and _layer(target) >= _layer(name):
+                upward.append(f"{name} -> {target}")
+    assert not upward, "imports that do not point down:\n" + "\n".join(upward)
+
+
+def test_no_import_cycles():
+    graph = {name: set(_imports(name, path, tree)) for name, path, tree in _modules()}
+    state = {}
+
+    def visit(module, trail):
+        if state.get(module) == "done" or module not in graph:
+            return
+        if state.get(module) == "open":
+            pytest.fail("import cycle: " + " -> ".join(trail[trail.index(module) :] + [module]))
+        state[module] = "open"
+        for target in graph[module]:
+            visit(target, trail + [module])
+        state[module] = "done"
+
+    for module in graph:
+        visit(module, [])
+
+
+def test_no_function_over_80_lines():
+    long = [
+        f"{name}.{node.name}: {node.end_lineno - node.lineno + 1} lines"
+        for name, _, tree in _modules()
+        for node in ast.walk(tree)
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+        and node.end_lineno - node.lineno + 1 > LONGEST_FUNCTION
+    ]
+    assert not long, "functions over 80 lines:\n" + "\n".join(long)
+
+
+def test_every_dolfinx_call_in_the_seam():
+    outside = [
+        f"{name}:{node.lineno}"
+        for name, _, tree in _modules()
+        if name != DOLFINX_SEAM
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Import | ast.ImportFrom)
+        and any(
+            (getattr(node, "module", None) or alias.name).split(".")[0] == "dolfinx"
+            for alias in node.names
+        )
+    ]
+    assert not outside, "DOLFINx imported outside the seam:\n" + "\n".join(outside)

@@ -18,7 +18,6 @@ and OTHER for the remaining free faces.
 
 from __future__ import annotations
 
-import gmsh
 import numpy as np
 
 SPHERE, LOWER, COATING = 1, 2, 3
@@ -62,6 +61,8 @@ def _groups(model, groups):
 def _mesh(model, points, r, local, size):
     """Film-spacing elements at the film points (from the points' sizes) and a background
     field growing from the contact to size/8."""
+    import gmsh
+
     distance = model.mesh.field.add("Distance")
     model.mesh.field.setNumbers(distance, "PointsList", points)
     threshold = model.mesh.field.add("Threshold")
@@ -88,6 +89,8 @@ def build(
 ) -> None:
     """Build one of the geometries (``lower`` = "wall", "coated" or "sphere") and its 2-D mesh
     in the current gmsh model; see the module docstring."""
+    import gmsh
+
     occ = gmsh.model.occ
     r = np.asarray(contact_radii, dtype=float)
     local = _local_spacing(r)

@@ -9,7 +9,8 @@ from mpi4py import MPI
 
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.solids.fe.condensation import condensed
-from ehdfem.solids.fe.solids import FESolids, interpolation_matrix
+from ehdfem.solids.fe.linear_algebra import interpolation_matrix
+from ehdfem.solids.fe.solids import FESolids
 
 
 @pytest.mark.serial

@@ -188,8 +188,8 @@ def test_deformation_matches_the_compliance_at_the_film_nodes(lower):
     comm = MPI.COMM_WORLD
     radii = radial_grid(20, 0.5, 2.0)
     solids = FESolids(1e-3, radii, lower=lower, comm=comm)
-    assert len(solids.bodies) == (2 if lower == "sphere" else 1)
-    assert solids.bodies[0].direction == -1.0
+    assert len(solids.free_bodies) == (2 if lower == "sphere" else 1)
+    assert solids.free_bodies[0].direction == -1.0
     compliance = solids.compliance(1e-3)
     assert compliance.surface_radii == ((2.0, 2.0) if lower == "sphere" else (1.0, np.inf))
     pressure = hertz_like(radii)

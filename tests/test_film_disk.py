@@ -21,7 +21,7 @@ from scipy.sparse import diags
 from scipy.sparse.linalg import spsolve
 
 from ehdfem.checks import InputError
-from ehdfem.film.disk import solve_disk_film
+from ehdfem.tangential.disk import solve_disk_film
 
 GAP = 0.05  # X0, the central film thickness of the rigid paraboloid (by x0)
 PARABOLOID_EDGE = np.sqrt(2 * (1 - GAP))  # where X0 + R^2/2 = 1

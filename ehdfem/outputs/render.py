@@ -38,7 +38,7 @@ def _pyvista():
 
 
 def _section(solids, shape, nodal_pressure, field, magnification):
-    """The (r, z) triangles of ``shape`` (a :class:`ehdfem.solids.fe.solids.Deformation` of
+    """The (r, z) triangles of ``shape`` (a :class:`ehdfem.solids.fe.fields.Deformation` of
     ``solids``) moved by the magnified displacement, with ``field`` at the points."""
     pyvista = _pyvista()
 

@@ -28,7 +28,7 @@ the collision when the cavitation-rule sensitivity or a tilt exceeds its limit
 (SENSITIVITY_LIMIT, TILT_LIMIT); the sliding film itself stops when a tilt reaches 1
 (:class:`ehdfem.tangential.motion.SlidingFilmError`). The limits come from
 :func:`check_superposition`, which solves the full Reynolds equation on the disk
-(:mod:`ehdfem.film.disk`, with the sliding term and the cavitation limit imposed pointwise) at
+(:mod:`ehdfem.tangential.disk`, with the sliding term and the cavitation limit imposed pointwise) at
 chosen instants and compares the mode-1 pressure's moment int P X dA and slope force
 int P dSigma0/dX dA (which give the sliding film's torque and force) with the superposition's.
 docs/tangential.md gives the map of the measured errors (studies/superposition_map.py).
@@ -239,7 +239,7 @@ def _default_steps(normal, tangential, validity):
 
 def _check_step(result, validity, step, element_size, comm) -> SuperpositionCheck:
     """One step of :func:`check_superposition`."""
-    from ..film.disk import solve_disk_film
+    from .disk import solve_disk_film
 
     normal, tangential = result.normal, result.tangential
     params, hist = normal.params, normal.history

@@ -1,12 +1,13 @@
-"""The DOLFINx calls of the FE solids whose spelling depends on the DOLFINx release.
+"""Every DOLFINx call of the package: the FE solids, their fields and the disk film.
 
-The package is written against Debian's DOLFINx 0.5.2. Every call below changed name, argument
-form or return type in a later release; :mod:`ehdfem.solids.fe.solids`,
-:mod:`ehdfem.solids.fe.mesh` and :mod:`ehdfem.outputs.render` reach them only through this module,
-so moving to a newer DOLFINx means editing these functions and nothing else. Each docstring
-names what the 0.5 call is and what replaces it later. Plain ``ufl`` and ``fem.form``,
-``fem.Function``, ``fem.Constant``, ``fem.Expression``, ``fem.dirichletbc``,
-``fem.locate_dofs_*`` and ``fem.assemble_scalar``, which kept their form, are used directly.
+The package is written against Debian's DOLFINx 0.5.2. Nothing outside this module imports
+``dolfinx`` (:mod:`ehdfem.solids.fe` and :mod:`ehdfem.tangential.disk` reach it only through these
+functions), so moving to a newer DOLFINx means editing this module and nothing else. The
+docstrings of the calls that changed name, argument form or return type in a later release
+name what the 0.5 call is and what replaces it later; the others (``fem.form``,
+``fem.Function``, ``fem.Expression``, ``fem.dirichletbc``, ``fem.locate_dofs_*``,
+``fem.assemble_scalar``, ...) kept their form up to 0.10. UFL (forms) and petsc4py (matrices,
+factorisations) are separate packages, used directly.
 
 Nothing here knows about scales: meshes, spaces, matrices and vectors carry whatever units the
 caller's forms give them.
@@ -123,3 +124,184 @@ def petsc_vector(function):
     (and later removed).
     """
     return function.vector
+
+
+def form(expression):
+    """The compiled form of the UFL ``expression`` (bilinear, linear or a functional)."""
+    from dolfinx import fem
+
+    return fem.form(expression)
+
+
+def function(space, name: str | None = None):
+    """A finite-element function on ``space``, zero (``name`` labels it in exported files)."""
+    from dolfinx import fem
+
+    return fem.Function(space) if name is None else fem.Function(space, name=name)
+
+
+def constant(mesh, value: float):
+    """A constant on ``mesh`` whose value can be changed between solves (``.value``)."""
+    from dolfinx import fem
+    from petsc4py import PETSc
+
+    return fem.Constant(mesh, PETSc.ScalarType(value))
+
+
+def expression(ufl_expression, space):
+    """``ufl_expression`` compiled for interpolation into ``space`` (``function.interpolate``)."""
+    from dolfinx import fem
+
+    return fem.Expression(ufl_expression, interpolation_points(space))
+
+
+def integral(integrand, comm) -> float:
+    """The value of the functional ``integrand`` (a UFL form with its measure), summed over the
+    ranks of ``comm``."""
+    from dolfinx import fem
+
+    return comm.allreduce(fem.assemble_scalar(fem.form(integrand)))
+
+
+def sub_space(space, component: int):
+    """(sub-space, collapsed copy) of ``component`` of a vector ``space``: the pair the dof
+    locators take to give (parent dofs, dofs of the collapsed copy)."""
+    collapsed, _ = space.sub(component).collapse()
+    return space.sub(component), collapsed
+
+
+def entity_dofs(space, dim: int, entities, component: int | None = None):
+    """The local dofs of ``space`` on the mesh entities ``entities`` of dimension ``dim`` (1:
+    facets, 2: cells); with ``component``, the pair (parent dofs, collapsed dofs) of that
+    component (:func:`sub_space`)."""
+    from dolfinx import fem
+
+    spaces = space if component is None else sub_space(space, component)
+    return fem.locate_dofs_topological(spaces, dim, entities)
+
+
+def point_dofs(space, where, component: int | None = None):
+    """The local dofs of ``space`` at the points x (3, n) where ``where(x)`` is True; with
+    ``component``, the pair (parent dofs, collapsed dofs) of that component."""
+    from dolfinx import fem
+
+    spaces = space if component is None else sub_space(space, component)
+    return fem.locate_dofs_geometrical(spaces, where)
+
+
+def zero_condition(space, dofs, component: int | None = None):
+    """The homogeneous Dirichlet condition on the ``dofs`` of ``space`` (every component of a
+    vector space), or of its ``component`` (then ``dofs`` is the pair of :func:`entity_dofs`)."""
+    from dolfinx import fem
+    from petsc4py import PETSc
+
+    if component is not None:
+        sub, collapsed = sub_space(space, component)
+        return fem.dirichletbc(function(collapsed), dofs, sub)
+    size = space.dofmap.index_map_bs
+    value = np.zeros(size, dtype=PETSc.ScalarType) if size > 1 else PETSc.ScalarType(0.0)
+    return fem.dirichletbc(value, dofs, space)
+
+
+def constrained_rows(form, bcs) -> np.ndarray:
+    """The owned rows of the vector of the linear ``form`` that the Dirichlet ``bcs`` fix.
+
+    0.5: ``fem.petsc.create_vector`` and ``fem.petsc.set_bc`` (see :func:`assemble_vector`).
+    """
+    import dolfinx.fem.petsc
+
+    marker = dolfinx.fem.petsc.create_vector(form)
+    with marker.localForm() as local:
+        local.set(1.0)
+    dolfinx.fem.petsc.set_bc(marker, bcs)
+    rows = np.flatnonzero(marker.getArray() == 0.0)
+    marker.destroy()
+    return rows
+
+
+def exterior_facets(mesh) -> np.ndarray:
+    """The local facets of ``mesh`` on its boundary.
+
+    0.5: ``dolfinx.mesh.exterior_facet_indices(topology)`` after the facet-to-cell
+    connectivity is created; the same in 0.10.
+    """
+    from dolfinx import mesh as dmesh
+
+    mesh.topology.create_connectivity(mesh.topology.dim - 1, mesh.topology.dim)
+    return dmesh.exterior_facet_indices(mesh.topology)
+
+
+def facet_midpoints(mesh, facets) -> np.ndarray:
+    """The midpoints (n, 3) of the local ``facets`` of ``mesh``."""
+    from dolfinx import mesh as dmesh
+
+    return dmesh.compute_midpoints(mesh, mesh.topology.dim - 1, facets)
+
+
+def point_values(function, points: np.ndarray):
+    """(values, found) of the scalar ``function`` at ``points`` (n, 3) on this rank: the value
+    at each point inside a local cell (owned or ghost) and the mask of those points (0
+    elsewhere).
+
+    0.5: ``geometry.BoundingBoxTree(mesh, dim)``; 0.7+: ``geometry.bb_tree(mesh, dim)``.
+    """
+    from dolfinx import geometry
+
+    mesh = function.function_space.mesh
+    tree = geometry.BoundingBoxTree(mesh, mesh.topology.dim)
+    candidates = geometry.compute_collisions(tree, points)
+    colliding = geometry.compute_colliding_cells(mesh, candidates, points)
+    offsets = colliding.offsets
+    found = offsets[1:] > offsets[:-1]
+    values = np.zeros(len(points))
+    if found.any():
+        cells = colliding.array[offsets[np.flatnonzero(found)]]
+        values[found] = function.eval(points[found], cells)[:, 0]
+    return values, found
+
+
+def solve_nonlinear(residual, jacobian, bcs, solution, configure):
+    """Solve residual(u) = 0 for the function ``solution`` (its values the initial guess) by
+    PETSc SNES with the Jacobian form ``jacobian`` and the Dirichlet ``bcs``, the solution's
+    values set on them; ``configure(snes, vector)`` chooses the method, its tolerances and
+    bounds (``vector`` a template of the solution). Returns (converged reason, iterations).
+
+    0.5: the residual and Jacobian are assembled by ``fem.petsc.assemble_vector``,
+    ``apply_lifting``, ``set_bc`` and ``assemble_matrix`` into PETSc objects of
+    ``create_vector`` and ``create_matrix``; 0.10 offers ``fem.petsc.NonlinearProblem`` with
+    the SNES built in instead.
+    """
+    import dolfinx.fem.petsc
+    from petsc4py import PETSc
+
+    target = petsc_vector(solution)
+
+    def assemble_residual(snes, x, b):
+        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
+        x.copy(target)
+        solution.x.scatter_forward()
+        with b.localForm() as local:
+            local.set(0.0)
+        dolfinx.fem.petsc.assemble_vector(b, residual)
+        dolfinx.fem.petsc.apply_lifting(b, [jacobian], [bcs], x0=[x], scale=-1.0)
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        dolfinx.fem.petsc.set_bc(b, bcs, x, -1.0)
+
+    def assemble_jacobian(snes, x, matrix, preconditioner):
+        matrix.zeroEntries()
+        dolfinx.fem.petsc.assemble_matrix(matrix, jacobian, bcs)
+        matrix.assemble()
+
+    matrix = dolfinx.fem.petsc.create_matrix(jacobian)
+    vector = dolfinx.fem.petsc.create_vector(residual)
+    snes = PETSc.SNES().create(solution.function_space.mesh.comm)
+    try:
+        snes.setFunction(assemble_residual, vector)
+        snes.setJacobian(assemble_jacobian, matrix)
+        configure(snes, vector)
+        snes.solve(None, target)
+        return snes.getConvergedReason(), snes.getIterationNumber()
+    finally:
+        solution.x.scatter_forward()
+        for petsc_object in (snes, matrix, vector):
+            petsc_object.destroy()

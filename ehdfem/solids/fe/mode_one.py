@@ -35,6 +35,9 @@ rigid motions without carrying any force, and the sphere's displacement is repor
 to its rigid motion, u - sum_k R_k c_k with G c = (m_k . u): the mass-weighted mean translation
 and mean rotation about the centre of mass. A wall is clamped at its base.
 
+The mesh, materials, free bodies, contact faces and traction profiles are those of the
+axisymmetric solids (:class:`ehdfem.solids.fe.meshed.MeshedBodies`, ``solids.meshed``).
+
 Scales as in :mod:`ehdfem.solids.fe.solids`: stresses by E_ref, displacements by a p / E_ref for
 tractions by p, where p is the film pressure unit mu V0 a / x0^2 for the pressure and
 sqrt(delta) times it for the shear tractions; ``factor(eps)`` = :meth:`FESolids.scale` turns
@@ -53,25 +56,20 @@ from ... import checks
 from ...console.progress import progress
 from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
 from . import dolfinx_compat
+from .linear_algebra import CholeskySolver, interpolation_matrix
 from .mesh import cached_matrices
+from .meshed import FACES
 from .solids import FESolids
 
 DEGREE = 2  # of the Lagrange elements
+QUADRATURE_DEGREE = 9
+"""Of the stiffness integrand: products of P2 strain amplitudes (with the 1/r terms) times r and
+the moduli. UFL would estimate 7 for moduli constant per cell; 9 is the degree the mode-1
+compliance was validated with (tests/test_fem_mode_one.py) and stored with (the regression
+table, tests/test_regression.py), so it is fixed here."""
 BLOCK = 48  # right-hand sides per multiple-RHS solve (memory: 8 B x unknowns x BLOCK)
 TRACTIONS = ("pressure", "radial", "hoop")
 """The load kinds of one solve: the same nodal profile (or each face its own) on both faces."""
-
-
-def lame_moduli(solids: FESolids):
-    """(lambda, mu) per cell of ``solids`` as UFL expressions (by E_ref), read off their
-    axisymmetric stress law (FESolids keeps no moduli of its own): the displacement (r, 2 z)
-    strains them by e = diag(1, 1, 2) (r, theta, z), under sigma_rr = 4 lambda + 2 mu and
-    sigma_zz = 4 lambda + 4 mu."""
-    import ufl
-
-    r, z = ufl.SpatialCoordinate(solids.mesh)
-    probe = solids._stress(ufl.as_vector((r, 2 * z)))
-    return (2 * probe[0, 0] - probe[2, 2]) / 4, (probe[2, 2] - probe[0, 0]) / 2
 
 
 def mode_one_space(mesh):
@@ -110,35 +108,31 @@ def stress(strain_amplitudes, lame):
 
 def stiffness_form(space, lame):
     """The bilinear form int sigma(E(u)) : E(v) r dr dz on ``space`` (:func:`mode_one_space`),
-    the mode-1 strain energy divided by pi/2 (UFL; ``lame`` = (lambda, mu) by E_ref)."""
+    the mode-1 strain energy divided by pi/2 (UFL; ``lame`` = (lambda, mu) by E_ref), with
+    QUADRATURE_DEGREE."""
     import ufl
 
     r = ufl.SpatialCoordinate(space.mesh)[0]
     u, v = ufl.TrialFunction(space), ufl.TestFunction(space)
-    return ufl.inner(stress(strain(u, r), lame), strain(v, r)) * r * ufl.dx
+    dx = ufl.dx(metadata={"quadrature_degree": QUADRATURE_DEGREE})
+    return ufl.inner(stress(strain(u, r), lame), strain(v, r)) * r * dx
 
 
-def zero_condition(space, component: int, locate):
+def zero_condition(space, component: int, dofs):
     """A homogeneous Dirichlet condition on unknown ``component`` (0: S, 1: D, 2: U_z) of
-    ``space``, at the dofs found by ``locate``, a ``fem.locate_dofs_*`` call on the pair
-    (sub-space, collapsed sub-space); returns (condition, owned rows of the solution vector)."""
-    from dolfinx import fem
-
-    sub = space.sub(component)
-    collapsed, _ = sub.collapse()
-    parent, child = locate((sub, collapsed))
+    ``space`` at ``dofs``, the pair (parent, collapsed) of a
+    :func:`ehdfem.solids.fe.dolfinx_compat.entity_dofs` or ``point_dofs`` call with that
+    component; returns (condition, owned rows of the solution vector)."""
+    parent = dofs[0]
     owned = space.dofmap.index_map.size_local * space.dofmap.index_map_bs
-    condition = fem.dirichletbc(fem.Function(collapsed), [parent, child], sub)
-    return condition, parent[parent < owned]
+    return dolfinx_compat.zero_condition(space, dofs, component), parent[parent < owned]
 
 
 def axis_conditions(space, axis_facets):
     """The axis regularity conditions D = 0 and U_z = 0 on the facets ``axis_facets`` (r = 0):
     a list of (condition, owned rows), as :func:`zero_condition`."""
-    from dolfinx import fem
-
     return [
-        zero_condition(space, k, lambda pair: fem.locate_dofs_topological(pair, 1, axis_facets))
+        zero_condition(space, k, dolfinx_compat.entity_dofs(space, 1, axis_facets, k))
         for k in (1, 2)
     ]
 
@@ -147,16 +141,14 @@ def rigid_motions(space, cells, centre_z: float):
     """The x translation and the rotation about y through z = ``centre_z`` (by a) as functions
     of the unknowns (S, D, U_z) on ``space``, zero outside ``cells``: (1, 0, 0) and
     (z - z_c, 0, -r), per unit displacement and per unit angle."""
-    from dolfinx import fem
-
-    translation, rotation = fem.Function(space), fem.Function(space)
+    translation, rotation = dolfinx_compat.function(space), dolfinx_compat.function(space)
     translation.interpolate(lambda x: np.vstack([np.ones_like(x[0]), 0 * x[0], 0 * x[0]]), cells)
     rotation.interpolate(lambda x: np.vstack([x[1] - centre_z, 0 * x[0], -x[0]]), cells)
     return translation, rotation
 
 
 @dataclass(frozen=True)
-class _FreeBody:
+class _RigidMotions:
     """A free sphere's rigid motions on the owned rows: ``motions`` (rows, 2) the vectors R_k,
     ``inertia`` (rows, 2) the vectors m_k of int R_k . v r dx, ``gram`` G = m^T R (2x2)."""
 
@@ -210,66 +202,44 @@ class FEModeOne(ModeOneCompliance):
     def close(self) -> None:
         """Free the factorised stiffness and the traction matrices (PETSc memory that Python's
         garbage collector does not return). Collective under MPI; no solves afterwards."""
-        for petsc_object in (self._ksp, self._stiffness, *self._tractions.values()):
+        self._solver.close()
+        for petsc_object in self._tractions.values():
             petsc_object.destroy()
 
     def _assemble(self):
         """Assemble the stiffness and set up its factorisation (MUMPS Cholesky, made on the
         first solve: it is symmetric positive definite once pinned); set up the traction
         matrices, the free bodies and the contact faces."""
-        from dolfinx import fem
-        from petsc4py import PETSc
-
         conditions = self._constraints()
         self._constrained = np.concatenate([rows for _, rows in conditions])
-        self._stiffness = dolfinx_compat.assemble_matrix(
-            fem.form(stiffness_form(self.space, lame_moduli(self.solids))),
+        stiffness = dolfinx_compat.assemble_matrix(
+            dolfinx_compat.form(stiffness_form(self.space, self.solids.meshed.lame)),
             [bc for bc, _ in conditions],
         )
-        self._stiffness.setOption(PETSc.Mat.Option.SPD, True)
-        self._ksp = PETSc.KSP().create(self.solids.comm)
-        self._ksp.setOperators(self._stiffness)
-        self._ksp.setType("preonly")
-        self._ksp.getPC().setType("cholesky")
-        self._ksp.getPC().setFactorSolverType("mumps")
+        self._solver = CholeskySolver(stiffness, self.solids.comm)
         self._tractions = self._traction_matrices()
-        self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.bodies]
-        self._faces = [self._face(tag) for tag in self._face_tags]
-
-    @property
-    def _face_tags(self):
-        """The facet tags of the upper (sphere) and lower (wall) contact faces."""
-        geometry = self.solids._geometry
-        return geometry.SPHERE_CONTACT, geometry.LOWER_CONTACT
+        self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.free_bodies]
+        self._faces = [self._face(tag) for tag in FACES]
 
     def _constraints(self):
-        """(condition, owned rows) pairs: the axis conditions, a clamped wall base (all three
-        unknowns; none for a lower sphere) and, for each free sphere, S = 0 at its far pole
+        """(condition, owned rows) pairs: the axis conditions, the lower body's clamped facets
+        (all three unknowns: a wall's base) and, for each free sphere, S = 0 at its far pole
         and U_z = 0 at its equator (which fix its translation and rotation)."""
-        from dolfinx import fem
-
-        solids, space = self.solids, self.space
-        geometry, facets = solids._geometry, solids._facet_tags
-        axis = np.concatenate([facets.find(t) for t in (geometry.SPHERE_AXIS, geometry.LOWER_AXIS)])
-        conditions = axis_conditions(space, axis)
-        if solids.lower != "sphere":
-            base = facets.find(geometry.LOWER_BOTTOM)
+        bodies, space = self.solids.meshed, self.space
+        conditions = axis_conditions(space, bodies.axis_facets)
+        if bodies.lower.clamped:
+            clamped = bodies.clamped_facets
             conditions += [
-                zero_condition(space, k, lambda pair: fem.locate_dofs_topological(pair, 1, base))
+                zero_condition(space, k, dolfinx_compat.entity_dofs(space, 1, clamped, k))
                 for k in range(3)
             ]
-        radii = (solids.radius_upper, solids.radius_lower)[: len(solids.bodies)]
-        for body, radius in zip(solids.bodies, radii, strict=True):
-            centre = body.pole_z + body.direction * radius
-            for k, (r, z) in ((0, (0.0, body.pole_z)), (2, (radius, centre))):
-                pin = zero_condition(
-                    space,
-                    k,
-                    lambda pair, r=r, z=z: fem.locate_dofs_geometrical(
-                        pair, lambda x: np.isclose(x[0], r) & np.isclose(x[1], z)
-                    ),
+        for body in bodies.free_bodies:
+            for k, (r, z) in ((0, (0.0, body.pole_z)), (2, (body.radius, body.centre_z))):
+                dofs = dolfinx_compat.point_dofs(
+                    space, lambda x, r=r, z=z: np.isclose(x[0], r) & np.isclose(x[1], z), k
                 )
-                if solids.comm.allreduce(len(pin[1])) == 0:
+                pin = zero_condition(space, k, dofs)
+                if bodies.comm.allreduce(len(pin[1])) == 0:
                     raise RuntimeError(f"no mesh vertex at the pin (r, z) = ({r}, {z})")
                 conditions.append(pin)
         return conditions
@@ -279,77 +249,48 @@ class FEModeOne(ModeOneCompliance):
         traction profile q (P2, by its unit) on both contact faces into the load vector:
         normal pressure -q n, radial t_r = q, hoop t_phi = -q sin phi (amplitude q)."""
         import ufl
-        from dolfinx import fem
 
-        msh = self.solids.mesh
-        q = ufl.TrialFunction(self.solids._profile_space)
+        bodies = self.solids.meshed
         v_r, v_phi, v_z = (amplitudes(ufl.TestFunction(self.space))[k] for k in range(3))
-        n = ufl.FacetNormal(msh)
-        ds = ufl.Measure("ds", domain=msh, subdomain_data=self.solids._facet_tags)
-        faces = ds(self._face_tags[0]) + ds(self._face_tags[1])
-        r = ufl.SpatialCoordinate(msh)[0]
+        n = ufl.FacetNormal(bodies.mesh)
         works = {"pressure": -(n[0] * v_r + n[1] * v_z), "radial": v_r, "hoop": v_phi}
-        return {
-            kind: dolfinx_compat.assemble_matrix(fem.form(q * work * r * faces), [])
-            for kind, work in works.items()
-        }
+        return {kind: bodies.traction_matrix(work) for kind, work in works.items()}
 
-    def _free_body(self, cell_tag: int) -> _FreeBody:
+    def _free_body(self, cell_tag: int) -> _RigidMotions:
         """The rigid motions of the free body of ``cell_tag`` about its centre of mass."""
         import ufl
-        from dolfinx import fem
 
-        solids, space, comm = self.solids, self.space, self.solids.comm
-        r, z = ufl.SpatialCoordinate(solids.mesh)
-        dx = ufl.Measure("dx", domain=solids.mesh, subdomain_data=solids._cell_tags)(cell_tag)
-
-        def integral(integrand):
-            return comm.allreduce(fem.assemble_scalar(fem.form(integrand * r * dx)))
-
-        centre = integral(z) / integral(1.0)
-        motions = rigid_motions(space, solids._cell_tags.find(cell_tag), centre)
+        bodies, space = self.solids.meshed, self.space
+        r, z = ufl.SpatialCoordinate(bodies.mesh)
+        centre = bodies.body_integral(z, cell_tag) / bodies.body_integral(1.0, cell_tag)
+        motions = rigid_motions(space, bodies.cell_tags.find(cell_tag), centre)
         v = amplitudes(ufl.TestFunction(space))
         inertia = [
             dolfinx_compat.assemble_vector(
-                fem.form(ufl.dot(amplitudes(motion), v) * r * dx), []
+                dolfinx_compat.form(ufl.dot(amplitudes(motion), v) * r * bodies.dx(cell_tag)), []
             ).getArray()
             for motion in motions
         ]
         owned = len(inertia[0])
         motions = np.column_stack([motion.x.array[:owned] for motion in motions])
         inertia = np.column_stack(inertia)
-        return _FreeBody(motions, inertia, comm.allreduce(inertia.T @ motions))
+        return _RigidMotions(motions, inertia, bodies.comm.allreduce(inertia.T @ motions))
 
     def _face(self, tag: int) -> _Face:
         """The rows and the interpolation to the film nodes of the contact face ``tag``."""
-        from dolfinx import fem
-
-        space = self.space
-        sub = space.sub(0)
-        collapsed, _ = sub.collapse()
-        parent, child = fem.locate_dofs_topological(
-            (sub, collapsed), 1, self.solids._facet_tags.find(tag)
-        )
-        keep = parent < space.dofmap.index_map.size_local * space.dofmap.index_map_bs
-        r = collapsed.tabulate_dof_coordinates()[child[keep], 0]
-        r, first = np.unique(np.concatenate(self.solids.comm.allgather(r)), return_index=True)
-        nodes = self.solids.radii_a
-        right = np.clip(np.searchsorted(r, nodes), 1, len(r) - 1)
-        weight = np.clip((nodes - r[right - 1]) / (r[right] - r[right - 1]), 0.0, 1.0)
-        to_film_nodes = np.zeros((len(nodes), len(r)))
-        rows = np.arange(len(nodes))
-        to_film_nodes[rows, right - 1] = 1 - weight
-        to_film_nodes[rows, right] += weight
-        return _Face(parent[keep], first, to_film_nodes)
+        bodies = self.solids.meshed
+        rows, r = bodies.face_dofs(self.space, 0, tag)
+        r, first = np.unique(np.concatenate(bodies.comm.allgather(r)), return_index=True)
+        return _Face(rows, first, interpolation_matrix(r, bodies.radii_a).toarray())
 
     def _loads(self, profiles) -> np.ndarray:
         """The owned rows of the load vectors (rows, columns) of nodal traction profiles:
         ``profiles[kind]`` = (upper, lower), each (N, columns) of amplitudes at the film nodes
         on that face (hat functions, zero beyond the last node), by the film pressure unit p
         (shear profiles already multiplied by sqrt(delta)); kinds from TRACTIONS."""
-        solids = self.solids
+        bodies = self.solids.meshed
         return sum(
-            solids.traction_loads(self._tractions[kind], solids.profile_values(faces))
+            bodies.traction_loads(self._tractions[kind], bodies.profile_values(faces))
             for kind, faces in profiles.items()
         )
 
@@ -357,8 +298,6 @@ class FEModeOne(ModeOneCompliance):
         """Displacements (owned rows of the unknowns, by a p / E_ref) of the load columns
         ``loads``: balanced on each free body by the d'Alembert body force, solved on the one
         factorisation, then relative to each free body's rigid motion (module docstring)."""
-        from petsc4py import PETSc
-
         comm = self.solids.comm
         loads = loads.copy()
         for body in self._free_bodies:
@@ -366,17 +305,7 @@ class FEModeOne(ModeOneCompliance):
                 body.gram, comm.allreduce(body.motions.T @ loads)
             )
         loads[self._constrained] = 0.0
-        size = (loads.shape[0], comm.allreduce(loads.shape[0]))
-        rhs = PETSc.Mat().createDense([size, (PETSc.DECIDE, loads.shape[1])], comm=comm)
-        rhs.setUp()
-        rhs.getDenseArray()[:] = loads
-        rhs.assemble()
-        solution = rhs.duplicate()
-        self._ksp.setUp()  # factorises on the first solve only
-        self._ksp.getPC().getFactorMatrix().matSolve(rhs, solution)
-        values = solution.getDenseArray().copy()
-        for petsc_object in (rhs, solution):
-            petsc_object.destroy()
+        values = self._solver.solve(loads)
         for body in self._free_bodies:
             values -= body.motions @ np.linalg.solve(
                 body.gram, comm.allreduce(body.inertia.T @ values)
@@ -417,8 +346,6 @@ class FEModeOne(ModeOneCompliance):
         function on :attr:`space` holding (U_r, U_phi, U_z) (not the unknowns), by x0, each
         free sphere relative to its rigid motion; at the film nodes of the faces it equals
         ``matrix @ nodal_loads``."""
-        from dolfinx import fem
-
         n = len(self.radii)
         loads = np.asarray(nodal_loads, dtype=float)
         if loads.shape != (5 * n,) or not np.isfinite(loads).all():
@@ -429,7 +356,7 @@ class FEModeOne(ModeOneCompliance):
         for kind in TRACTIONS[1:]:
             profiles[kind] = (shear * by_name[f"sphere_{kind}"], shear * by_name[f"wall_{kind}"])
         s, d, u_z = self._solve(self._loads(profiles))[:, 0].reshape(-1, 3).T
-        field = fem.Function(self.space)
+        field = dolfinx_compat.function(self.space)
         field.x.array[: 3 * len(s)] = (
             self.factor(self.eps) * np.column_stack([s + d, s - d, u_z]).ravel()
         )

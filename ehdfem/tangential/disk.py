@@ -242,22 +242,18 @@ class _DiskFilm:
 
     def __init__(self, mesh, fluidity):
         import ufl
-        from dolfinx import fem
-        from dolfinx import mesh as dmesh
-        from petsc4py import PETSc
 
         self.mesh = mesh
         self.space = space = dolfinx_compat.lagrange_space(mesh, DEGREE)
         self.coordinates = ufl.SpatialCoordinate(mesh)
-        self.pressure = fem.Function(space, name="pressure")
-        self.thickness = fem.Function(space, name="film_thickness")
-        self.squeeze_rate = fem.Function(space, name="squeeze_rate")
-        self.sliding = fem.Constant(mesh, PETSc.ScalarType(0.0))
+        self.pressure = dolfinx_compat.function(space, name="pressure")
+        self.thickness = dolfinx_compat.function(space, name="film_thickness")
+        self.squeeze_rate = dolfinx_compat.function(space, name="squeeze_rate")
+        self.sliding = dolfinx_compat.constant(mesh, 0.0)
         self.fluidity = fluidity
-        mesh.topology.create_connectivity(1, 2)
-        self.edge_facets = dmesh.exterior_facet_indices(mesh.topology)
-        self.edge = fem.dirichletbc(
-            PETSc.ScalarType(0.0), fem.locate_dofs_topological(space, 1, self.edge_facets), space
+        self.edge_facets = dolfinx_compat.exterior_facets(mesh)
+        self.edge = dolfinx_compat.zero_condition(
+            space, dolfinx_compat.entity_dofs(space, 1, self.edge_facets)
         )
         test = ufl.TestFunction(space)
         mobility = self.thickness**3 / 12
@@ -266,8 +262,10 @@ class _DiskFilm:
         source = self.squeeze_rate - self.sliding / 2 * self.thickness.dx(0)
         residual = mobility * ufl.inner(ufl.grad(self.pressure), ufl.grad(test)) + source * test
         residual = residual * ufl.dx
-        self.residual = fem.form(residual)
-        self.jacobian = fem.form(ufl.derivative(residual, self.pressure, ufl.TrialFunction(space)))
+        self.residual = dolfinx_compat.form(residual)
+        self.jacobian = dolfinx_compat.form(
+            ufl.derivative(residual, self.pressure, ufl.TrialFunction(space))
+        )
 
     def set_data(self, radii, thickness, thickness_mode_one, squeeze_rate, squeeze_rate_mode_one):
         """Interpolate H and dH/dT (nodal on radii, or dH/dT a callable of (X, Y))."""
@@ -279,82 +277,46 @@ class _DiskFilm:
 
     def solve(self, p_cav: float) -> int:
         """Solve for the pressure (module docstring); return the SNES iterations."""
-        import dolfinx.fem.petsc
         from petsc4py import PETSc
 
-        matrix = dolfinx.fem.petsc.create_matrix(self.jacobian)
-        vector = dolfinx.fem.petsc.create_vector(self.residual)
-        snes = PETSc.SNES().create(self.mesh.comm)
-        snes.setFunction(self._residual, vector)
-        snes.setJacobian(self._jacobian, matrix)
-        if p_cav != -math.inf:
-            snes.setType("vinewtonrsls")
-            lower, upper = vector.duplicate(), vector.duplicate()
-            lower.set(p_cav)
-            upper.set(PETSc.INFINITY)
-            snes.setVariableBounds(lower, upper)
-            snes.setOptionsPrefix(OPTIONS_PREFIX)
-            PETSc.Options()[f"{OPTIONS_PREFIX}snes_linesearch_type"] = "basic"
-            snes.setFromOptions()
-        elif self.fluidity is not None:
-            snes.setType("newtonls")
-        else:
-            snes.setType("ksponly")
-        # a zero residual (no drive at all) is converged; otherwise relative to the first one
-        snes.setTolerances(rtol=TOLERANCE, atol=np.finfo(float).tiny, max_it=50)
-        ksp = snes.getKSP()
-        ksp.setType("preonly")
-        ksp.getPC().setType("lu")
-        ksp.getPC().setFactorSolverType("mumps")
-        solution = dolfinx_compat.petsc_vector(self.pressure)
-        solution.set(0.0)
-        try:
-            snes.solve(None, solution)
-            if snes.getConvergedReason() <= 0:
-                raise RuntimeError(
-                    f"the disk film did not converge (SNES reason {snes.getConvergedReason()})"
-                )
-            return snes.getIterationNumber()
-        finally:
-            self.pressure.x.scatter_forward()
-            for petsc_object in (snes, matrix, vector):
-                petsc_object.destroy()
+        def configure(snes, vector):
+            if p_cav != -math.inf:
+                snes.setType("vinewtonrsls")
+                lower, upper = vector.duplicate(), vector.duplicate()
+                lower.set(p_cav)
+                upper.set(PETSc.INFINITY)
+                snes.setVariableBounds(lower, upper)
+                snes.setOptionsPrefix(OPTIONS_PREFIX)
+                PETSc.Options()[f"{OPTIONS_PREFIX}snes_linesearch_type"] = "basic"
+                snes.setFromOptions()
+            elif self.fluidity is not None:
+                snes.setType("newtonls")
+            else:
+                snes.setType("ksponly")
+            # a zero residual (no drive at all) is converged; otherwise relative to the first one
+            snes.setTolerances(rtol=TOLERANCE, atol=np.finfo(float).tiny, max_it=50)
+            ksp = snes.getKSP()
+            ksp.setType("preonly")
+            ksp.getPC().setType("lu")
+            ksp.getPC().setFactorSolverType("mumps")
 
-    def _residual(self, snes, x, b):
-        import dolfinx.fem.petsc
-        from petsc4py import PETSc
-
-        x.ghostUpdate(addv=PETSc.InsertMode.INSERT, mode=PETSc.ScatterMode.FORWARD)
-        x.copy(dolfinx_compat.petsc_vector(self.pressure))
-        self.pressure.x.scatter_forward()
-        with b.localForm() as local:
-            local.set(0.0)
-        dolfinx.fem.petsc.assemble_vector(b, self.residual)
-        dolfinx.fem.petsc.apply_lifting(b, [self.jacobian], [[self.edge]], x0=[x], scale=-1.0)
-        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        dolfinx.fem.petsc.set_bc(b, [self.edge], x, -1.0)
-
-    def _jacobian(self, snes, x, matrix, preconditioner):
-        import dolfinx.fem.petsc
-
-        matrix.zeroEntries()
-        dolfinx.fem.petsc.assemble_matrix(matrix, self.jacobian, [self.edge])
-        matrix.assemble()
+        self.pressure.x.array[:] = 0.0
+        reason, iterations = dolfinx_compat.solve_nonlinear(
+            self.residual, self.jacobian, [self.edge], self.pressure, configure
+        )
+        if reason <= 0:
+            raise RuntimeError(f"the disk film did not converge (SNES reason {reason})")
+        return iterations
 
     def integral(self, integrand) -> float:
         """int ``integrand`` dA over the disk, summed over the ranks."""
         import ufl
-        from dolfinx import fem
-        from mpi4py import MPI
 
-        local = fem.assemble_scalar(fem.form(integrand * ufl.dx))
-        return self.mesh.comm.allreduce(local, op=MPI.SUM)
+        return dolfinx_compat.integral(integrand * ufl.dx, self.mesh.comm)
 
     def slope_force(self, radii, surface_sum) -> float:
         """int P dSigma/dX dA with the surface sum Sigma(R) interpolated at the vertices."""
-        from dolfinx import fem
-
-        sigma = fem.Function(self.space)
+        sigma = dolfinx_compat.function(self.space)
         sigma.interpolate(_radial_field(radii, surface_sum, np.zeros_like(surface_sum)))
         return self.integral(self.pressure * sigma.dx(0))
 
@@ -381,19 +343,10 @@ class _DiskFilm:
         its cells (owned and ghost), the values are averaged over the ranks that found them.
         Points found by none must lie between the inscribed polygon and the edge circle (outside
         the discrete domain, P = 0 there)."""
-        from dolfinx import geometry
         from mpi4py import MPI
 
-        tree = geometry.BoundingBoxTree(self.mesh, self.mesh.topology.dim)
-        candidates = geometry.compute_collisions(tree, points)
-        colliding = geometry.compute_colliding_cells(self.mesh, candidates, points)
-        offsets = colliding.offsets
-        found = np.flatnonzero(offsets[1:] > offsets[:-1])
-        values, counts = np.zeros(len(points)), np.zeros(len(points))
-        if found.size:
-            cells = colliding.array[offsets[found]]
-            values[found] = self.pressure.eval(points[found], cells)[:, 0]
-            counts[found] = 1.0
+        values, found = dolfinx_compat.point_values(self.pressure, points)
+        counts = found.astype(float)
         comm = self.mesh.comm
         comm.Allreduce(MPI.IN_PLACE, values, op=MPI.SUM)
         comm.Allreduce(MPI.IN_PLACE, counts, op=MPI.SUM)
@@ -404,9 +357,8 @@ class _DiskFilm:
 
     def _inscribed_radius(self) -> float:
         """The radius of the largest circle inside the polygonal boundary (all ranks)."""
-        from dolfinx import mesh as dmesh
         from mpi4py import MPI
 
-        midpoints = dmesh.compute_midpoints(self.mesh, 1, self.edge_facets)
+        midpoints = dolfinx_compat.facet_midpoints(self.mesh, self.edge_facets)
         local = np.hypot(midpoints[:, 0], midpoints[:, 1]).min(initial=np.inf)
         return self.mesh.comm.allreduce(local, op=MPI.MIN)

@@ -1,0 +1,134 @@
+"""The FE solids' fields for pictures: displacement and stresses of the whole solids under one
+film pressure, on the vertices and cells of the (r, z) mesh.
+
+Used by the field exports (:mod:`ehdfem.outputs.fields`) and the pictures
+(:mod:`ehdfem.outputs.render`) through :meth:`ehdfem.solids.fe.solids.FESolids.deformation`.
+Scales: points by a; displacements by x0 (the solve's a p / E_ref times
+:meth:`~ehdfem.solids.fe.solids.FESolids.scale`); stresses by the film pressure unit
+mu V0 a / x0^2 (the solve's stresses by E_ref of displacements by a p / E_ref).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from . import dolfinx_compat
+
+
+@dataclass(frozen=True, eq=False)
+class Deformation:
+    """The solids under one film pressure, on this rank's part of the mesh (read-only arrays).
+
+    ``points``: (n, 2) vertex coordinates (r, z), by a. ``triangles``: (m, 3) the cells owned
+    by this rank, as indices into ``points``. ``displacement``: (n, 2) (u_r, u_z) at the
+    vertices, by x0, each free sphere relative to its centre of mass. ``von_mises`` and
+    ``hydrostatic``: (m,) stress per triangle, by mu V0 a / x0^2 (the film pressure unit; per
+    cell, as the hoop strain u_r / r is 0/0 at vertices on the axis). ``upper``: (n,) True at
+    the vertices of the upper sphere.
+    """
+
+    points: np.ndarray
+    triangles: np.ndarray
+    displacement: np.ndarray
+    von_mises: np.ndarray
+    hydrostatic: np.ndarray
+    upper: np.ndarray
+
+
+@dataclass(frozen=True)
+class _VertexMesh:
+    """The P1 (vertex) mesh of one rank: a P1 displacement to interpolate into, the vertices,
+    the owned triangles and the vertices of each free body (in the order of the bodies)."""
+
+    function: object
+    points: np.ndarray
+    triangles: np.ndarray
+    body_vertices: list
+    upper: np.ndarray
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """``array``, no longer writeable (shared between deformations)."""
+    array.setflags(write=False)
+    return array
+
+
+class SolidsFields:
+    """The fields of the FE ``solids`` (an :class:`ehdfem.solids.fe.solids.FESolids`): their
+    displacement solve, free-body centres, stress law and scale; the vertex mesh and the stress
+    expressions are built on first use."""
+
+    def __init__(self, solids):
+        self.solids = solids
+
+    def deformation(self, nodal_pressure, eps: float) -> Deformation:
+        """The solids under the film pressure with values ``nodal_pressure`` at the film nodes
+        (by mu V0 a / x0^2) at elasticity parameter ``eps``: one solve; see
+        :class:`Deformation` for the fields and their units."""
+        solids = self.solids
+        displacement = solids.displacement(nodal_pressure)
+        vertices = self._vertex_mesh
+        vertices.function.interpolate(displacement)
+        values = vertices.function.x.array.reshape(-1, 2).copy()
+        for body_vertices, centre in zip(vertices.body_vertices, solids.centres(), strict=True):
+            values[body_vertices, 1] -= centre
+        return Deformation(
+            points=vertices.points,
+            triangles=vertices.triangles,
+            displacement=_read_only(values * solids.scale(eps)),
+            upper=vertices.upper,
+            **self._cell_stresses(),
+        )
+
+    @cached_property
+    def _vertex_mesh(self) -> _VertexMesh:
+        """This rank's P1 mesh (built once); see :class:`_VertexMesh`."""
+        bodies = self.solids.meshed
+        space = dolfinx_compat.lagrange_space(bodies.mesh, 1, vector=True)
+        cells, _, coordinates = dolfinx_compat.vtk_mesh(space)
+        owned = bodies.mesh.topology.index_map(2).size_local
+        body_vertices = [
+            dolfinx_compat.entity_dofs(space, 2, bodies.cell_tags.find(body.cell_tag))
+            for body in bodies.free_bodies
+        ]
+        upper = np.zeros(len(coordinates), dtype=bool)
+        upper[body_vertices[0]] = True
+        return _VertexMesh(
+            function=dolfinx_compat.function(space),
+            points=_read_only(coordinates[:, :2]),
+            triangles=_read_only(cells.reshape(-1, 4)[:owned, 1:]),
+            body_vertices=body_vertices,
+            upper=_read_only(upper),
+        )
+
+    @cached_property
+    def _stress_measures(self):
+        """(DG0 function, {name: expression}, dofs of the owned cells) for the von Mises and
+        hydrostatic stress of the solids' current displacement (by the film pressure unit, as
+        the displacement is by a p/E_ref), built once."""
+        import ufl
+
+        mesh = self.solids.mesh
+        space = dolfinx_compat.cell_space(mesh)
+        sigma = self.solids.stress(self.solids.displacement_function)
+        deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
+        expressions = {
+            "von_mises": dolfinx_compat.expression(
+                ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), space
+            ),
+            "hydrostatic": dolfinx_compat.expression(ufl.tr(sigma) / 3, space),
+        }
+        owned = mesh.topology.index_map(2).size_local
+        return dolfinx_compat.function(space), expressions, dolfinx_compat.cell_dofs(space, owned)
+
+    def _cell_stresses(self) -> dict:
+        """{"von_mises": ..., "hydrostatic": ...} per owned cell for the current displacement."""
+        field, expressions, dofs = self._stress_measures
+        stresses = {}
+        for name, expression in expressions.items():
+            field.interpolate(expression)
+            stresses[name] = _read_only(field.x.array[dofs])
+        return stresses

@@ -137,7 +137,7 @@ class CollisionParameters:
     viscosity: str = setting("constant", help="viscosity against pressure", choices=VISCOSITY_LAWS)
     alpha: float = setting(
         0.0, help="pressure-viscosity coefficient (with viscosity barus or roelands)",
-        unit="by the pressure scale x0^2 / (mu V0 a)", lower=0.0,
+        unit="by x0^2 / (mu V0 a), the inverse pressure scale", lower=0.0,
     )  # fmt: skip
     roelands_pressure: float | None = setting(
         None, help="Roelands p_r = 1.96e8 Pa (viscosity roelands)", unit="by mu V0 a / x0^2",
@@ -258,7 +258,13 @@ class PhysicalCollision:
     )  # fmt: skip
     gap: str | None = None
     shear_traction: bool | None = None
-    gravity: float = 0.0
+    gravity: float = setting(
+        0.0,
+        help="gravitational acceleration towards the wall, acting through the sphere's buoyant "
+        "weight during the contact (0: none)",
+        unit="m/s^2",
+        checked=False,
+    )
 
     def __post_init__(self):
         for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):

@@ -210,10 +210,14 @@ def collide(
     config: RunConfig | None = None,
     compliance: Compliance | None = None,
     mode_one: ModeOneCompliance | None = None,
+    **settings,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs, computed as ``config``
     says (:class:`ehdfem.config.RunConfig`; default: half-space solids, Couette
-    tangential film, 240 film nodes); see the module docstring.
+    tangential film, 240 film nodes); see the module docstring. Instead of ``config``, its flat
+    settings may be given as keywords, the names of the command line and of study files
+    (``collide(params, model="fem", nodes=120, tangential="lubrication")``,
+    :meth:`ehdfem.config.RunConfig.from_settings`).
 
     If the film closes on the grid of ``config.numerics.nodes`` (hard impacts of stiff
     solids, where the rim of the flattened contact gets thinner than the grid resolves), the
@@ -239,7 +243,13 @@ def collide(
         raise checks.InputError(
             f"params must be CollisionParameters or PhysicalCollision, got {params!r}"
         )
-    config = RunConfig() if config is None else config
+    if settings and config is not None:
+        raise checks.InputError(
+            f"give the run settings either as config or as keywords, not both "
+            f"(got config and {', '.join(sorted(settings))})",
+            "config",
+        )
+    config = RunConfig.from_settings(**settings) if config is None else config
     if not isinstance(config, RunConfig):
         raise checks.InputError(f"config must be a RunConfig, got {config!r}", "config")
     mode_one = _mode_one_at(mode_one, compliance, params.eps)

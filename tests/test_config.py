@@ -125,3 +125,17 @@ def test_a_bad_value_names_the_flag_and_the_allowed_range(args, flag, allowed, c
     assert main(["collide", *args]) == 2
     err = capsys.readouterr().err
     assert err.startswith(f"ehdfem collide: error: {flag}: ") and allowed in err
+
+
+def test_collide_takes_the_flat_run_settings_as_keywords():
+    """collide(params, model=..., nodes=...) is collide(params, RunConfig.from_settings(...)),
+    bit for bit; both at once, or an unknown setting, is refused with its name."""
+    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+    by_keywords = collide(params, nodes=40, tangential="lubrication", rtol=1e-3).summary()
+    config = RunConfig.from_settings(nodes=40, tangential="lubrication", rtol=1e-3)
+    by_config = collide(params, config).summary()
+    assert by_keywords == by_config
+    with pytest.raises(InputError, match="either as config or as keywords"):
+        collide(params, config, nodes=40)
+    with pytest.raises(InputError, match="unknown run setting.*nodez"):
+        collide(params, nodez=40)

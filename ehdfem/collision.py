@@ -15,7 +15,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from . import checks
-from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, RunConfig
+from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
 from .film.reynolds import contact_grid
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
@@ -23,8 +23,7 @@ from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import registry as outputs
 from .solids.compliance import Compliance, ModeOneCompliance
 from .solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from .tangential.motion import DEFORMATIONS, TangentialResult, solve_tangential
-from .tangential.motion import MODELS as TANGENTIAL_MODELS
+from .tangential.motion import TangentialResult, solve_tangential
 from .tangential.superposition import (
     SuperpositionValidity,
     SuperpositionWarning,
@@ -198,10 +197,13 @@ class CollisionResult:
         parameters = asdict(self.params)
         parameters["p_cav"] = cavitation.suction_limit_output(self.params.p_cav)
         config = RunConfig() if self.config is None else self.config
+        run = config.settings()
+        if self.model in MODELS:  # a compliance passed to collide() says which solids were used
+            run["model"] = self.model
         return {
             "parameters": parameters,
             "physical": None if self.physical is None else asdict(self.physical),
-            "run": config.settings(),
+            "run": run,
         }
 
 
@@ -298,11 +300,11 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None):
     here when needed, and closed)."""
     normal = solve_normal(params, compliance, config.options)
     result = CollisionResult(
-        params, compliance.model, normal, None, physical, compliance, None, config
+        params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )
     if params.tangential_speed == 0:
         return result
-    return _slide(result, (config.tangential, config.deformation), given_mode_one)
+    return _slide(result, given_mode_one)
 
 
 def with_tangential(
@@ -317,22 +319,23 @@ def with_tangential(
     compliance for ``result.compliance``; None: built and closed here when needed). The normal
     motion does not depend on the tangential one (the decoupling of
     :mod:`ehdfem.tangential.motion`), so this equals a new :func:`collide` call at a fraction of
-    its cost. Results are
-    dimensionless (DSH scales), as those of :func:`collide`."""
-    checks.choice("tangential", tangential, TANGENTIAL_MODELS)
-    checks.choice("deformation", deformation, DEFORMATIONS)
+    its cost. Results are dimensionless (DSH scales), as those of :func:`collide`; the result's
+    run configuration records the new tangential model and deformation."""
+    config = RunConfig() if result.config is None else result.config
+    config = replace(config, tangential=tangential, deformation=deformation)
     if result.params.tangential_speed == 0 or result.compliance is None:
         raise checks.InputError("with_tangential needs an oblique collision with its compliance")
     mode_one = _mode_one_at(mode_one, result.compliance, result.params.eps)
-    bare = replace(result, tangential=None, superposition=None)
-    return _slide(bare, (tangential, deformation), mode_one)
+    bare = replace(result, tangential=None, superposition=None, config=config)
+    return _slide(bare, mode_one)
 
 
-def _slide(result, sliding, given_mode_one):
-    """``result`` (its normal motion solved) with the tangential motion of ``sliding``
-    (tangential model, mode-1 deformation) added; ``given_mode_one`` as in :func:`_collide_on`."""
+def _slide(result, given_mode_one):
+    """``result`` (its normal motion solved) with the tangential motion of its run
+    configuration (tangential model, mode-1 deformation) added; ``given_mode_one`` as in
+    :func:`_collide_on`."""
     params, normal, compliance = result.params, result.normal, result.compliance
-    model, deformation = sliding
+    model, deformation = result.config.tangential, result.config.deformation
     mode_one = None
     if model == "lubrication" and deformation != "none":
         mode_one = given_mode_one

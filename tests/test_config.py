@@ -6,9 +6,10 @@ import json
 
 import pytest
 
-from ehdfem import RunConfig, collide
+from ehdfem import RunConfig, collide, elasticity, film_radii
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main, parsers
+from ehdfem.collision import with_tangential
 from ehdfem.config import CoatedWall, read_inputs, setting_names
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ehdfem.study.sweep import PARAMETERS, PHYSICAL_FIELDS, Study, run_study
@@ -139,3 +140,24 @@ def test_collide_takes_the_flat_run_settings_as_keywords():
         collide(params, config, nodes=40)
     with pytest.raises(InputError, match="unknown run setting.*nodez"):
         collide(params, nodez=40)
+
+
+def test_the_json_records_how_the_collision_was_computed():
+    """inputs["run"] names the solids of a compliance passed in and the tangential model that
+    with_tangential put on the collision, so that read_inputs reruns what was computed."""
+    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+    config = RunConfig.from_settings(nodes=40)
+    rigid_free = collide(params, config)
+    again = with_tangential(rigid_free, "lubrication", deformation="none")
+    assert again.summary()["inputs"]["run"]["tangential"] == "lubrication"
+    assert again.summary()["inputs"]["run"]["deformation"] == "none"
+    assert rigid_free.summary()["inputs"]["run"]["tangential"] == "couette"
+    _, read = read_inputs(again.summary()["inputs"])
+    assert (read.tangential, read.deformation) == ("lubrication", "none")
+    fem_config = RunConfig.from_settings(model="fem", nodes=40)
+    solids = elasticity(params, film_radii(params, 40), fem_config)
+    try:
+        result = collide(params, config, compliance=solids)
+    finally:
+        solids.close()
+    assert result.summary()["inputs"]["run"]["model"] == "fem"

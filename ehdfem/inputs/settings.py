@@ -95,17 +95,9 @@ def default_text(f: dataclasses.Field) -> str:
         return f.metadata["default_text"]
     if f.default is dataclasses.MISSING:
         return "required"
-    return (
-        "none"
-        if f.default is None
-        else f"{f.default:g}"
-        if _is_float(f.default)
-        else str(f.default)
-    )
-
-
-def _is_float(value) -> bool:
-    return isinstance(value, float)
+    if f.default is None:
+        return "none"
+    return f"{f.default:g}" if isinstance(f.default, float) else str(f.default)
 
 
 def validate(instance) -> None:

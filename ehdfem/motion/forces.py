@@ -21,6 +21,8 @@ import numpy as np
 
 from .. import checks
 
+LAYER_SURFACE = 1.0  # the gap X at first touch of the layer and at exit (by x0)
+
 
 @dataclass(frozen=True)
 class SphereState:
@@ -73,7 +75,7 @@ class ConstantForce:
         return 0.0, 0.0
 
     def work(self, state: SphereState) -> float:
-        return self.force * (state.gap - 1.0)
+        return self.force * (state.gap - LAYER_SURFACE)
 
 
 @dataclass(frozen=True)

@@ -77,10 +77,9 @@ class ImplicitStep:
     """Newton for one step of the coupled system (module docstring).
 
     ``film``: :class:`ehdfem.film.reynolds.Film`; ``compliance_matrix``: C (by x0 per unit
-    pressure);
-    ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the sphere's equation
-    of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T (by x0 per unit T)
-    or None.
+    pressure); ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the
+    sphere's equation of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T
+    (by x0 per unit T) or None.
     """
 
     def __init__(

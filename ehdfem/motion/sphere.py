@@ -25,12 +25,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import checks
-from .forces import BuoyantWeight, ConstantForce, SphereForce, SphereState
+from .forces import LAYER_SURFACE, BuoyantWeight, ConstantForce, SphereForce, SphereState
 
 if TYPE_CHECKING:
     from ..inputs.scales import CollisionParameters
 
-LAYER_SURFACE = 1.0  # the gap X at first touch of the layer and at exit (by x0)
 IMPACT_VELOCITY = -1.0  # V at first touch (by V0, towards the wall)
 
 

@@ -30,8 +30,8 @@ class Compliance(Protocol):
     model: str  # the name of the elasticity model ("halfspace", "fem", "rigid")
     surface_radii: tuple  # radii of the sphere and the lower body by a (math.inf: a wall)
     shear_matrix: np.ndarray | None  # (N, N) gap opening per unit nodal squeeze-shear traction
-    # T (by sqrt(delta) mu V0 a / x0^2, :meth:`ehdfem.film.reynolds.Film.squeeze_shear`); None: not
-    # applied
+    # T (by sqrt(delta) mu V0 a / x0^2, :meth:`ehdfem.film.reynolds.Film.squeeze_shear`);
+    # None: not applied
     surface_sum_matrix: np.ndarray | None  # (N, N) sum of the two surfaces' displacements along
     # z (from the wall into the sphere; by x0) per unit nodal pressure; None: zero (identical
     # half-spaces, rigid solids). The sliding film's force needs it (ehdfem.tangential.motion).

@@ -17,7 +17,7 @@ from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters, from_presets
-from ehdfem.study.sweep import Study, critical_speed, critical_stokes, run_study
+from ehdfem.study.sweep import Study, critical_speed, critical_stokes, point_key, run_study
 
 SMALL = """
 name = "small"
@@ -168,3 +168,29 @@ def test_critical_stokes_number_of_the_fe_model():
         params, (1.0, 20.0), config=RunConfig.from_settings(nodes=60, model="fem")
     )["St_c"]
     assert fem == pytest.approx(half_space, rel=0.01)
+
+
+def test_a_changed_run_setting_is_not_taken_for_finished_points(tmp_path):
+    """The point files are named by the point with the fixed run settings ([run], [numerics]):
+    the same study file gives the same names (a killed study resumes), a changed setting new
+    ones (its points are computed again, not read from the other setting's files); a study
+    without fixed settings names a point by the point alone."""
+    names = {}
+    for label, text in (
+        ("small", SMALL),
+        ("again", SMALL),
+        ("finer", SMALL.replace("nodes = 60", "nodes = 80")),
+        (
+            "lubrication",
+            SMALL.replace("[numerics]", '[run]\ntangential = "lubrication"\n[numerics]'),
+        ),
+        ("bare", SMALL.replace("[numerics]\nnodes = 60\n", "")),
+    ):
+        (tmp_path / f"{label}.toml").write_text(text)
+        study = Study(tmp_path / f"{label}.toml")
+        names[label] = [study.key(point) for point in study.points]
+    assert names["again"] == names["small"]
+    for changed in ("finer", "lubrication"):
+        assert not set(names[changed]) & set(names["small"]), changed
+    study = Study(tmp_path / "bare.toml")
+    assert names["bare"] == [point_key(point) for point in study.points]

@@ -135,9 +135,11 @@ class Study:
         return RunConfig.from_settings(**{**self.run, **swept})
 
     def key(self, point: dict) -> str:
-        """The name of ``point``'s result file: a hash of its inputs (with the [physical]
-        table's, so that a changed table is not mistaken for finished points)."""
-        return point_key(point if self.physical is None else {**point, "[physical]": self.physical})
+        """The name of ``point``'s result file: a hash of its inputs, with the [physical] table
+        and the fixed run settings ([run], [numerics]) where there are any, so that a changed
+        table or setting is not mistaken for finished points."""
+        fixed = {"[physical]": self.physical, "[run]": self.run}
+        return point_key({**point, **{k: v for k, v in fixed.items() if v}})
 
 
 def _check_grid(grid: dict, physical: dict | None) -> None:

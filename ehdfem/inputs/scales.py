@@ -61,14 +61,6 @@ def hertz_max_compression(eps: float, St: float) -> float:
     return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
 
 
-def buoyant_weight(mass, volume, fluid_density, gravity, viscosity, speed, radius, layer_thickness):
-    """W = (m - rho_f V_s) g x0 / (6 pi mu V0 a^2): the sphere's weight less the weight of the
-    fluid it displaces, scaled by the force scale (SI inputs: m [kg], V_s [m^3], rho_f [kg/m^3],
-    g [m/s^2], mu [Pa s], V0 [m/s], a, x0 [m]); it pushes the sphere towards the wall when > 0."""
-    force_scale = 6.0 * math.pi * viscosity * speed * radius**2 / layer_thickness
-    return (mass - fluid_density * volume) * gravity / force_scale
-
-
 def reduced_radius(a1: float, a2: float) -> float:
     """a = a1 a2 / (a1 + a2) for two spheres (a2 = inf: a wall)."""
     return a1 if math.isinf(a2) else a1 * a2 / (a1 + a2)
@@ -223,8 +215,8 @@ class PhysicalCollision:
     the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
     preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`), the
     gravity g [m/s^2] >= 0, towards the wall (default 0: none). Gravity acts through the
-    buoyant weight (m - rho_f V_s) g (:func:`buoyant_weight`), with rho_f the liquid's density
-    when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
+    buoyant weight (m - rho_f V_s) g (:attr:`scaled_buoyant_weight`), with rho_f the liquid's
+    density when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
     buoyancy is neglected (rho_f = 0).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
@@ -333,20 +325,13 @@ class PhysicalCollision:
 
     @property
     def scaled_buoyant_weight(self) -> float:
-        """(m - rho_f V_s) g by 6 pi mu V0 a^2 / x0 (:func:`buoyant_weight`), rho_f the liquid's
-        density when immersed, 0 (the ambient gas neglected) in a thin layer."""
+        """W = (m - rho_f V_s) g by the force scale 6 pi mu V0 a^2 / x0: the sphere's weight
+        less the displaced fluid's (SI: m [kg], V_s [m^3], rho_f [kg/m^3], g [m/s^2]), rho_f the
+        liquid's density when immersed, 0 (the ambient gas neglected) in a thin layer; it
+        pushes the sphere towards the wall when > 0."""
         fluid_density = self.liquid.density if self.layer == "immersed" else 0.0
         volume = 4.0 / 3.0 * math.pi * self.radius**3
-        return buoyant_weight(
-            self.mass,
-            volume,
-            fluid_density,
-            self.gravity,
-            self.liquid.viscosity,
-            self.normal_speed,
-            self.radius,
-            self.layer_thickness,
-        )
+        return (self.mass - fluid_density * volume) * self.gravity / self.scales().force
 
     def dimensionless(self) -> CollisionParameters:
         """St, eps, delta, P_cav, e_dry, alpha, ... for these inputs."""

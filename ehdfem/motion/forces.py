@@ -84,7 +84,8 @@ class BuoyantWeight(ConstantForce):
     (m - rho_f V_s) g, which pushes it towards the wall. Scaled, F = -W with
     W = (m - rho_f V_s) g x0 / (6 pi mu V0 a^2) (= St (g x0 / V0^2)(1 - rho_f / rho_s) for a
     uniform sphere); W < 0 (a sphere lighter than the fluid) pulls it away. Build it with
-    :meth:`of` from W (:func:`ehdfem.inputs.scales.buoyant_weight` forms W from SI inputs)."""
+    :meth:`of` from W (:attr:`ehdfem.inputs.scales.PhysicalCollision.scaled_buoyant_weight`
+    forms W from SI inputs)."""
 
     parameter: ClassVar[str] = "buoyant_weight"
 

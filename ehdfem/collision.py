@@ -135,9 +135,9 @@ class CollisionResult:
     impact), the elasticity model used, for physical inputs the inputs (to convert back to SI), and
     the compliance used (:class:`ehdfem.solids.compliance.Compliance`; an FE compliance keeps its
     solids, for the fields of :mod:`ehdfem.outputs.fields` and the pictures of
-    :mod:`ehdfem.outputs.render`), and for the sliding film the validity of its mode-1 superposition
-    (:class:`ehdfem.tangential.superposition.SuperpositionValidity`; a flagged one was also warned
-    of)."""
+    :mod:`ehdfem.outputs.render`), and for the sliding film the validity of its mode-1
+    superposition (:class:`ehdfem.tangential.superposition.SuperpositionValidity`; a flagged one
+    was also warned of). ``config``: how it was computed (:class:`ehdfem.config.RunConfig`)."""
 
     params: CollisionParameters
     model: str

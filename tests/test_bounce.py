@@ -1,7 +1,7 @@
 """`ehdfem.bounce.trajectory`: the flight's force law against exact results (terminal velocity,
-Brenner's wall correction and its limits, the quasi-steady Stokes approach), the energy bookkeeping
-over a
-bounce, a rigid sphere that sticks where the rigid theory stops it, and refused inputs."""
+Brenner's wall correction and its limits, the quasi-steady Stokes approach), the energy
+bookkeeping over a bounce, a rigid sphere that sticks where the rigid theory stops it, and refused
+inputs."""
 
 import json
 import math

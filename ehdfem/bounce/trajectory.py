@@ -170,9 +170,8 @@ class BounceInputs:
     ``start_gap`` [m] with ``start_speed`` [m/s] towards the wall; e_dry in (0, 1], applied at
     each exit as in the collision model (e_n = e_dry V_exit); the drag law (:data:`DRAG_LAWS`);
     the added-mass coefficient C_M in [0, 1]; gravity g [m/s^2]; the film's cavitation model
-    (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa] (the cavitation pressure
-    is
-    the liquid's vapour pressure, as in :class:`ehdfem.PhysicalCollision`)."""
+    (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa] (the cavitation
+    pressure is the liquid's vapour pressure, as in :class:`ehdfem.PhysicalCollision`)."""
 
     radius: float
     sphere: Material | str | dict

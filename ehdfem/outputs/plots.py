@@ -137,9 +137,8 @@ def plot_tangential(collision, path: Path) -> Path:
 
 def plot_bounce(result, path: Path) -> Path:
     """A bounce (:class:`ehdfem.bounce.trajectory.BounceResult`) as in the experiments: gap / D
-    against t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St marked
-    at
-    its apex."""
+    against t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St
+    marked at its apex."""
     inputs = result.inputs
     diameter, unit = inputs.diameter, inputs.time_scale()
     trajectory = result.trajectory

@@ -318,3 +318,13 @@ def test_critical_json_to_stdout_is_the_json_alone(capsys):
     captured = capsys.readouterr()
     found = json.loads(captured.out)
     assert found["bracket"][0] < found["St_c"] < found["bracket"][1] and "St_c" in captured.err
+
+
+def test_critical_refuses_the_settings_that_cannot_change_st_c(capsys):
+    """St_c is decided by the normal motion: the tangential film model and its deformation are
+    no options of `critical` (refused by name, not silently ignored)."""
+    for flag, value in (("--tangential", "lubrication"), ("--sliding-deformation", "full")):
+        with pytest.raises(SystemExit) as exit_info:
+            main(["critical", "--eps", "1e-3", flag, value])
+        assert exit_info.value.code == 2
+        assert flag in capsys.readouterr().err

@@ -14,6 +14,7 @@ from .inputs import add_run_arguments, run_config
 
 HELP = "critical Stokes number St_c by bisection on rebound"
 NOT_ASKED = ("St", "angle", "spin")  # St is searched; the bisection is on the normal motion
+NO_EFFECT = ("tangential", "deformation")  # the tangential motion does not decide a rebound
 
 
 def add_critical(parser) -> None:
@@ -34,7 +35,8 @@ def add_critical(parser) -> None:
         default=1e-3,
         help="relative width of the final bracket; default: 0.001",
     )
-    add_run_arguments(parser, exclude=[f.name for f in described(IntegratorOptions)])
+    # the time-step settings are left out: --rtol is the bracket's here
+    add_run_arguments(parser, exclude=[*NO_EFFECT, *(f.name for f in described(IntegratorOptions))])
     parser.add_argument(
         "--json",
         metavar="FILE",

@@ -328,3 +328,11 @@ def test_critical_refuses_the_settings_that_cannot_change_st_c(capsys):
             main(["critical", "--eps", "1e-3", flag, value])
         assert exit_info.value.code == 2
         assert flag in capsys.readouterr().err
+
+
+def test_render_has_no_model_option_it_would_ignore(capsys):
+    """render pictures the FE solids whatever the model: --model is refused by name."""
+    with pytest.raises(SystemExit) as exit_info:
+        main(["render", "--St", "10", "--eps", "1e-3", "--model", "halfspace"])
+    assert exit_info.value.code == 2
+    assert "--model" in capsys.readouterr().err

@@ -65,7 +65,7 @@ def collide_command(args) -> int:
 
 
 def add_render(parser) -> None:
-    add_collision_arguments(parser)
+    add_collision_arguments(parser, exclude=("model",))  # pictures of the FE solids only
     r = parser.add_argument_group("picture")
     r.add_argument("--out", default="render.png", help="PNG file; default: render.png")
     r.add_argument("--time", type=float, help="instant T [by x0/V0]; default: maximum compression")
@@ -87,7 +87,7 @@ def add_render(parser) -> None:
 def render_command(args) -> int:
     from ..outputs.render import animate_film, render_solids
 
-    args.model = "fem"
+    args.model = "fem"  # no option of render: its pictures are of the FE solids
     result = collide(collision_inputs(args), run_config(args))
     report = report_stream(args)
     write_json(result.summary(), args.json)

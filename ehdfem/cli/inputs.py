@@ -45,8 +45,9 @@ def shared() -> set[str]:
     return (_names(CollisionParameters) & _names(PhysicalCollision)) - {"spin"}
 
 
-def add_collision_arguments(parser) -> None:
-    """Every input of one collision and its run configuration."""
+def add_collision_arguments(parser, exclude=()) -> None:
+    """Every input of one collision and its run configuration (``exclude``: run settings left
+    out)."""
     both = shared()
     add_fields(
         parser.add_argument_group("dimensionless inputs (DSH scales)"),
@@ -63,7 +64,7 @@ def add_collision_arguments(parser) -> None:
         "1 m/s at 30 deg; default: off",
     )
     add_fields(parser.add_argument_group("both"), CollisionParameters, names=both)
-    add_run_arguments(parser)
+    add_run_arguments(parser, exclude)
 
 
 def add_run_arguments(parser, exclude=()) -> None:

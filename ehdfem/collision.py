@@ -22,8 +22,14 @@ from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_com
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import registry as outputs
 from .solids.compliance import Compliance, ModeOneCompliance
-from .solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from .tangential.motion import TangentialResult, solve_tangential
+from .solids.halfspace import (
+    IDENTICAL_SOLIDS,
+    HalfSpaceCompliance,
+    HalfSpaceRange,
+    HalfSpaceRangeWarning,
+    halfspace_range,
+)
+from .tangential.motion import TangentialEnergyWarning, TangentialResult, solve_tangential
 from .tangential.superposition import (
     SuperpositionValidity,
     SuperpositionWarning,
@@ -137,7 +143,10 @@ class CollisionResult:
     solids, for the fields of :mod:`ehdfem.outputs.fields` and the pictures of
     :mod:`ehdfem.outputs.render`), and for the sliding film the validity of its mode-1
     superposition (:class:`ehdfem.tangential.superposition.SuperpositionValidity`; a flagged one
-    was also warned of). ``config``: how it was computed (:class:`ehdfem.config.RunConfig`)."""
+    was also warned of). ``config``: how it was computed (:class:`ehdfem.config.RunConfig`).
+    ``halfspace_range``: for the half-space model, how far the collision strays from the
+    theory's range (:class:`ehdfem.solids.halfspace.HalfSpaceRange`; a flagged one was warned
+    of); None for the other models."""
 
     params: CollisionParameters
     model: str
@@ -147,6 +156,7 @@ class CollisionResult:
     compliance: Compliance | None = None
     superposition: SuperpositionValidity | None = None
     config: RunConfig | None = None
+    halfspace_range: HalfSpaceRange | None = None
 
     def summary(self) -> dict:
         """A JSON-ready dict: the ehdfem version and the collision's groups and models; the
@@ -302,6 +312,13 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None):
     result = CollisionResult(
         params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )
+    if compliance.model == "halfspace":
+        largest = normal.history.pressure[int(np.argmax(normal.history.force))]
+        result.halfspace_range = halfspace_range(
+            normal.radii, largest, normal.max_compression, params.delta
+        )
+        if result.halfspace_range.flagged:
+            warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)
     if params.tangential_speed == 0:
         return result
     return _slide(result, given_mode_one)
@@ -355,6 +372,9 @@ def _slide(result, given_mode_one):
             )
             if result.superposition.flagged:
                 warnings.warn(result.superposition.warning(), SuperpositionWarning, stacklevel=4)
+            energy = result.tangential.energy
+            if energy.flagged:
+                warnings.warn(energy.warning(deformation), TangentialEnergyWarning, stacklevel=4)
     finally:
         if built:
             mode_one.close()

@@ -1,14 +1,24 @@
 """Half-space ring-load kernel against exact elastic contact results."""
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy.integrate import quad
 from scipy.special import ellipkm1
 
 from ehdfem.checks import InputError
-from ehdfem.collision import DEFAULT_NODES
+from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.film.reynolds import Film, radial_grid
-from ehdfem.solids.halfspace import HalfSpaceCompliance, influence_matrix
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.solids.halfspace import (
+    COMPRESSION_LIMIT,
+    LOAD_RADIUS_LIMIT,
+    HalfSpaceCompliance,
+    HalfSpaceRangeWarning,
+    influence_matrix,
+    load_radius,
+)
 
 pytestmark = pytest.mark.serial
 
@@ -118,3 +128,31 @@ def test_reciprocity():
 def test_bad_input(radii, eps):
     with pytest.raises(InputError):
         HalfSpaceCompliance(np.array(radii), eps)
+
+
+def test_load_radius_of_a_hertz_pressure():
+    """The radius carrying 95 % of the force of P = sqrt(1 - R^2): the force within r is
+    1 - (1 - r^2)^(3/2) of the total, so r_95 = sqrt(1 - 0.05^(2/3)) = 0.92965; the trapezoid
+    rule on 4000 nodes gets it to 1e-4 (the square root's edge is the error)."""
+    radii = np.linspace(0.0, 1.5, 4001)
+    pressure = np.sqrt(np.clip(1.0 - radii**2, 0.0, None))
+    assert load_radius(radii, pressure) == pytest.approx(np.sqrt(1 - 0.05 ** (2 / 3)), abs=1e-4)
+    assert load_radius(radii, -pressure) == 0.0  # a suction alone carries no load
+
+
+@pytest.mark.serial
+def test_a_collision_beyond_the_theorys_range_is_flagged():
+    """St 1000, eps 0.1, delta 0.1 compresses the sphere by 1.78 a (x0 = a / 10 and 17.8 x0):
+    flagged, warned of and in the summary; a mild impact (St 12, eps 1e-3, delta 0.01:
+    compression 0.013 a) is not."""
+    with pytest.warns(HalfSpaceRangeWarning, match="compression 1.78 a"):
+        hard = collide(CollisionParameters(St=1000, eps=0.1, delta=0.1))
+    assert hard.halfspace_range.compression > COMPRESSION_LIMIT
+    summary = hard.summary()
+    assert summary["halfspace_range_flag"] is True
+    assert summary["compression_by_radius"] == pytest.approx(1.78, abs=0.01)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", HalfSpaceRangeWarning)
+        mild = collide(CollisionParameters(St=12, eps=1e-3, delta=0.01))
+    assert not mild.halfspace_range.flagged
+    assert mild.halfspace_range.load_radius < LOAD_RADIUS_LIMIT

@@ -18,7 +18,12 @@ from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.solids.compliance import RigidSolids
-from ehdfem.tangential.motion import SlidingFilmError, solve_tangential, viscosity_tilt
+from ehdfem.tangential.motion import (
+    SlidingFilmError,
+    TangentialEnergyWarning,
+    solve_tangential,
+    viscosity_tilt,
+)
 
 pytestmark = pytest.mark.serial
 
@@ -139,3 +144,18 @@ def test_a_film_frozen_by_its_viscosity_stops_the_sliding_film():
     with pytest.raises(SlidingFilmError, match=r"d ln\(mu\)/dP = .* >= 1"):
         collide(frozen, RunConfig.from_settings(nodes=120, tangential="lubrication"))
     assert 0.0 < collide(frozen, RunConfig.from_settings(nodes=120)).tangential.e_t < 1.0
+
+
+def test_a_sliding_film_that_creates_energy_is_flagged():
+    """St 1000, eps 1e-3, delta 0.01 at 45 degrees: without the mode-1 gap (deformation
+    "none") the film gives the sliding the normal motion's work and e_t exceeds 1 (measured
+    1.0070, E_t up by 1.4 %): flagged and warned of. With the mode-1 gap the tangential kinetic
+    energy never rises above its impact value (gain exactly 0) and e_t < 1."""
+    params = CollisionParameters(St=1000, eps=1e-3, delta=0.01, angle=45.0)
+    with pytest.warns(TangentialEnergyWarning, match="deformation 'none'"):
+        none = collide(params, tangential="lubrication", deformation="none")
+    assert none.tangential.e_t > 1.0
+    assert none.summary()["tangential_energy_flag"] is True
+    gap = collide(params, tangential="lubrication", deformation="gap")
+    assert gap.tangential.energy.gain == 0.0 and gap.tangential.e_t < 1.0
+    assert gap.summary()["tangential_energy_flag"] is False

@@ -95,6 +95,11 @@ def _superposition(name):
     return lambda r: None if r.superposition is None else getattr(r.superposition, name)
 
 
+def _halfspace_range(name):
+    """The HalfSpaceRange's attribute ``name`` (None for the other models)."""
+    return lambda r: None if r.halfspace_range is None else getattr(r.halfspace_range, name)
+
+
 FORCE = "6 pi mu V0 a^2 / x0"
 TANGENTIAL_ENERGY = "m U0^2 / St"
 NO_BALANCE = (
@@ -123,6 +128,13 @@ OUTPUTS: tuple[Output, ...] = (
            lambda r: r.normal.contact_time, "contact_time_s", lambda p: p.scales().time),
     Output("max_compression", "largest overlap -min X of the undeformed surfaces", "x0", "m",
            lambda r: r.normal.max_compression, "max_compression_m", lambda p: p.scales().gap),
+    Output("compression_by_radius", "largest compression over the sphere radius, delta max(-X)",
+           "a", "m", lambda r: max(r.normal.max_compression, 0.0) * r.params.delta),
+    Output("load_radius", "radius carrying 95 % of the largest film force (half-space model)",
+           "a", "m", _halfspace_range("load_radius"), "load_radius_m", lambda p: p.radius,
+           optional=True),
+    Output("halfspace_range_flag", "the half-space result is outside the theory's range",
+           "-", None, _halfspace_range("flagged"), optional=True),
     Output("energy_error", "|KE0 - KE - E_elastic - dissipated| / KE0 at the end", "-", None,
            lambda r: r.normal.energy_error, applies=_without_suction_limit, reason=NO_BALANCE),
     Output("film_nodes", "film nodes used (after any refinement)", "-", None,
@@ -141,6 +153,10 @@ OUTPUTS: tuple[Output, ...] = (
            optional=True),
     Output("tangential_dissipated", "sliding film's viscous dissipation", TANGENTIAL_ENERGY,
            "J", _tangential_energy(lambda e: float(e.dissipated[-1])), optional=True),
+    Output("tangential_energy_gain", "largest rise of the tangential kinetic energy, max/E0 - 1",
+           "-", None, _tangential_energy(lambda e: e.gain), optional=True),
+    Output("tangential_energy_flag", "the sliding film created tangential kinetic energy",
+           "-", None, _tangential_energy(lambda e: e.flagged), optional=True),
     Output("superposition_flag", "the sliding film's mode-1 superposition is out of range",
            "-", None, _superposition("flagged"), optional=True),
     Output("superposition_sensitivity", "relative change of e_t or spin with the cavity rule",

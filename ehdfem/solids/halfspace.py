@@ -30,9 +30,17 @@ with T = -(H/2) dP/dR by sqrt(delta) mu V0 a / x0^2,
 
     W_shear(R) = -eps sqrt(delta) kappa int_R^inf T dS,
     kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E   (0.449 for nu = 0.3).
+
+The theory's own range: the half-spaces and the paraboloid gap stand for a sphere whose
+loaded region is small against its radius. :func:`halfspace_range` measures, over a collision,
+the largest compression and the radius that carries the film force, both by a, and flags the
+result beyond COMPRESSION_LIMIT or LOAD_RADIUS_LIMIT (docs/model.md, "Range of the half-space
+theory").
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import ellipkm1
@@ -182,3 +190,61 @@ def shear_coefficient(solids=IDENTICAL_SOLIDS) -> float:
     radial = sum((1 - 2 * nu) * (1 + nu) / e for e, nu in solids)
     normal = sum((1 - nu**2) / e for e, nu in solids)
     return np.pi / 4 * radial / normal
+
+
+COMPRESSION_LIMIT = 0.1  # flag above this largest compression, by the sphere radius a
+LOAD_RADIUS_LIMIT = 0.5  # flag above this load radius, by a
+LOAD_SHARE = 0.95  # the load radius carries this share of the largest film force
+
+
+class HalfSpaceRangeWarning(UserWarning):
+    """A half-space result whose loaded region is not small against the sphere."""
+
+
+@dataclass(frozen=True)
+class HalfSpaceRange:
+    """How far a collision strays from the half-space theory's range (dimensionless, by the
+    sphere radius a): ``compression`` the largest overlap of the undeformed surfaces,
+    delta max(-X); ``load_radius`` the radius within which LOAD_SHARE of the film force acts,
+    at the instant of the largest force, R sqrt(delta). ``flagged`` beyond either limit."""
+
+    compression: float
+    load_radius: float
+
+    @property
+    def flagged(self) -> bool:
+        """True beyond COMPRESSION_LIMIT or LOAD_RADIUS_LIMIT."""
+        return self.compression > COMPRESSION_LIMIT or self.load_radius > LOAD_RADIUS_LIMIT
+
+    def warning(self) -> str:
+        """The warning for a flagged collision."""
+        return (
+            f"the half-space theory is outside its range: largest compression "
+            f"{self.compression:.3g} a (limit {COMPRESSION_LIMIT} a) and load radius "
+            f"{self.load_radius:.3g} a (limit {LOAD_RADIUS_LIMIT} a); the half-spaces and the "
+            "paraboloid gap stand for a sphere only where both are small: use the FE solids "
+            "(model fem) here (docs/model.md)"
+        )
+
+
+def load_radius(radii: np.ndarray, pressure: np.ndarray) -> float:
+    """The radius (by sqrt(a x0)) within which LOAD_SHARE of the positive part of the film
+    force int P R dR acts, for nodal pressures P on the film nodes ``radii`` (trapezoid rule;
+    the suction does not carry the load)."""
+    load = np.maximum(pressure, 0.0) * radii
+    cumulative = np.concatenate(([0.0], np.cumsum(0.5 * (load[1:] + load[:-1]) * np.diff(radii))))
+    if cumulative[-1] <= 0.0:
+        return 0.0
+    return float(np.interp(LOAD_SHARE * cumulative[-1], cumulative, radii))
+
+
+def halfspace_range(
+    radii: np.ndarray, pressure: np.ndarray, max_compression: float, delta: float
+) -> HalfSpaceRange:
+    """The :class:`HalfSpaceRange` of a collision from its film nodes ``radii`` (by
+    sqrt(a x0)), its nodal pressure at the largest force (by mu V0 a / x0^2), its largest
+    compression (by x0) and delta = x0/a."""
+    return HalfSpaceRange(
+        compression=max(max_compression, 0.0) * delta,
+        load_radius=load_radius(radii, pressure) * float(np.sqrt(delta)),
+    )

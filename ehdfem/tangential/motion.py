@@ -101,6 +101,13 @@ def viscosity_tilt(params, pressure, mode_one_pressure):
     return sliding_amplitude(params) * np.abs(mode_one_pressure) * slope
 
 
+ENERGY_GAIN_LIMIT = 1e-6  # flag a rise of the tangential kinetic energy above this share
+
+
+class TangentialEnergyWarning(UserWarning):
+    """A sliding-film result whose tangential kinetic energy rose above its impact value."""
+
+
 @dataclass
 class TangentialEnergy:
     """The sliding film's energy balance at the steps (by m U0^2 / St, as E_t): ``kinetic``
@@ -114,6 +121,32 @@ class TangentialEnergy:
     elastic: np.ndarray
     exchanged: np.ndarray
     balance_error: float
+
+    @property
+    def gain(self) -> float:
+        """The largest rise of E_t over its impact value, max(E_t) / E_t(0) - 1 (0 if it never
+        rises): energy the sliding film created from the normal motion."""
+        return max(float(self.kinetic.max() / self.kinetic[0]) - 1.0, 0.0)
+
+    @property
+    def flagged(self) -> bool:
+        """The tangential kinetic energy rose above its impact value by more than
+        ENERGY_GAIN_LIMIT."""
+        return self.gain > ENERGY_GAIN_LIMIT
+
+    def warning(self, deformation: str) -> str:
+        """The warning for a flagged sliding film with mode-1 ``deformation``."""
+        cause = (
+            "with sliding deformation 'none' the deformed solids keep no mode-1 gap, and the "
+            "normal motion's work goes into the sliding (docs/tangential.md): use 'gap' or 'full'"
+            if deformation == "none"
+            else "the first-order sliding film does not forbid it, but e_t and spin_change are "
+            "then doubtful (docs/tangential.md)"
+        )
+        return (
+            f"the sliding film raised the tangential kinetic energy to {1 + self.gain:.4g} times "
+            f"its impact value: {cause}"
+        )
 
 
 @dataclass

@@ -37,6 +37,7 @@ def add_critical(parser) -> None:
     )
     search.add_argument(
         "--rtol",
+        dest="bracket_rtol",  # not the time step's rtol, a run setting read by run_config
         type=float,
         default=1e-3,
         help="relative width of the final bracket; default: 0.001",
@@ -59,12 +60,12 @@ def critical_command(args) -> int:
     bracket = BRACKETS[kind] if args.bracket is None else tuple(args.bracket)
     label = f"{'critical speed' if kind == 'speed' else 'St_c'} bisection"
     if kind == "speed":
-        found = critical_speed(inputs, bracket, args.rtol, config, progress_label=label)
+        found = critical_speed(inputs, bracket, args.bracket_rtol, config, progress_label=label)
         given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED_PHYSICAL}
         where = f"speed = {found['speed']:.6g} m/s, St_c = {found['St_c']:.6g}"
         unit = " m/s"
     else:
-        found = critical_stokes(inputs, bracket, args.rtol, config, progress_label=label)
+        found = critical_stokes(inputs, bracket, args.bracket_rtol, config, progress_label=label)
         given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED}
         given["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
         where, unit = f"St_c = {found['St_c']:.6g}", ""
@@ -76,7 +77,7 @@ def critical_command(args) -> int:
     }
     low, high = found["bracket"]
     print(
-        f"{where} (bracket {low:.6g} .. {high:.6g}{unit}, rtol {args.rtol:g}, "
+        f"{where} (bracket {low:.6g} .. {high:.6g}{unit}, rtol {args.bracket_rtol:g}, "
         f"{found['collisions']} collisions)",
         file=report_stream(args),
     )

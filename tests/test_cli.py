@@ -15,6 +15,7 @@ import pytest
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.config import RunConfig
+from ehdfem.outputs import histories
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
@@ -411,6 +412,8 @@ def test_histories_file_holds_the_histories_with_their_units(tmp_path, capsys):
     assert units["force_si"][1] == "N" and units["time"][1] == "x0/V0"
     assert set(units) == set(data) - {"units", "inputs", "provenance"}
     assert json.loads(str(data["provenance"]))["ehdfem_version"] == __version__
+    docs = Path(__file__).resolve().parent.parent / "docs" / "outputs.md"
+    assert histories.markdown_table() in docs.read_text()  # the documented format is the file's
 
 
 def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):

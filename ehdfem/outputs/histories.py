@@ -107,3 +107,16 @@ def write_histories(result: CollisionResult, path, command: list[str] | None = N
     with path.open("wb") as f:
         np.savez(f, **arrays(result, command))
     return path
+
+
+def markdown_table() -> str:
+    """The table of docs/outputs.md: every array of a histories file, its meaning, its scale
+    and the SI unit of its ``<name>_si`` copy (physical inputs)."""
+    rows = [(name, meaning, scale, unit) for name, (meaning, scale, unit, _) in NORMAL.items()]
+    rows.append(RADIUS)
+    rows += [(name, *spec) for name, spec in TANGENTIAL.items()]
+    lines = ["| name | meaning | scaled by | SI copy |", "|---|---|---|---|"]
+    for name, meaning, scale, unit in rows:
+        copy = f"`{name}_si` [{unit}]" if unit else "-"
+        lines.append(f"| `{name}` | {meaning} | {scale} | {copy} |")
+    return "\n".join(lines)

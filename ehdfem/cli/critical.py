@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from dataclasses import asdict
 
-from .. import CollisionParameters, PhysicalCollision, critical_speed, critical_stokes
 from ..film import cavitation
+from ..inputs.scales import CollisionParameters, PhysicalCollision
 from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
+from ..study.sweep import critical_speed, critical_stokes
 from .arguments import add_fields, report_stream, write_json
 from .inputs import add_body_arguments, add_run_arguments, collision_inputs, run_config, shared
 

@@ -447,3 +447,13 @@ def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):
     assert "--speed" in capsys.readouterr().err
     assert main(["critical", *bodies, *sizes, "--eps", "1e-3"]) == 2
     assert "--eps" in capsys.readouterr().err
+
+
+def test_provenance_without_git_has_no_commit_and_no_error(monkeypatch):
+    """Without git (or outside a checkout) the record's git is None, the commit column empty."""
+    from ehdfem.outputs import provenance
+
+    monkeypatch.setenv("PATH", "/nonexistent")
+    assert provenance.git_state.__wrapped__() is None
+    monkeypatch.setattr(provenance, "git_state", lambda: None)
+    assert provenance.record(["ehdfem"])["git"] is None and provenance.commit_text() == ""

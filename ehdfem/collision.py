@@ -20,6 +20,7 @@ from .film import cavitation
 from .film.reynolds import contact_grid
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
+from .outputs import provenance
 from .outputs import registry as outputs
 from .solids.compliance import Compliance, ModeOneCompliance
 from .solids.halfspace import (
@@ -35,7 +36,6 @@ from .tangential.superposition import (
     SuperpositionWarning,
     superposition_validity,
 )
-from .version import __version__
 
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
@@ -158,16 +158,18 @@ class CollisionResult:
     config: RunConfig | None = None
     halfspace_range: HalfSpaceRange | None = None
 
-    def summary(self) -> dict:
-        """A JSON-ready dict: the ehdfem version and the collision's groups and models; the
-        outputs of :mod:`ehdfem.outputs.registry` (dimensionless, DSH scales), with the reasons
-        of those that do not apply under "not_applicable" and, for physical inputs, the SI
-        values under "si"; the time-step control and the tangential model used; and under
-        "inputs" everything needed to run the collision again (see :meth:`inputs`)."""
+    def summary(self, command: list[str] | None = None) -> dict:
+        """A JSON-ready dict: where it comes from under "provenance"
+        (:func:`ehdfem.outputs.provenance.record`: version, git commit, date, libraries, the
+        command line ``command``, default sys.argv, MPI size); the collision's groups and
+        models; the outputs of :mod:`ehdfem.outputs.registry` (dimensionless, DSH scales),
+        with the reasons of those that do not apply under "not_applicable" and, for physical
+        inputs, the SI values under "si"; the time-step control and the tangential model used;
+        and under "inputs" everything needed to run the collision again (see :meth:`inputs`)."""
         n = self.normal
         p = self.params
         out = {
-            "ehdfem_version": __version__,
+            "provenance": provenance.record(command),
             "model": self.model,
             "layer": p.layer,
             "St": p.St,

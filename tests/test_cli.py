@@ -3,9 +3,11 @@ machine-readable output, quiet runs, custom materials and liquids."""
 
 import json
 import os
+import platform
 import re
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,6 +15,7 @@ import pytest
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.config import RunConfig
+from ehdfem.outputs import histories
 from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
@@ -170,7 +173,7 @@ def test_json_to_stdout_is_the_json_alone():
     assert code == 0
     result = json.loads(out)
     assert 0 < result["e_n"] < 1 and "e_n" in err and "{" not in err
-    assert result["ehdfem_version"] == __version__
+    assert result["provenance"]["ehdfem_version"] == __version__
     inputs = result["inputs"]
     assert inputs["parameters"]["St"] == 10 and inputs["parameters"]["angle"] == 30
     assert inputs["parameters"]["p_cav"] == -2 and inputs["physical"] is None
@@ -336,3 +339,121 @@ def test_render_has_no_model_option_it_would_ignore(capsys):
         main(["render", "--St", "10", "--eps", "1e-3", "--model", "halfspace"])
     assert exit_info.value.code == 2
     assert "--model" in capsys.readouterr().err
+
+
+def test_json_records_the_provenance(tmp_path, capsys):
+    """The JSON says which code computed it (version, the git commit of this checkout and
+    whether it had uncommitted changes), when (UTC), with which libraries, by which command
+    line and on how many MPI ranks."""
+    out = tmp_path / "r.json"
+    args = ["collide", *SMALL_COLLISION, "--json", str(out)]
+    assert main(args) == 0
+    record = json.loads(out.read_text())["provenance"]
+    assert record["ehdfem_version"] == __version__ and record["command"] == ["ehdfem", *args]
+    head = subprocess.run(
+        ["git", "rev-parse", "HEAD"], capture_output=True, text=True, cwd=Path(__file__).parent
+    )
+    if head.returncode == 0:  # the tests run from a git checkout
+        assert record["git"]["commit"] == head.stdout.strip()
+        assert isinstance(record["git"]["dirty"], bool)
+    assert record["date"].endswith("+00:00") and record["python"] == platform.python_version()
+    assert record["libraries"]["numpy"] == np.__version__ and record["mpi_size"] >= 1
+
+
+def test_collide_from_a_result_runs_it_again_exactly(tmp_path, capsys):
+    """`collide --from r.json` (or from its histories file) rebuilds the same inputs and run
+    settings and gives bit-equal results, for dimensionless and for physical inputs; an input
+    or run setting given with --from is refused by name."""
+    for inputs in (
+        [*SMALL_COLLISION, "--angle", "30", "--tangential", "lubrication"],
+        ["--example", "--nodes", "60", "--cavitation", "mass-conserving"],
+    ):
+        first, histories = tmp_path / "first.json", tmp_path / "first.npz"
+        args = ["collide", *inputs, "--json", str(first), "--histories", str(histories)]
+        assert main(args) == 0
+        for source in (first, histories):
+            again = tmp_path / "again.json"
+            assert main(["collide", "--from", str(source), "--json", str(again)]) == 0
+            a, b = (json.loads(p.read_text()) for p in (first, again))
+            assert a.pop("provenance")["command"] != b.pop("provenance")["command"]
+            assert a == b  # every output, the SI values and the inputs, bit-equal
+    capsys.readouterr()
+    for flag in ("--St", "--nodes", "--speed"):
+        assert main(["collide", "--from", str(first), flag, "3"]) == 2
+        assert f"{flag}: cannot be given with --from" in capsys.readouterr().err
+    assert main(["collide", "--from", str(tmp_path / "none.json")]) == 2
+    assert "--from" in capsys.readouterr().err
+
+
+def test_histories_file_holds_the_histories_with_their_units(tmp_path, capsys):
+    """--histories: the normal and tangential histories, H(R,T) and P(R,T) exactly as the
+    collision computed them, their units, and SI copies (scaled value times its unit) for
+    physical inputs."""
+    from ehdfem import collide
+    from ehdfem.config import read_inputs
+
+    path = tmp_path / "h.npz"
+    assert main(["collide", "--example", "--nodes", "60", "--histories", str(path)]) == 0
+    with np.load(path) as stored:
+        data = dict(stored)
+    units = json.loads(str(data["units"]))
+    result = collide(*read_inputs(json.loads(str(data["inputs"]))))
+    hist = result.normal.history
+    for name in ("time", "gap", "velocity", "force", "film_thickness", "pressure", "fill"):
+        assert np.array_equal(data[name], getattr(hist, name)), name
+    assert data["pressure"].shape == (len(hist.time), len(result.normal.radii))
+    assert np.array_equal(data["radius"], result.normal.radii)
+    assert np.array_equal(data["tangential_velocity"], result.tangential.velocity)
+    scales = result.physical.scales()
+    assert np.array_equal(data["pressure_si"], data["pressure"] * scales.pressure)
+    assert np.array_equal(data["time_si"], data["time"] * scales.time)
+    assert data["velocity_si"][0] == pytest.approx(-result.physical.normal_speed, rel=1e-12)
+    assert units["pressure"][1] == "mu V0 a / x0^2" and units["pressure_si"][1] == "Pa"
+    assert units["force_si"][1] == "N" and units["time"][1] == "x0/V0"
+    assert set(units) == set(data) - {"units", "inputs", "provenance"}
+    assert json.loads(str(data["provenance"]))["ehdfem_version"] == __version__
+    docs = Path(__file__).resolve().parent.parent / "docs" / "outputs.md"
+    assert histories.markdown_table() in docs.read_text()  # the documented format is the file's
+
+
+def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):
+    """Physical inputs: the critical impact speed [m/s] by bisection, the sphere sticking at
+    the bracket's low end and rebounding at its high end (checked by two collisions); the
+    speed, which is sought, is refused by name, as are scaled inputs. --rtol is the final
+    bracket's width, not the time step's tolerance."""
+    from dataclasses import replace
+
+    from ehdfem import collide, from_presets
+
+    bodies = ["--sphere", "glass", "--wall", "glass", "--liquid", "water"]
+    sizes = ["--radius", "3e-3", "--layer-thickness", "2e-4", "--nodes", "60"]
+    args = ["critical", *bodies, *sizes, "--rtol", "0.05", "--bracket", "0.002", "0.05"]
+    assert main([*args, "--json", "-"]) == 0
+    found = json.loads(capsys.readouterr().out)
+    low, high = found["bracket"]
+    assert low < found["speed"] < high and high / low - 1 <= 0.05
+    physical = from_presets(
+        sphere="glass", wall="glass", liquid="water", radius=3e-3, layer_thickness=2e-4, speed=1
+    )
+    config = RunConfig.from_settings(nodes=60)
+    assert collide(replace(physical, speed=high), config).normal.rebound
+    assert not collide(replace(physical, speed=low), config).normal.rebound
+    at = replace(physical, speed=found["speed"]).dimensionless()
+    assert found["St_c"] == pytest.approx(at.St, rel=1e-12)
+    assert found["sphere"]["name"] == "glass" and found["run"]["nodes"] == 60
+    assert found["run"]["rtol"] == RunConfig().options.rtol  # --rtol is the bracket's only
+    with pytest.raises(SystemExit):
+        main(["critical", *bodies, *sizes, "--speed", "1"])
+    assert "--speed" in capsys.readouterr().err
+    assert main(["critical", *bodies, *sizes, "--eps", "1e-3"]) == 2
+    assert "--eps" in capsys.readouterr().err
+
+
+def test_provenance_without_git_has_no_commit_and_no_error(monkeypatch):
+    """Without git (or outside a checkout) the record's git is None, the commit column empty."""
+    from ehdfem.outputs import provenance
+
+    monkeypatch.setenv("PATH", "/nonexistent")
+    assert provenance.git_state.__wrapped__() is None
+    monkeypatch.setattr(provenance, "git_state", lambda: None)
+    assert provenance.record(["ehdfem"])["git"] is None and provenance.commit_text() == ""

@@ -95,7 +95,13 @@ def test_study_rows_carry_exactly_the_registry_names(tmp_path):
         assert row["status"] == "ok:rebound"
         assert set(keys) <= set(row), name
         settings = set(setting_names())  # the point's run settings
-        unknown = set(row) - set(keys) - settings - set(study.points[0]) - {"seconds", "version"}
+        unknown = (
+            set(row)
+            - set(keys)
+            - settings
+            - set(study.points[0])
+            - {"seconds", "version", "commit"}
+        )
         assert unknown <= {"St", "eps", "delta", "p_cav"}, unknown
 
 

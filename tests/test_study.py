@@ -1,6 +1,7 @@
 """Studies: resumable sweeps over MPI ranks and the critical Stokes number."""
 
 import csv
+import json
 import signal
 import subprocess
 import sys
@@ -17,7 +18,9 @@ from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters, from_presets
+from ehdfem.outputs import provenance
 from ehdfem.study.sweep import Study, critical_speed, critical_stokes, point_key, run_study
+from ehdfem.version import __version__
 
 SMALL = """
 name = "small"
@@ -194,3 +197,45 @@ def test_a_changed_run_setting_is_not_taken_for_finished_points(tmp_path):
         assert not set(names[changed]) & set(names["small"]), changed
     study = Study(tmp_path / "bare.toml")
     assert names["bare"] == [point_key(point) for point in study.points]
+
+
+@pytest.mark.serial
+def test_the_table_has_a_provenance_sidecar_with_every_fixed_input(tmp_path):
+    """Beside the table, its sidecar holds the run's provenance, the [physical] table as
+    written and every input and run setting the grid does not sweep, defaults included (here
+    the wall and the liquid with all their values, the angle, the layer kind, the time step's
+    rtol); every row names the git commit. Rewritten, not duplicated, by a resumed run."""
+    study_file = tmp_path / "physical.toml"
+    study_file.write_text(
+        """
+[physical]
+sphere = "glass"
+wall = {young_modulus = 3e9, poisson_ratio = 0.35, density = 1200}
+liquid = "water"
+radius = 3e-3
+layer_thickness = 2e-4
+[grid]
+speed = [0.5, 1.0]
+[numerics]
+nodes = 40
+[output]
+table = "out/physical.csv"
+"""
+    )
+    study = Study(study_file)
+    run_study(study, None, progress=None)
+    sidecar = json.loads((tmp_path / "out" / "physical.provenance.json").read_text())
+    assert sidecar["provenance"]["ehdfem_version"] == __version__ and sidecar["rows"] == 2
+    assert sidecar["physical_table"]["wall"]["young_modulus"] == 3e9
+    assert sidecar["swept"] == ["speed"]
+    fixed = sidecar["fixed"]
+    assert "speed" not in fixed["physical"] and fixed["physical"]["liquid"]["viscosity"] == 1e-3
+    assert fixed["physical"]["wall"]["poisson_ratio"] == 0.35
+    assert (fixed["physical"]["angle"], fixed["physical"]["layer"]) == (0.0, "thin")
+    assert fixed["run"]["nodes"] == 40 and fixed["run"]["rtol"] == RunConfig().options.rtol
+    commit = provenance.git_state()
+    rows = list(csv.DictReader(study.table.open()))
+    expected = "" if commit is None else commit["commit"]
+    assert all(row["commit"].startswith(expected) for row in rows) and len(rows) == 2
+    run_study(Study(study_file), None, progress=None)  # resumed: nothing to do, same table
+    assert list(csv.DictReader(study.table.open())) == rows

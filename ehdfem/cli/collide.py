@@ -1,15 +1,19 @@
-"""``ehdfem collide``: one collision, its results table, JSON, plots and FE fields; and
+"""``ehdfem collide``: one collision (or again, ``--from`` a result), its results table, JSON
+with provenance, histories (.npz), plots and FE fields; and
 ``ehdfem render``: pictures of the FE solids of one collision."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
 
 from .. import checks, collide
+from ..config import read_inputs
 from ..outputs import plots
 from ..outputs.fields import field_snapshots, write_fields
+from ..outputs.histories import write_histories
 from .arguments import JSON_HELP, print_table, report_stream, write_json
 from .inputs import add_collision_arguments, collision_inputs, run_config
 
@@ -18,9 +22,28 @@ RENDER_HELP = "FE collision: picture of the deformed solids (and a film GIF)"
 
 
 def add_collide(parser) -> None:
+    first = len(parser._actions)
     add_collision_arguments(parser)
+    inputs = tuple(a.dest for a in parser._actions[first:] if a.option_strings)
+    parser.set_defaults(input_options=inputs)  # the options that --from refuses
+    again = parser.add_argument_group("run again")
+    again.add_argument(
+        "--from",
+        dest="from_file",
+        metavar="FILE",
+        help="run the collision of FILE again: a JSON of collide, render or --json, or a "
+        "--histories file, whose inputs and run settings are used as they are (no input or "
+        "run setting may be given with it); default: none",
+    )
     out = parser.add_argument_group("output")
     out.add_argument("--json", metavar="FILE", help=JSON_HELP)
+    out.add_argument(
+        "--histories",
+        metavar="FILE.npz",
+        help="write the histories (gap, velocity, force, energies, H(R,T), P(R,T), ...; SI "
+        "copies for physical inputs) as NumPy .npz, units inside (docs/outputs.md); "
+        "default: none",
+    )
     out.add_argument("--plots", metavar="DIR", help="write PNG plots into DIR; default: none")
     out.add_argument(
         "--field-times",
@@ -37,17 +60,50 @@ def add_collide(parser) -> None:
     )
 
 
+def replayed_inputs(args):
+    """The collision inputs and run configuration of ``--from FILE`` (its JSON "inputs", or
+    the "inputs" text of a histories file), refusing every input or run setting also given."""
+    for dest in args.input_options:
+        if getattr(args, dest, None) not in (None, False):
+            raise checks.InputError(
+                f"cannot be given with --from, which runs {args.from_file}'s inputs and run "
+                "settings as they are (run without --from to change them)",
+                dest,
+            )
+    path = Path(args.from_file)
+    if not path.is_file():
+        raise checks.InputError(f"{args.from_file!r} does not exist", "from_file")
+    try:
+        if path.suffix == ".npz":
+            with np.load(path) as stored:
+                inputs = json.loads(str(stored["inputs"]))
+        else:
+            inputs = json.loads(path.read_text())["inputs"]
+    except (KeyError, TypeError, ValueError, OSError) as err:
+        raise checks.InputError(
+            f"{args.from_file!r} holds no collision inputs (a JSON of collide with its "
+            f'"inputs", or a --histories file): {err}',
+            "from_file",
+        ) from err
+    return read_inputs(inputs)
+
+
 def collide_command(args) -> int:
-    config = run_config(args)
+    if args.from_file is not None:
+        inputs, config = replayed_inputs(args)
+    else:
+        inputs, config = collision_inputs(args), run_config(args)
     if args.fields and config.model != "fem":
         raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
-    result = collide(collision_inputs(args), config)
-    summary = result.summary()
+    result = collide(inputs, config)
+    summary = result.summary(args.command_line)
     report = report_stream(args)
     print("ehdfem collide: results (dimensionless, DSH scales; SI under si)", file=report)
     print_table(summary, report)
     write_json(summary, args.json)
     wrote = []
+    if args.histories:
+        wrote.append(write_histories(result, args.histories, args.command_line))
     if args.fields:
         snapshots = field_snapshots(result.normal, args.field_times)
         units = result.physical.scales() if result.physical else None

@@ -1,36 +1,44 @@
-"""``ehdfem critical``: the critical Stokes number St_c by bisection on the rebound."""
+"""``ehdfem critical``: the critical Stokes number St_c by bisection on the rebound, or for
+physical inputs the critical impact speed [m/s] (and St_c there)."""
 
 from __future__ import annotations
 
 from dataclasses import asdict
 
-from .. import CollisionParameters, checks, critical_stokes
 from ..film import cavitation
+from ..inputs.scales import CollisionParameters, PhysicalCollision
 from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
-from ..version import __version__
-from .arguments import add_fields, given, report_stream, write_json
-from .inputs import add_run_arguments, run_config
+from ..outputs import provenance
+from ..study.sweep import critical_speed, critical_stokes
+from .arguments import add_fields, report_stream, write_json
+from .inputs import add_body_arguments, add_run_arguments, collision_inputs, run_config, shared
 
-HELP = "critical Stokes number St_c by bisection on rebound"
+HELP = "critical Stokes number St_c (or, for physical inputs, speed) by bisection on rebound"
 NOT_ASKED = ("St", "angle", "spin")  # St is searched; the bisection is on the normal motion
+NOT_ASKED_PHYSICAL = ("speed", "angle", "spin")  # the speed is searched
 NO_EFFECT = ("tangential", "deformation")  # the tangential motion does not decide a rebound
+BRACKETS = {"St": (1.0, 1000.0), "speed": (0.01, 10.0)}  # starting brackets, St and m/s
 
 
 def add_critical(parser) -> None:
-    inputs = parser.add_argument_group("dimensionless inputs (DSH scales)")
+    inputs = parser.add_argument_group("dimensionless inputs (DSH scales): St_c")
     add_fields(inputs, CollisionParameters, exclude=NOT_ASKED)
+    phys = parser.add_argument_group("physical inputs (SI): the critical speed [m/s]")
+    add_body_arguments(phys)
+    add_fields(phys, PhysicalCollision, exclude={*shared(), *NOT_ASKED_PHYSICAL})
     search = parser.add_argument_group("bisection")
     search.add_argument(
         "--bracket",
         type=float,
         nargs=2,
-        default=(1.0, 1000.0),
         metavar=("LOW", "HIGH"),
-        help="starting bracket of St, widened until it holds St_c; default: 1 1000",
+        help="starting bracket of St (or of the speed [m/s] for physical inputs), widened "
+        "until it holds the critical value; default: 1 1000 (St), 0.01 10 (m/s)",
     )
     search.add_argument(
         "--rtol",
+        dest="bracket_rtol",  # not the time step's rtol, a run setting read by run_config
         type=float,
         default=1e-3,
         help="relative width of the final bracket; default: 0.001",
@@ -40,25 +48,38 @@ def add_critical(parser) -> None:
     parser.add_argument(
         "--json",
         metavar="FILE",
-        help="write {St_c, bracket, ...} as JSON ('-': stdout); default: none",
+        help="write {St_c (and speed), bracket, ..., provenance, the inputs, run} as JSON "
+        "('-': stdout); default: none",
     )
 
 
 def critical_command(args) -> int:
-    values = given(args, CollisionParameters)
-    if "eps" not in values:
-        raise checks.InputError("--eps is required", "eps")
-    params = CollisionParameters(**values, St=1.0)
     config = run_config(args)
-    found = critical_stokes(
-        params, tuple(args.bracket), args.rtol, config, progress_label="St_c bisection"
-    )
-    parameters = {k: v for k, v in asdict(params).items() if k not in NOT_ASKED}
-    parameters["p_cav"] = cavitation.suction_limit_output(params.p_cav)
-    out = {**found, "ehdfem_version": __version__, **parameters, "run": config.settings()}
+    low = BRACKETS["speed"][0] if args.bracket is None else args.bracket[0]
+    inputs = collision_inputs(args, sought={"St": 1.0, "speed": low})
+    kind = "speed" if isinstance(inputs, PhysicalCollision) else "St"
+    bracket = BRACKETS[kind] if args.bracket is None else tuple(args.bracket)
+    label = f"{'critical speed' if kind == 'speed' else 'St_c'} bisection"
+    if kind == "speed":
+        found = critical_speed(inputs, bracket, args.bracket_rtol, config, progress_label=label)
+        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED_PHYSICAL}
+        where = f"speed = {found['speed']:.6g} m/s, St_c = {found['St_c']:.6g}"
+        unit = " m/s"
+    else:
+        found = critical_stokes(inputs, bracket, args.bracket_rtol, config, progress_label=label)
+        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED}
+        given["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
+        where, unit = f"St_c = {found['St_c']:.6g}", ""
+    out = {
+        **found,
+        "provenance": provenance.record(args.command_line),
+        **given,
+        "run": config.settings(),
+    }
+    low, high = found["bracket"]
     print(
-        f"St_c = {found['St_c']:.6g} (bracket {found['bracket'][0]:.6g} .. "
-        f"{found['bracket'][1]:.6g}, rtol {args.rtol:g}, {found['collisions']} collisions)",
+        f"{where} (bracket {low:.6g} .. {high:.6g}{unit}, rtol {args.bracket_rtol:g}, "
+        f"{found['collisions']} collisions)",
         file=report_stream(args),
     )
     write_json(out, args.json)

@@ -124,8 +124,11 @@ def add_body_arguments(phys) -> None:
         )
 
 
-def collision_inputs(args) -> CollisionParameters | PhysicalCollision:
-    """The collision inputs of the arguments, refusing mixed or incomplete sets."""
+def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | PhysicalCollision:
+    """The collision inputs of the arguments, refusing mixed or incomplete sets. ``sought``:
+    the value of each input that is searched for rather than given (critical: St, or the
+    speed [m/s] for physical inputs), which is then not required."""
+    sought = sought or {}
     values = _physical_values(args)
     scaled_only = given(args, CollisionParameters).keys() - shared()
     physical_only = given(args, PhysicalCollision).keys() - shared()
@@ -134,7 +137,8 @@ def collision_inputs(args) -> CollisionParameters | PhysicalCollision:
             counterpart = {v: k for k, v in SCALED.items()}.get(name)
             instead = f"; give the scaled {_option(counterpart)} instead" if counterpart else ""
             raise checks.InputError(f"{_option(name)} needs physical inputs{instead}", name)
-        return _dimensionless(args)
+        return _dimensionless(args, sought)
+    values.update({k: v for k, v in sought.items() if k in _names(PhysicalCollision)})
     missing = [body_hint(name) for name in (*BODIES, *PHYSICAL_TRIGGERS) if name not in values]
     if missing:
         raise checks.InputError(f"physical inputs need {', '.join(missing)}")
@@ -149,7 +153,7 @@ def collision_inputs(args) -> CollisionParameters | PhysicalCollision:
         )
     values.update(given(args, PhysicalCollision))
     values.update(given(args, CollisionParameters, shared()))
-    own_liquid = args.liquid is None and not args.example
+    own_liquid = args.liquid is None and not getattr(args, "example", False)
     viscosity = values.get("viscosity", "constant")
     if own_liquid and viscosity != "constant" and "pressure_viscosity" not in values:
         raise checks.InputError(
@@ -159,13 +163,15 @@ def collision_inputs(args) -> CollisionParameters | PhysicalCollision:
     return from_presets(**values)
 
 
-def _dimensionless(args) -> CollisionParameters:
-    """The dimensionless inputs (DSH scales) of the arguments."""
-    values = given(args, CollisionParameters)
+def _dimensionless(args, sought: dict) -> CollisionParameters:
+    """The dimensionless inputs (DSH scales) of the arguments (and ``sought``'s)."""
+    values = {k: v for k, v in sought.items() if k in _names(CollisionParameters)}
+    values.update(given(args, CollisionParameters))
+    example = ", or --example" if hasattr(args, "example") else ""
     for name in ("St", "eps"):
         if name not in values:
             raise checks.InputError(
-                f"--{name} is required (or give physical inputs, or --example)", name
+                f"--{name} is required (or give physical inputs{example})", name
             )
     return CollisionParameters(**values)
 
@@ -188,7 +194,7 @@ def body_hint(name: str) -> str:
 def _physical_values(args) -> dict | None:
     """The physical inputs that select physical mode (SI; with --example, its values where not
     given), the sphere, wall and liquid as Material and Liquid; None when there are none."""
-    values = dict(EXAMPLE) if args.example else {}
+    values = dict(EXAMPLE) if getattr(args, "example", False) else {}
     values.update({n: getattr(args, n) for n in PHYSICAL_TRIGGERS if hasattr(args, n)})
     for name in BODIES:
         body = body_of(args, name, getattr(args, name) or values.get(name))

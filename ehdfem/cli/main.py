@@ -77,6 +77,7 @@ def main(argv=None) -> int:
     failure)."""
     parser, commands = parsers()
     args = parser.parse_args(argv)
+    args.command_line = ["ehdfem", *(sys.argv[1:] if argv is None else argv)]
     was_quiet = is_quiet()
     set_quiet(not args.verbose)
     try:

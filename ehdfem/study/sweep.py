@@ -38,8 +38,12 @@ Points are claimed dynamically by the ranks (an exclusive file per point), so ra
 cheap points take more of them. Each finished point is written atomically as its own JSON file
 next to the table (``<table>.points/``); a run that is killed and started again skips the
 points already there, so nothing finished is lost or duplicated. The table (CSV, one row per
-point with inputs, outputs, status, seconds and code version) is rewritten atomically from the
-point files at the end of every run. All inputs and outputs are dimensionless (DSH scales).
+point with inputs, outputs, status, seconds, code version and git commit) is rewritten
+atomically from the point files at the end of every run, with its sidecar
+``<table stem>.provenance.json``: the provenance of the run (version, git commit, date,
+libraries, command line, MPI size), the [physical] table and every input and run setting held
+fixed, defaults included (docs/studies.md). All inputs and outputs are dimensionless (DSH
+scales), but for the SI columns of a physical study.
 """
 
 from __future__ import annotations
@@ -54,7 +58,7 @@ import os
 import socket
 import time
 import tomllib
-from dataclasses import fields, replace
+from dataclasses import asdict, fields, replace
 from pathlib import Path
 
 import numpy as np
@@ -68,6 +72,7 @@ from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ..inputs.settings import described
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
+from ..outputs import provenance
 from ..outputs import registry as outputs
 from ..version import __version__
 
@@ -120,6 +125,30 @@ class Study:
     @property
     def point_dir(self) -> Path:
         return self.table.with_name(self.table.name + ".points")
+
+    @property
+    def provenance_file(self) -> Path:
+        """The table's sidecar: results/example.csv -> results/example.provenance.json."""
+        return self.table.with_suffix(".provenance.json")
+
+    def fixed(self) -> dict:
+        """Every input and run setting that the grid does not sweep, with the value its points
+        used, whether the study file gives it or it is a default: "parameters" (every
+        CollisionParameters field, DSH scales; P_cav None for no limit) or "physical" (every
+        PhysicalCollision field, SI, the materials and liquid with all their values), and
+        "run" (the flat run settings)."""
+        first = self.points[0]
+        inputs = self.inputs(first)
+        values = asdict(inputs)
+        if self.physical is None:
+            values["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
+        settings = self.config(first).settings()
+        return {
+            "parameters" if self.physical is None else "physical": {
+                k: v for k, v in values.items() if k not in first
+            },
+            "run": {k: v for k, v in settings.items() if k not in first},
+        }
 
     def inputs(self, point: dict) -> CollisionParameters | PhysicalCollision:
         """The collision inputs of ``point``: dimensionless, or the [physical] table's values
@@ -224,6 +253,7 @@ def run_point(study: Study, point: dict) -> dict:
         row["status"] = f"failed: {type(err).__name__}: {err}"
     row["seconds"] = round(time.perf_counter() - start, 3)
     row["version"] = __version__
+    row["commit"] = provenance.commit_text()
     return row
 
 
@@ -311,8 +341,24 @@ def collect(study: Study) -> list[dict]:
 
 
 def write_table(study: Study, rows: list[dict]) -> Path:
-    """Write the study's CSV table atomically."""
-    return write_csv(study.table, rows, list(GRID_KEYS))
+    """Write the study's CSV table atomically, and beside it its sidecar
+    (:attr:`Study.provenance_file`): the study's name and file, the swept names, the
+    provenance of this run (:func:`ehdfem.outputs.provenance.record`), the [physical] table as
+    written and every input and run setting held fixed, defaults included
+    (:meth:`Study.fixed`)."""
+    sidecar = {
+        "study": study.name,
+        "study_file": str(study.path),
+        "table": str(study.table),
+        "rows": len(rows),
+        "swept": list(study.points[0]),
+        "provenance": provenance.record(),
+        "physical_table": study.physical,
+        "fixed": study.fixed(),
+    }
+    table = write_csv(study.table, rows, list(GRID_KEYS))
+    write_atomic(study.provenance_file, json.dumps(sidecar, indent=2) + "\n")
+    return table
 
 
 def write_csv(path: Path, rows: list[dict], empty_header=()) -> Path:
@@ -466,11 +512,13 @@ def critical_speed(
     rtol: float = 0.01,
     config: RunConfig | None = None,
     rebounds=None,
+    progress_label: str | None = None,
 ) -> dict:
     """The critical impact speed [m/s] of a physical collision (its other inputs fixed; eps,
     P_cav and alpha change with the speed) and St_c, the Stokes number there, by bisection in
     log speed on the rebound outcome. ``rebounds(speed)``: the outcome (default: a collision
-    computed as ``config`` says; pass a cached one to resume a study)."""
+    computed as ``config`` says; pass a cached one to resume a study). ``progress_label``: as
+    for :func:`critical_stokes`."""
     checks.number("rtol", rtol, lower=1e-8, upper=0.5)
     lo, hi = (
         checks.positive("bracket low", bracket[0]),
@@ -483,7 +531,8 @@ def critical_speed(
             result.compliance.close()
             return result.normal.rebound
 
-    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "speed [m/s]", (1e-4, 1e3))
+    limits = (1e-4, 1e3)
+    lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "speed [m/s]", limits, progress_label)
     speed = math.sqrt(lo * hi)
     return {
         "speed": speed,

@@ -127,6 +127,15 @@ def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
     assert name in err and "Traceback" not in err
 
 
+def test_abbreviated_options_are_refused(capsys):
+    """argparse would read --sphere-mod as --sphere-modulus, and in a command without --radius
+    read --radius as --radius-ratio: an option is taken only as spelt."""
+    with pytest.raises(SystemExit) as exit_info:
+        main(["collide", "--example", "--sphere-mod", "1e9"])
+    assert exit_info.value.code == 2
+    assert "--sphere-mod" in capsys.readouterr().err
+
+
 def test_field_instants_include_requested_times():
     """Maximum compression, maximum force, the end, and requested times (pressure linear in T
     between steps); a time outside the collision is refused."""

@@ -26,9 +26,12 @@ NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$")
 
 class Parser(argparse.ArgumentParser):
     """An argument parser that reads -1e1, -.5 and -inf as numbers (argparse's own reads
-    only -1 and -1.5 so; its subcommands' parsers are of this class too)."""
+    only -1 and -1.5 so; its subcommands' parsers are of this class too) and takes no
+    abbreviated option (argparse's own would read --radius as --radius-ratio where there is
+    no --radius)."""
 
     def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = NEGATIVE_NUMBER
 

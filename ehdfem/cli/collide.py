@@ -32,8 +32,9 @@ def add_collide(parser) -> None:
     out.add_argument(
         "--fields",
         metavar="FILE.xdmf",
-        help="FE model: displacement and stresses of both solids at maximum compression, "
-        "maximum force and the end (and --field-times), as XDMF for ParaView; default: none",
+        help="FE model: displacement, stresses, film pressure and body regions of both solids "
+        "at maximum compression, maximum force and the end (and --field-times), as one XDMF "
+        "time series for ParaView (SI for physical inputs; docs/pictures.md); default: none",
     )
 
 
@@ -94,19 +95,22 @@ def render_command(args) -> int:
     hist = result.normal.history
     time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
     pressure = dict(field_snapshots(result.normal, [time]))[time]
+    units = result.physical.scales() if result.physical else None
     p = result.params
+    when = f"t = {time * units.time:.4g} s" if units else f"T = {time:.4g}"
     title = (
-        f"St = {p.St:.4g}, eps = {p.eps:.3g}, delta = {p.delta:.3g}: T = {time:.4g}, "
+        f"St = {p.St:.4g}, eps = {p.eps:.3g}, delta = {p.delta:.3g}: {when}, "
         f"e_n = {result.normal.e_n:.4f}"
     )
-    magnification = render_solids(
-        result.compliance, pressure, args.out, args.field, args.magnification, title
+    picture = render_solids(
+        result.compliance, pressure, args.out, args.field, args.magnification, title, units=units
     )
     print(
-        f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})",
+        f"  wrote {args.out} ({picture.colour_bar}, displacement x {picture.magnification:.3g}, "
+        f"{when}, scale bars {' and '.join(picture.scale_bars)})",
         file=report,
     )
     if args.animation:
-        frames = animate_film(result.normal, args.animation)
+        frames = animate_film(result.normal, args.animation, units=units)
         print(f"  wrote {args.animation} ({frames} frames)", file=report)
     return 0

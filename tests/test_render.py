@@ -145,3 +145,21 @@ def test_animation_has_one_frame_per_sampled_step(fe_collision, tmp_path):
     path = tmp_path / "film.gif"
     frames = animate_film(fe_collision.normal, path, frames=12, units=UNITS)
     assert frames == len(film_frames(fe_collision.normal.history, 12)) == len(imageio.mimread(path))
+
+
+def test_render_offers_no_plots_or_fields_it_would_ignore(capsys):
+    """`render --help` lists neither --plots nor --fields (options of collide); given, they
+    are refused by name."""
+    from ehdfem.cli.main import main
+
+    with pytest.raises(SystemExit) as exit_info:
+        main(["render", "--help"])
+    assert exit_info.value.code == 0
+    help_text = capsys.readouterr().out
+    assert "--animation" in help_text and "--plots" not in help_text
+    assert "--fields" not in help_text
+    for flag in ("--plots", "--fields"):
+        with pytest.raises(SystemExit) as exit_info:
+            main(["render", "--St", "10", "--eps", "1e-3", flag, "out"])
+        assert exit_info.value.code == 2
+        assert flag in capsys.readouterr().err

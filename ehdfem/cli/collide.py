@@ -53,7 +53,8 @@ def collide_command(args) -> int:
         snapshots = field_snapshots(result.normal, args.field_times)
         units = result.physical.scales() if result.physical else None
         write_fields(result.compliance, args.fields, snapshots, units=units)
-        wrote.append(f"{args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
+        times = ", ".join(f"{t * (units.time if units else 1.0):.4g}" for t, _ in snapshots)
+        wrote.append(f"{args.fields} ({'t [s]' if units else 'T'} = {times})")
     if args.plots:
         out = Path(args.plots)
         wrote.append(plots.plot_histories(result.normal, out / "histories.png"))

@@ -164,8 +164,10 @@ def _merged(parts) -> dict:
 
 
 def _write_xdmf(path: Path, mesh: dict, units: str) -> None:
-    """One temporal collection of uniform grids (no other grid, so ParaView and pyvista read
-    exactly the written times); every grid names the same mesh datasets of the HDF5 file."""
+    """One temporal collection of uniform grids and no other grid, so ParaView and pyvista read
+    exactly the written times (meshio 5.0's TimeSeriesWriter puts an untimed mesh grid beside
+    the collection, which VTK reads as a second block holding the first instant's fields);
+    every grid names the same mesh datasets of the HDF5 file."""
     import h5py
 
     path = path.resolve()

@@ -11,7 +11,6 @@ from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
-from ehdfem.outputs.fields import write_fields
 from ehdfem.solids.fe import mesh as fem_mesh
 from ehdfem.solids.fe.mode_one import FEModeOne
 from ehdfem.solids.fe.solids import FESolids
@@ -106,53 +105,6 @@ def test_film_reaching_round_the_sphere_is_refused():
         FESolids(0.2, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
 
 
-def test_fields_are_written_for_paraview(tmp_path):
-    """Runs on 2 ranks too: one XDMF time series (gathered by rank 0) holding displacement,
-    von Mises and hydrostatic stress per instant, finite, linear in the load, in SI when
-    given the scales."""
-    import meshio
-
-    from ehdfem.inputs.scales import Scales
-
-    comm = MPI.COMM_WORLD
-    folder = Path(comm.bcast(str(tmp_path) if comm.rank == 0 else None))
-    radii = radial_grid(20, 0.5, 2.0)
-    snapshots = [(0.5, hertz_like(radii)), (1.0, 0.5 * hertz_like(radii))]
-    units = Scales(
-        gap=1e-4,
-        radius=0.0,
-        time=2e-4,
-        velocity=0.5,
-        pressure=300.0,
-        force=0.0,
-        energy=0.0,
-        sphere_radius=0.1,
-    )
-    compliance = FESolids(1e-3, radii, comm=comm).compliance(1e-3)
-    write_fields(compliance, folder / "scaled.xdmf", snapshots)
-    write_fields(compliance, folder / "si.xdmf", snapshots, units=units)
-    comm.Barrier()
-    if comm.rank != 0:
-        return
-    steps = {}
-    for name in ("scaled", "si"):
-        with meshio.xdmf.TimeSeriesReader(str(folder / f"{name}.xdmf")) as reader:
-            points, cells = reader.read_points_cells()
-            steps[name] = [reader.read_data(k) for k in range(reader.num_steps)]
-            steps[name + "_points"] = points
-    (t0, point0, cell0), (t1, point1, cell1) = steps["scaled"]
-    assert (t0, t1) == (0.5, 1.0)
-    assert set(point0) == {"displacement"} and set(cell0) == {"von_mises", "hydrostatic"}
-    for data in (point0["displacement"], cell0["von_mises"][0], cell0["hydrostatic"][0]):
-        assert np.isfinite(data).all() and np.abs(data).max() > 0
-    assert np.allclose(cell1["von_mises"][0], 0.5 * cell0["von_mises"][0], rtol=1e-8, atol=1e-12)
-    si_time, si_points, si_cells = steps["si"][0]
-    assert si_time == pytest.approx(0.5 * 2e-4)
-    assert np.allclose(steps["si_points"], 0.1 * steps["scaled_points"])
-    assert np.allclose(si_points["displacement"], 1e-4 * point0["displacement"])
-    assert np.allclose(si_cells["von_mises"][0], 300.0 * cell0["von_mises"][0])
-
-
 @pytest.mark.serial
 @pytest.mark.parametrize(
     ("options", "expected", "tolerance"),
@@ -232,13 +184,6 @@ def test_fe_compliance_at_another_eps():
     other = compliance.with_eps(3e-3)
     assert compliance.model == other.model == "fem" and other.solids is compliance.solids
     assert other.eps == 3e-3 and np.allclose(other.matrix, 3 * compliance.matrix, rtol=1e-14)
-
-
-@pytest.mark.serial
-def test_fields_need_fe_solids(tmp_path):
-    radii = radial_grid(20, 0.5, 2.0)
-    with pytest.raises(InputError, match="--model fem"):
-        write_fields(HalfSpaceCompliance(radii, 1e-3), tmp_path / "f.xdmf", [(0.0, radii)])
 
 
 def test_cached_compliance_is_the_computed_one(tmp_path, monkeypatch):

@@ -55,8 +55,9 @@ def add_collide(parser) -> None:
     out.add_argument(
         "--fields",
         metavar="FILE.xdmf",
-        help="FE model: displacement and stresses of both solids at maximum compression, "
-        "maximum force and the end (and --field-times), as XDMF for ParaView; default: none",
+        help="FE model: displacement, stresses, film pressure and body regions of both solids "
+        "at maximum compression, maximum force and the end (and --field-times), as one XDMF "
+        "time series for ParaView (SI for physical inputs; docs/pictures.md); default: none",
     )
 
 
@@ -108,7 +109,8 @@ def collide_command(args) -> int:
         snapshots = field_snapshots(result.normal, args.field_times)
         units = result.physical.scales() if result.physical else None
         write_fields(result.compliance, args.fields, snapshots, units=units)
-        wrote.append(f"{args.fields} (T = {', '.join(f'{t:.4g}' for t, _ in snapshots)})")
+        times = ", ".join(f"{t * (units.time if units else 1.0):.4g}" for t, _ in snapshots)
+        wrote.append(f"{args.fields} ({'t [s]' if units else 'T'} = {times})")
     if args.plots:
         out = Path(args.plots)
         wrote.append(plots.plot_histories(result.normal, out / "histories.png"))
@@ -150,19 +152,22 @@ def render_command(args) -> int:
     hist = result.normal.history
     time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
     pressure = dict(field_snapshots(result.normal, [time]))[time]
+    units = result.physical.scales() if result.physical else None
     p = result.params
+    when = f"t = {time * units.time:.4g} s" if units else f"T = {time:.4g}"
     title = (
-        f"St = {p.St:.4g}, eps = {p.eps:.3g}, delta = {p.delta:.3g}: T = {time:.4g}, "
+        f"St = {p.St:.4g}, eps = {p.eps:.3g}, delta = {p.delta:.3g}: {when}, "
         f"e_n = {result.normal.e_n:.4f}"
     )
-    magnification = render_solids(
-        result.compliance, pressure, args.out, args.field, args.magnification, title
+    picture = render_solids(
+        result.compliance, pressure, args.out, args.field, args.magnification, title, units=units
     )
     print(
-        f"  wrote {args.out} ({args.field}, displacement x {magnification:.3g}, T = {time:.4g})",
+        f"  wrote {args.out} ({picture.colour_bar}, displacement x {picture.magnification:.3g}, "
+        f"{when}, scale bars {' and '.join(picture.scale_bars)})",
         file=report,
     )
     if args.animation:
-        frames = animate_film(result.normal, args.animation)
+        frames = animate_film(result.normal, args.animation, units=units)
         print(f"  wrote {args.animation} ({frames} frames)", file=report)
     return 0

@@ -7,15 +7,22 @@ solids' boundaries plus the two flat cuts that show the field inside), with the 
 magnified by a stated factor and coloured by von Mises stress, hydrostatic stress or
 displacement magnitude (range from the 1st to the 99.5th percentile, stated on the picture;
 logarithmic over at most 4 decades for the positive fields); a second view is a close-up of
-the contact with the film pressure profile drawn above the contact. Lengths are by the sphere
-radius a, stresses by mu V0 a / x0^2, displacements by x0 (magnified for display only).
+the contact with the film pressure profile drawn above the contact, and each view has a
+black scale bar of a stated length. Given the SI scales (physical inputs) the colour bar is in
+Pa (stresses, pressure) or m (displacement) and the scale bar in m; otherwise stresses are by
+mu V0 a / x0^2, displacements by x0 and lengths by the sphere radius a (displacements are
+magnified for display only).
 
 `animate_film` writes a GIF of the film thickness H(R) and pressure P(R) next to the sphere's
-gap X(T) and velocity V(T), through approach, maximum compression and rebound.
+gap X(T) and velocity V(T), through approach, maximum compression and rebound, in SI given the
+scales; its frames (`film_frames`) are spread evenly over time and over the force's impulse,
+so that about half of them show the contact however short it is.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +33,43 @@ from ..solids.fe.solids import solids_of
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
 BAR_WIDTH = 160  # pixels kept for the colour bar
+PRESSURE_UNIT = "mu V0 a / x0^2"
+
+
+@dataclass(frozen=True)
+class RenderedPicture:
+    """What a render drew: the display ``magnification`` of the displacement, the colour bar's
+    label (the field and its unit) and range (in that unit), and the length of each view's
+    scale bar (overview, close-up), with its unit."""
+
+    magnification: float
+    colour_bar: str
+    colour_range: tuple[float, float]
+    scale_bars: tuple[str, str]
+
+
+def field_unit(field: str, units=None) -> tuple[float, str]:
+    """(factor, unit) that turn a field of the solids (stresses and pressure by
+    mu V0 a / x0^2, displacement by x0) into the unit shown: Pa and m given ``units``
+    (:class:`ehdfem.inputs.scales.Scales`), else the scales themselves."""
+    if field == "displacement":
+        return (units.gap, "m") if units else (1.0, "x0")
+    return (units.pressure, "Pa") if units else (1.0, PRESSURE_UNIT)
+
+
+def scale_bar(longest: float, units=None) -> tuple[float, str]:
+    """(length by a, label) of a scale bar: the largest 1, 2 or 5 times a power of ten not
+    above ``longest`` (by a), in m (with the prefix that reads best) given ``units``, else
+    in units of a."""
+    metres = units.sphere_radius if units else 1.0
+    longest = checks.positive("scale bar length", longest) * metres
+    power = 10.0 ** math.floor(math.log10(longest))
+    length = max(m * power for m in (1, 2, 5) if m * power <= longest * (1 + 1e-12))
+    if not units:
+        return length, f"{length:.3g} a"
+    prefixes = ((1.0, "m"), (1e-3, "mm"), (1e-6, "um"), (1e-9, "nm"))
+    factor, prefix = next(((f, p) for f, p in prefixes if length >= 0.999 * f), prefixes[-1])
+    return length / metres, f"{length / factor:.3g} {prefix}"
 
 
 def _pyvista():
@@ -37,9 +81,9 @@ def _pyvista():
     return pyvista
 
 
-def _section(solids, shape, nodal_pressure, field, magnification):
-    """The (r, z) triangles of ``shape`` (a :class:`ehdfem.solids.fe.fields.Deformation` of
-    ``solids``) moved by the magnified displacement, with ``field`` at the points."""
+def _section(shape, field, magnification, delta, factor):
+    """The (r, z) triangles of ``shape`` (a :class:`ehdfem.solids.fe.fields.Deformation`)
+    moved by the magnified displacement, with ``field`` times ``factor`` at the points."""
     pyvista = _pyvista()
 
     triangles = np.asarray(shape.triangles)
@@ -48,15 +92,14 @@ def _section(solids, shape, nodal_pressure, field, magnification):
     points = np.column_stack([shape.points, np.zeros(len(shape.points))])
     grid = pyvista.UnstructuredGrid(cells, types, points)
     if field == "displacement":
-        grid.point_data[field] = np.linalg.norm(shape.displacement, axis=1)
+        grid.point_data[field] = factor * np.linalg.norm(shape.displacement, axis=1)
     elif field == "pressure":
-        r, z = shape.points.T
-        grid.point_data[field] = solids.film_pressure(nodal_pressure)(r) * (np.abs(z) < 1e-9)
+        grid.point_data[field] = factor * shape.film_pressure
     else:
-        grid.cell_data[field] = getattr(shape, field)
+        grid.cell_data[field] = factor * getattr(shape, field)
         grid = grid.cell_data_to_point_data()
     # displacement by x0, geometry by a: x0 = delta a
-    grid.points[:, :2] += magnification * solids.delta * shape.displacement
+    grid.points[:, :2] += magnification * delta * shape.displacement
     return grid
 
 
@@ -92,6 +135,15 @@ def _pressure_curve(solids, nodal_pressure):
     return curves[0].merge(curves[1])
 
 
+def _scale_bar_line(half_width, bottom, top, length):
+    """A horizontal bar of ``length`` (by a) along r, just in front of the 0-degree cut (the
+    camera looks along +y), near the bottom of the view."""
+    pyvista = _pyvista()
+
+    start = np.array([0.1 * half_width, -1e-3 * half_width, bottom + 0.08 * (top - bottom)])
+    return pyvista.Line(start, start + [length, 0.0, 0.0])
+
+
 def render_solids(
     compliance,
     nodal_pressure,
@@ -100,13 +152,15 @@ def render_solids(
     magnification=None,
     title="",
     size=(1600, 800),
-):
+    units=None,
+) -> RenderedPicture:
     """PNG of the FE solids of ``compliance`` (an :class:`ehdfem.solids.fe.solids.FECompliance`,
     at its eps) deformed by the film pressure with values ``nodal_pressure`` at the film nodes
-    (by mu V0 a / x0^2): overview cut-away + contact close-up, ``size`` pixels. ``field``: one
-    of FIELDS. ``magnification``: display factor on the displacement (default: so that the
-    largest displacement shows as a tenth of the contact region). Returns the magnification
-    used."""
+    (by mu V0 a / x0^2): overview cut-away + contact close-up, each with a scale bar, ``size``
+    pixels. ``field``: one of FIELDS. ``magnification``: display factor on the displacement
+    (default: so that the largest displacement shows as a tenth of the contact region).
+    ``units``: the SI scales (:class:`ehdfem.inputs.scales.Scales`) for a colour bar in Pa or
+    m and scale bars in m; None: scaled units."""
     pyvista = _pyvista()
 
     checks.choice("field", field, FIELDS)
@@ -117,57 +171,72 @@ def render_solids(
         largest = float(np.linalg.norm(shape.displacement, axis=1).max()) * solids.delta
         magnification = 0.1 * solids.radii_a[-1] / max(largest, 1e-300)
     magnification = checks.positive("magnification", magnification)
-    section = _section(solids, shape, nodal_pressure, field, magnification)
+    factor, unit = field_unit(field, units)
+    section = _section(shape, field, magnification, solids.delta, factor)
     values = section.point_data[field]
     limits = (float(np.percentile(values, 1)), float(np.percentile(values, 99.5)))
-    upper = solids.radius_upper
-    lower = solids.radius_lower or upper
-    plotter = pyvista.Plotter(
-        off_screen=True, shape=(1, 2), window_size=(size[0] - BAR_WIDTH, size[1])
-    )
     logarithmic = field in ("von_mises", "displacement")  # positive, spanning decades
     if logarithmic:
         limits = (max(limits[0], limits[1] * 1e-4), limits[1])
-    for column, half_width in enumerate((1.3 * max(upper, lower), 1.5 * solids.radii_a[-1])):
-        plotter.subplot(0, column)
-        top = 2 * upper + solids.delta if column == 0 else half_width
-        bottom = -2 * lower if column == 0 else -half_width
-        window = section.clip_box([0, half_width, bottom, top, -1, 1], invert=False)
-        for piece in _cut_away(window):
-            plotter.add_mesh(
-                piece,
-                scalars=field,
-                cmap="viridis",
-                clim=limits,
-                log_scale=logarithmic,
-                show_scalar_bar=False,
-            )
-        if column == 1:
-            plotter.add_mesh(_pressure_curve(solids, nodal_pressure), color="red", line_width=4)
-        plotter.view_xz()
-        plotter.camera.azimuth = 25
-        plotter.camera.elevation = 20
-        plotter.reset_camera()
-        plotter.camera.zoom(1.0 if column == 0 else 1.3)
-        label = "cut-away (270 deg)" if column == 0 else "contact close-up; red: film pressure"
-        plotter.add_text(
-            f"{label}; displacement x {magnification:.3g}; {field.replace('_', ' ')} "
-            f"from {limits[0]:.3g} to {limits[1]:.3g}{' (log)' if logarithmic else ''}",
-            font_size=9,
-            position="lower_left",
-        )
+    plotter = pyvista.Plotter(
+        off_screen=True, shape=(1, 2), window_size=(size[0] - BAR_WIDTH, size[1])
+    )
+    view = {"field": field, "limits": limits, "logarithmic": logarithmic, "units": units}
+    bars = tuple(
+        _draw_view(plotter, column, section, solids, nodal_pressure, view) for column in (0, 1)
+    )
     plotter.subplot(0, 0)
-    plotter.add_text(title, font_size=10, position="upper_left")
+    plotter.add_text(
+        f"{title}\ndisplacement x {magnification:.3g}; {field.replace('_', ' ')} from "
+        f"{limits[0]:.3g} to {limits[1]:.3g} {unit}{' (log)' if logarithmic else ''}",
+        font_size=9,
+        position="upper_left",
+    )
     image = plotter.screenshot(return_img=True)
     plotter.close()
-    _with_colour_bar(image, field, limits, logarithmic, size, path)
-    return magnification
+    label = f"{field.replace('_', ' ')} [{unit}]"
+    _with_colour_bar(image, label, limits, logarithmic, size, path)
+    return RenderedPicture(magnification, label, limits, bars)
 
 
-def _with_colour_bar(image, field, limits, logarithmic, size, path):
-    """Save the rendered image with a colour bar beside it, ``size`` pixels in all (drawn by
-    matplotlib: VTK's own scalar bar aborts when VTK shares the process with Debian's DOLFINx
-    libraries)."""
+def _draw_view(plotter, column, section, solids, nodal_pressure, view) -> str:
+    """Draw the overview (``column`` 0) or the contact close-up (1) of ``section``: the
+    cut-away coloured by ``view["field"]``, the film pressure curve (close-up) and a scale bar;
+    returns the scale bar's label."""
+    upper = solids.radius_upper
+    lower = solids.radius_lower or upper
+    half_width = 1.3 * max(upper, lower) if column == 0 else 1.5 * solids.radii_a[-1]
+    top = 2 * upper + solids.delta if column == 0 else half_width
+    bottom = -2 * lower if column == 0 else -half_width
+    plotter.subplot(0, column)
+    window = section.clip_box([0, half_width, bottom, top, -1, 1], invert=False)
+    for piece in _cut_away(window):
+        plotter.add_mesh(
+            piece,
+            scalars=view["field"],
+            cmap="viridis",
+            clim=view["limits"],
+            log_scale=view["logarithmic"],
+            show_scalar_bar=False,
+        )
+    if column == 1:
+        plotter.add_mesh(_pressure_curve(solids, nodal_pressure), color="red", line_width=4)
+    length, label = scale_bar(0.6 * half_width, view["units"])
+    plotter.add_mesh(_scale_bar_line(half_width, bottom, top, length), color="black", line_width=8)
+    plotter.view_xz()
+    plotter.camera.azimuth = 25
+    plotter.camera.elevation = 20
+    plotter.reset_camera()
+    plotter.camera.zoom(1.0 if column == 0 else 1.3)
+    name = "cut-away (270 deg)" if column == 0 else "contact close-up; red: film pressure"
+    plotter.add_text(f"{name}; black bar: {label}", font_size=9, position="lower_left")
+    return label
+
+
+def _with_colour_bar(image, label, limits, logarithmic, size, path):
+    """Save the rendered image with a colour bar labelled ``label`` beside it, ``size`` pixels
+    in all (drawn by matplotlib: VTK's own scalar bar aborts when VTK shares the process with
+    Debian's DOLFINx libraries)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -181,58 +250,85 @@ def _with_colour_bar(image, field, limits, logarithmic, size, path):
     ax.axis("off")
     bar = fig.add_axes([share + 0.1 * (1 - share), 0.15, 0.15 * (1 - share), 0.7])
     norm = LogNorm(*limits) if logarithmic else Normalize(*limits)
-    units = "(by x0)" if field == "displacement" else "(by mu V0 a / x0^2)"
-    fig.colorbar(
-        plt.cm.ScalarMappable(norm=norm, cmap="viridis"),
-        cax=bar,
-        label=f"{field.replace('_', ' ')} {units}",
-    )
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap="viridis"), cax=bar, label=label)
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
-def animate_film(normal, path, frames: int = 40, fps: int = 10) -> int:
-    """GIF of H(R) and P(R) next to X(T) and V(T); returns the number of frames written."""
+def film_frames(history, frames: int) -> np.ndarray:
+    """The steps of ``history`` to animate: ``frames`` instants spread evenly in
+    s(T) = T / T_end + I(T) / I_end, I(T) = int_0^T |F| dT the film force's impulse (so half
+    of them are even in time and half follow the force, and a short contact gets about half
+    the frames), each the first step at or after its instant, without repeats."""
+    frames = checks.integer("frames", frames, lower=2, upper=2000)
+    time, force = history.time, np.abs(history.force)
+    impulse = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(time))])
+    spread = time / time[-1] + (impulse / impulse[-1] if impulse[-1] > 0 else 0.0)
+    instants = np.interp(np.linspace(0.0, spread[-1], frames), spread, time)
+    return np.unique(np.searchsorted(time, instants).clip(0, len(time) - 1))
+
+
+def film_axes(units=None) -> dict:
+    """{quantity: (factor, axis label)} of the animation: SI given ``units``
+    (:class:`ehdfem.inputs.scales.Scales`), else the scaled variables and their scales."""
+    if units:
+        return {
+            "radius": (units.radius, "r [m]"),
+            "film": (units.gap, "film h [m]"),
+            "pressure": (units.pressure, "pressure p [Pa]"),
+            "gap": (units.gap, "gap x [m]"),
+            "velocity": (units.velocity, "velocity v [m/s]"),
+            "time": (units.time, "t [s]"),
+        }
+    return {
+        "radius": (1.0, "R (by sqrt(a x0))"),
+        "film": (1.0, "film H (by x0)"),
+        "pressure": (1.0, f"pressure P (by {PRESSURE_UNIT})"),
+        "gap": (1.0, "gap X (by x0)"),
+        "velocity": (1.0, "velocity V (by V0)"),
+        "time": (1.0, "T (by x0/V0)"),
+    }
+
+
+def animate_film(normal, path, frames: int = 40, fps: int = 10, units=None) -> int:
+    """GIF of H(R) and P(R) next to X(T) and V(T) at the steps :func:`film_frames` picks, in
+    SI given ``units`` (:func:`film_axes`); returns the number of frames written."""
     import imageio.v2 as imageio
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    frames = checks.integer("frames", frames, lower=2, upper=2000)
-    hist = normal.history
-    steps = np.unique(
-        np.searchsorted(hist.time, np.linspace(0, hist.time[-1], frames)).clip(
-            0, len(hist.time) - 1
-        )
+    hist, axes_of = normal.history, film_axes(units)
+    (r_unit, r_label), (h_unit, h_label), (p_unit, p_label) = (
+        axes_of[name] for name in ("radius", "film", "pressure")
     )
     pressure = np.abs(hist.pressure)
     loaded = normal.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
     shown = normal.radii <= 1.5 * (loaded.max() if len(loaded) else normal.radii[-1])
+    radii, time = r_unit * normal.radii[shown], axes_of["time"][0] * hist.time
     images = []
-    for i in steps:
+    for i in film_frames(hist, frames):
         fig, axes = plt.subplots(2, 2, figsize=(9, 6))
         (ax_h, ax_x), (ax_p, ax_v) = axes
-        ax_h.semilogy(normal.radii[shown], hist.film_thickness[i][shown])
-        ax_h.set_ylim(max(hist.min_film.min() * 0.5, 1e-6), 2.0)
-        ax_h.set_ylabel("film H (by x0)")
-        ax_p.plot(normal.radii[shown], hist.pressure[i][shown])
-        ax_p.set_ylim(
-            min(0.0, hist.pressure[:, shown].min()) * 1.05, hist.pressure[:, shown].max() * 1.05
-        )
-        ax_p.set_ylabel("pressure P (by mu V0 a/x0^2)")
-        ax_p.set_xlabel("R (by sqrt(a x0))")
-        for ax, values, label in (
-            (ax_x, hist.gap, "gap X (by x0)"),
-            (ax_v, hist.velocity, "velocity V (by V0)"),
-        ):
-            ax.plot(hist.time, values, color="0.7")
-            ax.plot(hist.time[: i + 1], values[: i + 1], color="C0")
-            ax.plot(hist.time[i], values[i], "o", color="C3")
+        ax_h.semilogy(radii, h_unit * hist.film_thickness[i][shown])
+        ax_h.set_ylim(h_unit * max(hist.min_film.min() * 0.5, 1e-6), h_unit * 2.0)
+        ax_h.set_ylabel(h_label)
+        ax_p.plot(radii, p_unit * hist.pressure[i][shown])
+        low, high = min(0.0, hist.pressure[:, shown].min()), hist.pressure[:, shown].max()
+        ax_p.set_ylim(p_unit * low * 1.05, p_unit * high * 1.05)
+        ax_p.set_ylabel(p_label)
+        ax_p.set_xlabel(r_label)
+        for ax, values, name in ((ax_x, hist.gap, "gap"), (ax_v, hist.velocity, "velocity")):
+            factor, label = axes_of[name]
+            ax.plot(time, factor * values, color="0.7")
+            ax.plot(time[: i + 1], factor * values[: i + 1], color="C0")
+            ax.plot(time[i], factor * values[i], "o", color="C3")
             ax.set_ylabel(label)
-        ax_v.set_xlabel("T (by x0/V0)")
-        fig.suptitle(f"T = {hist.time[i]:.4g}")
+        ax_v.set_xlabel(axes_of["time"][1])
+        symbol, _, unit = axes_of["time"][1].partition(" ")
+        fig.suptitle(f"{symbol} = {time[i]:.4g} {unit}")
         fig.tight_layout()
         fig.canvas.draw()
         images.append(np.asarray(fig.canvas.buffer_rgba())[:, :, :3].copy())

@@ -1,11 +1,13 @@
-"""The FE solids' fields for pictures: displacement and stresses of the whole solids under one
-film pressure, on the vertices and cells of the (r, z) mesh.
+"""The FE solids' fields for pictures: displacement, stresses, the film pressure on the contact
+faces and the body of each cell, under one film pressure, on the vertices and cells of the (r, z)
+mesh.
 
 Used by the field exports (:mod:`ehdfem.outputs.fields`) and the pictures
 (:mod:`ehdfem.outputs.render`) through :meth:`ehdfem.solids.fe.solids.FESolids.deformation`.
 Scales: points by a; displacements by x0 (the solve's a p / E_ref times
 :meth:`~ehdfem.solids.fe.solids.FESolids.scale`); stresses by the film pressure unit
-mu V0 a / x0^2 (the solve's stresses by E_ref of displacements by a p / E_ref).
+mu V0 a / x0^2 (the solve's stresses by E_ref of displacements by a p / E_ref); the film
+pressure by the same unit.
 """
 
 from __future__ import annotations
@@ -15,7 +17,14 @@ from functools import cached_property
 
 import numpy as np
 
+from meshes import contact
+
 from . import dolfinx_compat
+from .meshed import FACES
+
+BODIES = {contact.SPHERE: 0, contact.LOWER: 1, contact.COATING: 2}
+"""The region number of each body's gmsh cell tag: 0 the upper sphere, 1 the lower body (wall,
+substrate or lower sphere), 2 the coating."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -26,7 +35,10 @@ class Deformation:
     by this rank, as indices into ``points``. ``displacement``: (n, 2) (u_r, u_z) at the
     vertices, by x0, each free sphere relative to its centre of mass. ``von_mises`` and
     ``hydrostatic``: (m,) stress per triangle, by mu V0 a / x0^2 (the film pressure unit; per
-    cell, as the hoop strain u_r / r is 0/0 at vertices on the axis). ``upper``: (n,) True at
+    cell, as the hoop strain u_r / r is 0/0 at vertices on the axis). ``film_pressure``: (n,)
+    the film pressure p(r) (linear between the film nodes, zero beyond the last) at the vertices
+    of both contact faces, zero elsewhere, by mu V0 a / x0^2. ``body``: (m,) the region of each
+    triangle (:data:`BODIES`: 0 upper sphere, 1 lower body, 2 coating). ``upper``: (n,) True at
     the vertices of the upper sphere.
     """
 
@@ -35,19 +47,24 @@ class Deformation:
     displacement: np.ndarray
     von_mises: np.ndarray
     hydrostatic: np.ndarray
+    film_pressure: np.ndarray
+    body: np.ndarray
     upper: np.ndarray
 
 
 @dataclass(frozen=True)
 class _VertexMesh:
     """The P1 (vertex) mesh of one rank: a P1 displacement to interpolate into, the vertices,
-    the owned triangles and the vertices of each free body (in the order of the bodies)."""
+    the owned triangles, the vertices of each free body (in the order of the bodies), the
+    vertices on the contact faces and the region (:data:`BODIES`) of each owned triangle."""
 
     function: object
     points: np.ndarray
     triangles: np.ndarray
     body_vertices: list
     upper: np.ndarray
+    face_vertices: np.ndarray
+    body: np.ndarray
 
 
 def _read_only(array: np.ndarray) -> np.ndarray:
@@ -75,10 +92,15 @@ class SolidsFields:
         values = vertices.function.x.array.reshape(-1, 2).copy()
         for body_vertices, centre in zip(vertices.body_vertices, solids.centres(), strict=True):
             values[body_vertices, 1] -= centre
+        film = np.zeros(len(vertices.points))
+        faces = vertices.face_vertices
+        film[faces] = solids.film_pressure(nodal_pressure)(vertices.points[faces, 0])
         return Deformation(
             points=vertices.points,
             triangles=vertices.triangles,
             displacement=_read_only(values * solids.scale(eps)),
+            film_pressure=_read_only(film),
+            body=vertices.body,
             upper=vertices.upper,
             **self._cell_stresses(),
         )
@@ -96,12 +118,18 @@ class SolidsFields:
         ]
         upper = np.zeros(len(coordinates), dtype=bool)
         upper[body_vertices[0]] = True
+        body = np.full(owned, -1, dtype=np.int32)
+        for tag, region in BODIES.items():
+            cells_of_body = bodies.cell_tags.find(tag)
+            body[cells_of_body[cells_of_body < owned]] = region
         return _VertexMesh(
             function=dolfinx_compat.function(space),
             points=_read_only(coordinates[:, :2]),
             triangles=_read_only(cells.reshape(-1, 4)[:owned, 1:]),
             body_vertices=body_vertices,
             upper=_read_only(upper),
+            face_vertices=_read_only(dolfinx_compat.entity_dofs(space, 1, bodies.facets(*FACES))),
+            body=_read_only(body),
         )
 
     @cached_property

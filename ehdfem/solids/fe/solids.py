@@ -397,9 +397,7 @@ class FESolids:
         # minus lower face's pressure functional) and the faces' mean tangential motion
         unit = np.eye(n)
         combinations = np.zeros((columns.shape[1], 4 * n))
-        for k, weights in enumerate(
-            ([1, 1, 0, 0], [0, 0, 1, 1], [1, -1, 0, 0], [0, 0, 0.5, 0.5])
-        ):
+        for k, weights in enumerate(([1, 1, 0, 0], [0, 0, 1, 1], [1, -1, 0, 0], [0, 0, 0.5, 0.5])):
             for face, weight in enumerate(weights):
                 combinations[face * n : (face + 1) * n, k * n : (k + 1) * n] = weight * unit
         combinations[:, n : 2 * n] *= math.sqrt(self.delta)

@@ -23,7 +23,15 @@ conditions are the exact Dirichlet conditions D = 0, U_z = 0 on the axis facets.
 Loads, on both contact faces, each a nodal profile on the film nodes (hat functions, zero beyond
 the last node): the pressure q cos phi acts normally on each face, as in FESolids (traction
 -q n cos phi, n the outward normal: t_z = +q cos phi on the sphere and -q cos phi on the wall,
-up to the face's slope r/a); the shear amplitudes A along r and B along phi.
+up to the face's slope r/a); the shear amplitudes A along r and B along phi. Each face's
+displacements at film node i are read in these load directions, G_i . u / m_i with G_i the
+load of the hat i on that face and m_i the film's lumped weight
+(:class:`ehdfem.solids.fe.meshed.MeshedBodies`): U_r and U_phi hat-averaged, and the normal one
+as the surface's vertical motion U_z - U_r dz/dr. Loads and read-outs being the same balanced
+functionals, the 5N x 5N matrix of the loads against their own directions (the pressure against
+the gap opening sphere_normal - wall_normal, each shear against its face's displacement in its
+direction) times diag(m), with the shear loads' sqrt(delta) divided out, is symmetric to the
+solver's rounding (Betti; docs/fem.md).
 
 Mode 1 holds two rigid motions of a free sphere: the translation along x (S = 1, D = U_z = 0)
 and the rotation about y through the centre of mass z_c (S = z - z_c, D = 0, U_z = -r). The
@@ -331,8 +339,8 @@ class FEModeOne(ModeOneCompliance):
         """The solids under the nodal loads ``nodal_loads`` ((5N,), in the order and units of
         MODE_ONE_LOADS, as the columns of ``matrix``) at this compliance's eps: a DOLFINx
         function on :attr:`space` holding (U_r, U_phi, U_z) (not the unknowns), by x0, each
-        free sphere relative to its rigid motion; at the film nodes of the faces it equals
-        ``matrix @ nodal_loads``."""
+        free sphere relative to its rigid motion; its read-outs at the film nodes
+        (:meth:`face_displacements` of its unknowns) equal ``matrix @ nodal_loads``."""
         n = len(self.radii)
         loads = np.asarray(nodal_loads, dtype=float)
         if loads.shape != (5 * n,) or not np.isfinite(loads).all():

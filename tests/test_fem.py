@@ -205,8 +205,9 @@ def test_deformation_matches_the_compliance_at_the_film_nodes(lower):
     compliance.deflection(P) (to 1e-9); the vertex displacements (by x0, free spheres relative
     to their centre of mass) at the film nodes agree with it to the difference between a point
     value and a hat average, within 1 % of the largest opening inside the last node (whose
-    half hat reads only its inner side; measured 0.47 %, near the pressure's edge); the stresses are finite, one per
-    owned triangle, and linear in the load; ``upper`` marks the sphere."""
+    half hat reads only its inner side; measured 0.47 %, near the pressure's edge); the
+    stresses are finite, one per owned triangle, and linear in the load; ``upper`` marks the
+    sphere."""
     comm = MPI.COMM_WORLD
     radii = radial_grid(20, 0.5, 2.0)
     solids = FESolids(1e-3, radii, lower=lower, comm=comm)

@@ -329,7 +329,9 @@ class FESolids:
         gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
         pressure unit, :meth:`ehdfem.film.reynolds.Film.squeeze_shear`) on both faces. The unit
         loads (hat pressures, then hat shear tractions) are condensed onto the contact faces on
-        one process (:meth:`on_one_process`, :meth:`_condensed`)."""
+        one process (:meth:`on_one_process`, :meth:`_condensed`); the faces' mean tangential
+        displacements per unit pressure and shear (``unit_surface_radial``,
+        ``unit_surface_radial_shear``) come with them whether or not the shear is applied."""
         arrays = cached_matrices(
             self.comm,
             ("axisymmetric", *self.cache_arguments, shear),

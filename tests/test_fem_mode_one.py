@@ -5,10 +5,11 @@ import numpy as np
 import pytest
 import ufl
 from dolfinx import fem, mesh
+from hat_averages import averaged, hat_average
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.reynolds import Film, radial_grid
 from ehdfem.solids.compliance import MODE_ONE_LOADS
 from ehdfem.solids.fe import dolfinx_compat as compat
 from ehdfem.solids.fe.mode_one import (
@@ -215,10 +216,14 @@ def mode_one_hertz(radii, c=1.0):
     """The x-derivative pair of the half-space identity (DESIGN.md section 5 for the kernel):
     P0 = (1 - R^2/c^2)^(3/2) opens the gap by W0 = 3 pi^2 eps (8c^4 - 8c^2 R^2 + 3R^4)/(256 c^3)
     inside c (eps = 1), so the mode-1 pressure P1 = dP0/dR = -3 (R/c^2) sqrt(1 - R^2/c^2) opens
-    it by W1 = dW0/dR = 3 pi^2 R (3R^2 - 4c^2) / (64 c^3). Returns (P1, W1)."""
+    it by W1 = dW0/dR = 3 pi^2 R (3R^2 - 4c^2) / (64 c^3). Returns (P1, W1 at the nodes)."""
     pressure = -3 * radii / c**2 * hertz_family(radii, c)
-    opening = 3 * np.pi**2 * radii * (3 * radii**2 - 4 * c**2) / (64 * c**3)
-    return pressure, opening
+    return pressure, mode_one_opening(radii, c)
+
+
+def mode_one_opening(radii, c=1.0):
+    """W1 of :func:`mode_one_hertz` at ``radii`` (inside c)."""
+    return 3 * np.pi**2 * radii * (3 * radii**2 - 4 * c**2) / (64 * c**3)
 
 
 @pytest.mark.serial
@@ -236,20 +241,23 @@ def test_the_family_of_the_reference_opening_holds_on_the_half_space_kernel():
 @pytest.mark.parametrize("lower", ["wall", "sphere"])
 def test_mode_one_pressure_opens_the_gap_like_the_half_space(small_delta, lower):
     """delta = 1e-3, 40 film nodes: the gap opening sphere_normal - wall_normal of the mode-1
-    pressure P1 agrees with the half-space W1 within 0.5 % for 0 < R <= 0.5 (measured 0.30 %
-    on a wall, 0.29 % between two spheres of radii 2a); U_z = 0 on the axis. Two equal spheres
-    move as mirror images."""
+    pressure P1 agrees with the hat average (the FE read-out, :func:`hat_average`) of the
+    half-space W1 within 0.5 % for R <= 0.5 (measured 0.39 % on a wall,
+    0.40 % between two spheres of radii 2a). Two equal spheres move as
+    mirror images."""
     compliance = (
         small_delta
         if lower == "wall"
         else FEModeOne(FESolids(1e-3, RADII, lower="sphere", comm=MPI.COMM_SELF), 1.0)
     )
-    pressure, exact = mode_one_hertz(RADII)
+    pressure, _ = mode_one_hertz(RADII)
+    exact = hat_average(RADII, mode_one_opening)
     sphere = compliance.block("sphere_normal", "pressure") @ pressure
     wall = compliance.block("wall_normal", "pressure") @ pressure
-    near = (RADII > 0) & (RADII <= 0.5)
-    assert abs(sphere[0]) + abs(wall[0]) < 1e-12 * np.abs(sphere).max()
-    assert np.abs((sphere - wall)[near] / exact[near] - 1).max() < 0.005
+    near = RADII <= 0.5
+    error = np.abs((sphere - wall)[near] / exact[near] - 1).max()
+    print(f"mode-1 opening on the {lower}: {error:.2e} from the half-space's hat average")
+    assert error < 0.005
     if lower == "sphere":
         assert np.allclose(sphere, -wall, rtol=1e-6, atol=0)
         compliance.close()
@@ -262,60 +270,84 @@ def test_tangential_traction_moves_the_wall_like_a_half_space(small_delta):
     integrated over c) moves a half-space's surface by (Johnson 1985, Contact Mechanics, ch. 3)
     U_r = K (4 (2 - nu) c^2 - (4 - 3 nu) r^2), U_phi = K (4 (2 - nu) c^2 - (4 - nu) r^2),
     K = pi q0 / (32 G c), and lowers it ahead by (Cerruti summed over the disc)
-    U_z = -(1 - 2 nu) / (2 G r) int_0^r tau s ds. The FE wall agrees within 0.35 % for
-    R <= 0.5 (measured 0.30 % in U_r, U_phi and 0.02 % in U_z)."""
+    U_z = -(1 - 2 nu) / (2 G r) int_0^r tau s ds. The FE wall agrees with their hat averages
+    (the FE read-out, :func:`hat_average`) within 0.35 % for R <= 0.5 (measured 0.29 %, 0.30 % and
+    0.014 % in U_r, U_phi and U_z)."""
     delta = small_delta.solids.delta
     scale = small_delta.factor(1.0) * np.sqrt(delta)  # traction unit sqrt(delta) p, u by x0
-    c, r = np.sqrt(delta), RADII * np.sqrt(delta)  # contact radius 1 (film units), by a
+    c = np.sqrt(delta)  # contact radius 1 (film units), by a
     profile = hertz_family(RADII)
     k = np.pi / (32 * SHEAR_MODULUS * c) * scale
-    radial = k * (4 * (2 - NU) * c**2 - (4 - 3 * NU) * r**2)
-    hoop = k * (4 * (2 - NU) * c**2 - (4 - NU) * r**2)
-    moment = c**2 / 3 * (1 - hertz_family(RADII) ** 3)  # int_0^r tau s ds (by a^2)
-    near = (RADII > 0) & (RADII <= 0.5)
-    normal = -(1 - 2 * NU) / (2 * SHEAR_MODULUS) * scale * moment[near] / r[near]
-    for name, exact, tolerance in (("radial", radial, 0.0035), ("hoop", hoop, 0.0035)):
+
+    def normal(radius):  # int_0^r tau s ds (by a^2) over r
+        moment = c**2 / 3 * (1 - hertz_family(radius) ** 3)
+        return -(1 - 2 * NU) / (2 * SHEAR_MODULUS) * scale * moment / (radius * c)
+
+    near = RADII <= 0.5
+    for name, curvature, tolerance in (
+        ("radial", 4 - 3 * NU, 0.0035),
+        ("hoop", 4 - NU, 0.0035),
+        ("normal", None, 0.0005),
+    ):
+        exact = hat_average(
+            RADII,
+            normal
+            if curvature is None
+            else lambda radius, m=curvature: k * c**2 * (4 * (2 - NU) - m * radius**2),
+        )
         fe = block_sum(small_delta, f"wall_{name}", "wall", profile)
-        assert np.abs(fe / exact - 1)[RADII <= 0.5].max() < tolerance, name
-    fe_normal = block_sum(small_delta, "wall_normal", "wall", profile)[near]
-    assert np.abs(fe_normal / normal - 1).max() < 0.0005
+        error = np.abs(fe / exact - 1)[near].max()
+        print(f"wall {name} under the traction: {error:.2e}")
+        assert error < tolerance, name
 
 
 @pytest.mark.serial
 def test_tangential_traction_moves_a_large_sphere_like_a_half_space(large_sphere):
     """delta = 1e-5: the sphere's face under the traction of the wall test (lengths mirrored:
-    it rises ahead) agrees with the half-space within 0.5 % for R <= 0.5 (measured 0.35 %).
+    it rises ahead) agrees with the half-space's hat averages within 0.5 % for R <= 0.5
+    (measured 0.35 % and 0.34 % in U_r and U_phi).
     The free sphere differs by a finite-size term of order c/a: +1.4 %, +3.7 % and +7.7 % at
     delta = 1e-4, 1e-3 and 1e-2 (relative to its rigid motion it is softer than the
     half-space), so the half-space limit needs a small delta here."""
     compliance, delta = large_sphere, large_sphere.solids.delta
     scale = compliance.factor(1.0) * np.sqrt(delta)
-    c, r = np.sqrt(delta), RADII * np.sqrt(delta)
+    c = np.sqrt(delta)
     profile = hertz_family(RADII)
     k = np.pi / (32 * SHEAR_MODULUS * c) * scale
     near = RADII <= 0.5
     for name, curvature in (("radial", 4 - 3 * NU), ("hoop", 4 - NU)):
-        exact = k * (4 * (2 - NU) * c**2 - curvature * r**2)
+        exact = hat_average(
+            RADII, lambda radius, m=curvature: k * c**2 * (4 * (2 - NU) - m * radius**2)
+        )
         fe = block_sum(compliance, f"sphere_{name}", "sphere", profile)
-        assert np.abs(fe / exact - 1)[near].max() < 0.005, name
+        error = np.abs(fe / exact - 1)[near].max()
+        print(f"sphere {name} under the traction: {error:.2e}")
+        assert error < 0.005, name
 
 
 @pytest.mark.serial
 def test_every_block_agrees_with_the_half_space_mode_one_kernels(small_delta, large_sphere):
     """All 18 blocks against the half-space kernels of the mode-1 Boussinesq and Cerruti
     solutions (ehdfem.solids.halfspace_mode_one), under the mode-1 pressure P1 and the
-    traction profile sqrt(1 - R^2): max |FE - HS| over R <= 0.5, relative to max |HS| there.
-    The wall's nine blocks at delta = 1e-3: within 0.4 % (measured 0.28 % at most). The
-    sphere's at delta = 1e-5: within 1.2 % (measured 1.0 %, 0.7 % and 0.04 % for U_r, U_phi
-    and U_z under the pressure, at most 0.7 % under the tractions). At delta = 1e-3 the sphere's
-    U_r and U_phi under the pressure differ by 10 % and 7 %: the FE pressure acts normally to
-    the curved face, whose radial component q r/a (absent from the half-space's t_z) drags it
-    outwards (2.5 % with t_z alone); a face's loads do not move the other face."""
+    traction profile sqrt(1 - R^2): max |FE - HS| over R <= 0.5, relative to max |HS| there,
+    the kernels' nodal values hat-averaged as the FE reads (:func:`averaged`). The wall's
+    blocks at delta = 1e-3: within 0.4 % (measured 0.12 % at most). The sphere's at delta =
+    1e-5: within 1.2 % (measured 0.97 % at most). A radial or hoop traction alone (A cos phi,
+    or B sin phi) is not regular on the axis (only A = B is), and the normal displacement it
+    causes tends to a nonzero value there, which the FE (U_z = 0 on the axis) and the kernel
+    (0 at R = 0) resolve differently in the first elements: those two blocks are compared from
+    the third node on, within 4 % (measured 0.45 % and 0.16 % on the wall, 3.0 % and 0.62 %
+    on the sphere; the regular sum is checked against the closed forms above). At delta =
+    1e-3 the sphere's U_r and U_phi under the pressure differ by 10 % and 7 %: the FE pressure
+    acts normally to the curved face, whose radial component q r/a (absent from the
+    half-space's t_z) drags it outwards (2.5 % with t_z alone); a face's loads do not move the
+    other face."""
     from ehdfem.solids.halfspace_mode_one import HalfSpaceModeOne
 
     pressure, _ = mode_one_hertz(RADII)
     profile = hertz_family(RADII)
     near = RADII <= 0.5
+    off_axis = near & (RADII > RADII[2])
     for fe, face, tolerance in ((small_delta, "wall", 0.004), (large_sphere, "sphere", 0.012)):
         half_space = HalfSpaceModeOne(RADII, 1.0, fe.solids.delta)
         other = "sphere" if face == "wall" else "wall"
@@ -323,9 +355,12 @@ def test_every_block_agrees_with_the_half_space_mode_one_kernels(small_delta, la
             for load in ("pressure", f"{face}_radial", f"{face}_hoop"):
                 nodal = pressure if load == "pressure" else profile
                 got = fe.block(f"{face}_{displacement}", load) @ nodal
-                exact = half_space.block(f"{face}_{displacement}", load) @ nodal
-                error = np.abs(got - exact)[near].max() / np.abs(exact)[near].max()
-                assert error < tolerance, (face, displacement, load, error)
+                exact = averaged(RADII, half_space.block(f"{face}_{displacement}", load) @ nodal)
+                irregular = load != "pressure" and displacement == "normal"
+                rows = off_axis if irregular else near
+                error = np.abs(got - exact)[rows].max() / np.abs(exact)[rows].max()
+                print(f"{face} {displacement} under {load}: {error:.2e}")
+                assert error < (0.04 if irregular else tolerance), (face, displacement, load)
                 if load != "pressure":
                     assert not np.any(fe.block(f"{other}_{displacement}", load))
 
@@ -368,7 +403,8 @@ def test_same_mode_one_compliance_on_two_ranks_as_on_one():
 
 def test_field_matches_the_matrix_at_the_film_nodes():
     """Runs on 2 ranks too: the whole-solid field of mixed nodal loads (pressure and all four
-    tractions) equals matrix @ loads at the film nodes of both faces (to 1e-9)."""
+    tractions), read out at the film nodes of both faces in the loads' directions
+    (``face_displacements`` of its unknowns), equals matrix @ loads (to 1e-9)."""
     comm = MPI.COMM_WORLD
     radii = radial_grid(16, 0.5, 2.0)
     solids = FESolids(1e-3, radii, comm=comm)
@@ -378,22 +414,60 @@ def test_field_matches_the_matrix_at_the_film_nodes():
     loads = rng.standard_normal(5 * n) * np.tile(hertz_family(radii), 5)
     field = compliance.field(loads)
     owned = field.function_space.dofmap.index_map.size_local
-    points = field.function_space.tabulate_dof_coordinates()[:owned, :2]
-    values = field.x.array[: 3 * owned].reshape(-1, 3)
-    points, values = (np.concatenate(comm.allgather(a)) for a in (points, values))
-    expected = (compliance.matrix @ loads).reshape(2, 3, n)  # face, amplitude, node
-    r = solids.radii_a
-    faces = (1 + solids.delta - np.sqrt(1 - r**2), np.zeros(n))  # sphere face, wall face
-    for face, heights in enumerate(faces):
-        found = [
-            np.flatnonzero(np.isclose(points[:, 0], x, atol=1e-12) & np.isclose(points[:, 1], h))
-            for x, h in zip(r, heights, strict=True)
-        ]
-        assert all(len(f) == 1 for f in found)
-        got = values[np.concatenate(found)].T
-        assert np.allclose(got, expected[face], rtol=0, atol=1e-9 * np.abs(expected).max())
+    u_r, u_phi, u_z = field.x.array[: 3 * owned].reshape(-1, 3).T
+    unknowns = np.column_stack([(u_r + u_phi) / 2, (u_r - u_phi) / 2, u_z]).reshape(-1, 1)
+    got = np.vstack(compliance.face_displacements(unknowns))[:, 0]
+    expected = compliance.matrix @ loads
+    assert np.allclose(got, expected, rtol=0, atol=1e-9 * np.abs(expected).max())
     with pytest.raises(InputError, match="nodal_loads"):
         compliance.field(loads[:-1])
+    compliance.close()
+
+
+def reciprocal_pairs(compliance) -> np.ndarray:
+    """The 5N x 5N matrix of the mode-1 loads (MODE_ONE_LOADS) against the displacements in
+    their own directions: the pressure (both faces) against the gap opening sphere_normal -
+    wall_normal, each face's radial and hoop traction against that face's radial and hoop
+    displacement; the traction columns divided by sqrt(delta) (their unit), rows times the
+    film's lumped mass m_i. Betti: symmetric."""
+    mass = Film(compliance.radii).full_mass
+    conjugate = {
+        "pressure": lambda load: (
+            compliance.block("sphere_normal", load) - compliance.block("wall_normal", load)
+        )
+    }
+    for name in MODE_ONE_LOADS[1:]:
+        conjugate[name] = lambda load, name=name: compliance.block(name, load)
+    shear = np.sqrt(compliance.solids.delta)
+    return np.block(
+        [
+            [
+                mass[:, None] * conjugate[row](column) / (1.0 if column == "pressure" else shear)
+                for column in MODE_ONE_LOADS
+            ]
+            for row in MODE_ONE_LOADS
+        ]
+    )
+
+
+@pytest.mark.serial
+@pytest.mark.parametrize(
+    "options",
+    [
+        {},
+        {"lower": "coated", "coating": (0.2, 0.45), "coating_thickness": 0.02},
+        {"lower": "sphere", "radius_ratio": 2.0},
+    ],
+)
+def test_mode_one_compliance_is_reciprocal(options):
+    """delta = 0.05, 16 film nodes: the loads and read-outs are the same functionals, so the
+    matrix of :func:`reciprocal_pairs` is symmetric to the direct solver's rounding, 1e-12
+    relative in the Frobenius norm (measured 4e-16). The point read-out it replaces gave 0.26,
+    0.21 and 0.21 (wall, coated wall, two spheres of radius ratio 1)."""
+    solids = FESolids(0.05, radial_grid(16, 0.5, 2.0), comm=MPI.COMM_SELF, **options)
+    compliance = FEModeOne(solids, 1.0)
+    pairs = reciprocal_pairs(compliance)
+    assert np.linalg.norm(pairs - pairs.T) < 1e-12 * np.linalg.norm(pairs)
     compliance.close()
 
 

@@ -63,6 +63,18 @@ def matrix_product(matrix, values: np.ndarray, comm) -> np.ndarray:
     return result
 
 
+def transpose_product(matrix, values: np.ndarray, comm) -> np.ndarray:
+    """The owned rows of the transpose of the PETSc ``matrix`` times the columns whose owned
+    rows are ``values`` (rows, columns; rows distributed as the matrix's rows), as a dense
+    array: the read-outs b . u of the loads b that ``matrix`` makes, for displacements u."""
+    dense = _dense(values, comm)
+    product = matrix.transposeMatMult(dense)
+    result = product.getDenseArray().copy()
+    for petsc_object in (dense, product):  # PETSc memory is not freed by Python's GC
+        petsc_object.destroy()
+    return result
+
+
 class CholeskySolver:
     """The symmetric positive definite PETSc ``matrix`` (a stiffness with its rigid motions
     pinned) factorised by MUMPS Cholesky on the first solve, for blocks of right-hand sides."""

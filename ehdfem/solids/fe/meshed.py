@@ -2,13 +2,21 @@
 
 :class:`MeshedBodies` holds the (r, z) mesh of the upper sphere over a lower body
 (:mod:`ehdfem.solids.fe.bodies`) with its gmsh tags, the material per cell, the free bodies,
-the dofs of a space on the contact faces and the film loads on those faces as P2 traction
-profiles. It is the public interface of :mod:`ehdfem.solids.fe.solids` and
+the dofs of a space on the contact faces, the film loads on those faces as P2 traction
+profiles and their read-outs. It is the public interface of :mod:`ehdfem.solids.fe.solids` and
 :mod:`ehdfem.solids.fe.mode_one`; neither reads the other's attributes.
 
 Lengths by the (reduced) sphere radius a: the film nodes R (by sqrt(a x0)) sit at r = R
 sqrt(delta) on both faces; moduli by the upper sphere's, E_ref; traction profiles carry the
 unit of the nodal values they are made of (the film pressure unit mu V0 a / x0^2 for the film).
+
+Reciprocal read-outs: the load vector of a unit nodal traction j of one kind on one face is
+G_j = int_face phi_j t(v) r ds (phi_j the film node's hat, t(v) the traction's work on the test
+displacement v), and the displacement read out at film node i in that load's direction is the
+same functional divided by the film's lumped weight, G_i . u / m_i, m_i = int phi_i r dr (the
+film's lumped mass, :attr:`MeshedBodies.film_weights`). With the loads balanced and the
+read-outs taken relative to the same rigid motions, M C = G^T K^-1 G is symmetric to the
+solver's rounding (Betti's theorem, exactly in the discrete form; docs/fem.md).
 """
 
 from __future__ import annotations
@@ -21,9 +29,10 @@ import numpy as np
 from meshes import contact
 
 from ... import checks
+from ...film.reynolds import Film
 from . import dolfinx_compat
 from .bodies import FreeBody, LowerBody, checked_material
-from .linear_algebra import interpolation_matrix, matrix_product
+from .linear_algebra import interpolation_matrix, matrix_product, transpose_product
 from .mesh import contact_mesh
 
 FACES = (contact.SPHERE_CONTACT, contact.LOWER_CONTACT)
@@ -65,6 +74,13 @@ class MeshedBodies:
     def radii_a(self) -> np.ndarray:
         """The film nodes in units of a."""
         return self.radii * math.sqrt(self.delta)
+
+    @cached_property
+    def film_weights(self) -> np.ndarray:
+        """m_i = int phi_i r dr over the film (by a^2): delta times the film's lumped mass
+        int phi_i R dR (:attr:`ehdfem.film.reynolds.Film.full_mass`), the weights with which
+        nodal pressures P become the film's force and the FE loads' vertical resultant."""
+        return self.delta * Film(self.radii).full_mass
 
     @property
     def r(self):
@@ -139,6 +155,15 @@ class MeshedBodies:
         faces = self.ds(FACES[0]) + self.ds(FACES[1])
         return dolfinx_compat.assemble_matrix(dolfinx_compat.form(q * work * self.r * faces), [])
 
+    def face_tangent(self):
+        """The unit tangent of the contact faces pointing away from the axis, sign(n_z) (n_z,
+        -n_r) with n the outward normal: (1, 0) on a wall, along the curved faces on a sphere
+        (UFL); the direction of the film's squeeze-shear traction, positive outward."""
+        import ufl
+
+        n = ufl.FacetNormal(self.mesh)
+        return ufl.sign(n[1]) * ufl.as_vector((n[1], -n[0]))
+
     @cached_property
     def face_hats(self):
         """Per contact face (upper, lower): the sparse (owned profile dofs, N) matrix of the film
@@ -167,3 +192,13 @@ class MeshedBodies:
         owned profile entries ``values`` (:meth:`profile_values`): int t . v r ds with lengths
         by a, in the unit of ``values`` times a^2."""
         return matrix_product(matrix, values, self.comm)
+
+    def face_read_outs(self, matrix, values: np.ndarray) -> list:
+        """Per contact face (upper, lower): the (N, columns) read-outs G_i . u at the film nodes
+        of the loads of a :meth:`traction_matrix` (G_i the load of the hat i on that face) for
+        the displacement columns whose owned rows are ``values``, summed over the ranks; in
+        the load's unit times a^2 times the displacement's unit. Divided by
+        :attr:`film_weights` they are the displacements in the load's direction (module
+        docstring)."""
+        works = transpose_product(matrix, values, self.comm)
+        return [self.comm.allreduce(hats.T @ works) for hats in self.face_hats]

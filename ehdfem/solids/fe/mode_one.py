@@ -23,7 +23,15 @@ conditions are the exact Dirichlet conditions D = 0, U_z = 0 on the axis facets.
 Loads, on both contact faces, each a nodal profile on the film nodes (hat functions, zero beyond
 the last node): the pressure q cos phi acts normally on each face, as in FESolids (traction
 -q n cos phi, n the outward normal: t_z = +q cos phi on the sphere and -q cos phi on the wall,
-up to the face's slope r/a); the shear amplitudes A along r and B along phi.
+up to the face's slope r/a); the shear amplitudes A along r and B along phi. Each face's
+displacements at film node i are read in these load directions, G_i . u / m_i with G_i the
+load of the hat i on that face and m_i the film's lumped weight
+(:class:`ehdfem.solids.fe.meshed.MeshedBodies`): U_r and U_phi hat-averaged, and the normal one
+as the surface's vertical motion U_z - U_r dz/dr. Loads and read-outs being the same balanced
+functionals, the 5N x 5N matrix of the loads against their own directions (the pressure against
+the gap opening sphere_normal - wall_normal, each shear against its face's displacement in its
+direction) times diag(m), with the shear loads' sqrt(delta) divided out, is symmetric to the
+solver's rounding (Betti; docs/fem.md).
 
 Mode 1 holds two rigid motions of a free sphere: the translation along x (S = 1, D = U_z = 0)
 and the rotation about y through the centre of mass z_c (S = z - z_c, D = 0, U_z = -r). The
@@ -56,9 +64,8 @@ from ... import checks
 from ...console.progress import progress
 from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
 from . import dolfinx_compat
-from .linear_algebra import CholeskySolver, interpolation_matrix
+from .linear_algebra import CholeskySolver
 from .mesh import cached_matrices
-from .meshed import FACES
 from .solids import FESolids
 
 DEGREE = 2  # of the Lagrange elements
@@ -157,17 +164,6 @@ class _RigidMotions:
     gram: np.ndarray
 
 
-@dataclass(frozen=True)
-class _Face:
-    """The owned rows of S on one contact face (D and U_z follow them in the blocked vector)
-    and the linear interpolation from the face dofs (gathered over ranks, sorted by r and
-    taken at ``first``) to the film nodes, as a matrix (N, face dofs)."""
-
-    rows: np.ndarray
-    first: np.ndarray
-    to_film_nodes: np.ndarray
-
-
 class FEModeOne(ModeOneCompliance):
     """Mode-1 compliance of FE solids (:class:`ehdfem.solids.compliance.ModeOneCompliance`) on the
     mesh of ``solids`` (a :class:`FESolids`, whose materials, free bodies and film nodes it shares),
@@ -219,7 +215,6 @@ class FEModeOne(ModeOneCompliance):
         self._solver = CholeskySolver(stiffness, self.solids.comm)
         self._tractions = self._traction_matrices()
         self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.free_bodies]
-        self._faces = [self._face(tag) for tag in FACES]
 
     def _constraints(self):
         """(condition, owned rows) pairs: the axis conditions, the lower body's clamped facets
@@ -276,13 +271,6 @@ class FEModeOne(ModeOneCompliance):
         inertia = np.column_stack(inertia)
         return _RigidMotions(motions, inertia, bodies.comm.allreduce(inertia.T @ motions))
 
-    def _face(self, tag: int) -> _Face:
-        """The rows and the interpolation to the film nodes of the contact face ``tag``."""
-        bodies = self.solids.meshed
-        rows, r = bodies.face_dofs(self.space, 0, tag)
-        r, first = np.unique(np.concatenate(bodies.comm.allgather(r)), return_index=True)
-        return _Face(rows, first, interpolation_matrix(r, bodies.radii_a).toarray())
-
     def _loads(self, profiles) -> np.ndarray:
         """The owned rows of the load vectors (rows, columns) of nodal traction profiles:
         ``profiles[kind]`` = (upper, lower), each (N, columns) of amplitudes at the film nodes
@@ -312,15 +300,21 @@ class FEModeOne(ModeOneCompliance):
             )
         return values
 
-    def _face_displacements(self, face: _Face, values: np.ndarray) -> np.ndarray:
-        """(U_r, U_phi, U_z) at the film nodes of ``face`` from the owned rows ``values`` of a
-        block of solutions: (3N, columns), the three amplitudes stacked."""
-        comm = self.solids.comm
-        s, d, u_z = (
-            face.to_film_nodes @ np.concatenate(comm.allgather(values[face.rows + k]))[face.first]
-            for k in range(3)
-        )
-        return np.vstack([s + d, s - d, u_z])
+    def face_displacements(self, values: np.ndarray) -> list:
+        """Per contact face (upper, lower): the (3N, columns) displacement amplitudes at the
+        film nodes in the directions of the loads, (radial, hoop, normal) stacked, for the
+        owned rows ``values`` of solutions in the unknowns (S, D, U_z) (by a p / E_ref): each
+        the read-out G_i . u / m_i of its load on that face
+        (:meth:`ehdfem.solids.fe.meshed.MeshedBodies.face_read_outs`), the normal one signed as
+        the surface's vertical motion (the pressure pushes the sphere up, the lower body down),
+        U_z - U_r dz/dr on the face at fixed r."""
+        bodies = self.solids.meshed
+        reads = {kind: bodies.face_read_outs(self._tractions[kind], values) for kind in TRACTIONS}
+        weights = np.tile(bodies.film_weights, 3)[:, None]
+        return [
+            np.vstack([reads["radial"][f], reads["hoop"][f], sign * reads["pressure"][f]]) / weights
+            for f, sign in enumerate((1.0, -1.0))
+        ]
 
     def _condense(self) -> np.ndarray:
         """The (6N, 5N) unit matrix (by a p / E_ref per unit nodal load, see the module
@@ -333,19 +327,20 @@ class FEModeOne(ModeOneCompliance):
             hats = np.eye(n)[:, start : start + BLOCK] * (1.0 if kind == "pressure" else shear)
             values = self._solve(self._loads({kind: (hats, hats)}))
             columns = slice(start, start + hats.shape[1])
-            for face, rows, load in zip(
-                self._faces, (slice(0, 3 * n), slice(3 * n, 6 * n)), ("sphere", "wall"), strict=True
+            # a face's load moves only its own body: one solve serves both faces' columns
+            for f, (face, displacements) in enumerate(
+                zip(("sphere", "wall"), self.face_displacements(values), strict=True)
             ):
-                j = MODE_ONE_LOADS.index(kind if kind == "pressure" else f"{load}_{kind}")
-                unit[rows, j * n : (j + 1) * n][:, columns] = self._face_displacements(face, values)
+                j = MODE_ONE_LOADS.index(kind if kind == "pressure" else f"{face}_{kind}")
+                unit[3 * f * n : 3 * (f + 1) * n, j * n : (j + 1) * n][:, columns] = displacements
         return unit
 
     def field(self, nodal_loads):
         """The solids under the nodal loads ``nodal_loads`` ((5N,), in the order and units of
         MODE_ONE_LOADS, as the columns of ``matrix``) at this compliance's eps: a DOLFINx
         function on :attr:`space` holding (U_r, U_phi, U_z) (not the unknowns), by x0, each
-        free sphere relative to its rigid motion; at the film nodes of the faces it equals
-        ``matrix @ nodal_loads``."""
+        free sphere relative to its rigid motion; its read-outs at the film nodes
+        (:meth:`face_displacements` of its unknowns) equal ``matrix @ nodal_loads``."""
         n = len(self.radii)
         loads = np.asarray(nodal_loads, dtype=float)
         if loads.shape != (5 * n,) or not np.isfinite(loads).all():

@@ -4,15 +4,23 @@ The upper sphere and the lower body (a wall block, a coated wall block, or a sec
 are meshed in (r, z) with gmsh (meshes/contact.py through :mod:`ehdfem.solids.fe.mesh`,
 lengths by the (reduced) radius a) and solved with P2 Lagrange elements in the r-weighted
 axisymmetric form (strain with the hoop term u_r / r). The hat pressure phi_j of film node j,
-acting normally on both contact faces, gives the gap opening at every film node i,
+acting normally on both contact faces, is the load G_j = int phi_j (-n . v) r ds; the gap
+opening at film node i is the same functional of the displacement divided by the film's lumped
+weight m_i = int phi_i r dr (:attr:`ehdfem.solids.fe.meshed.MeshedBodies.film_weights`),
 
-    W_i = (u_z^upper(r_i) - c_upper) - (u_z^lower(r_i) - c_lower),
+    W_i = G_i . u' / m_i,   u' = u - sum_b Z_b c_b,
 
-the column j of the compliance matrix. All columns come from one factorisation condensed onto
-the contact faces (:mod:`ehdfem.solids.fe.condensation`), on one process. A sphere is a free
-body (:class:`ehdfem.solids.fe.bodies.FreeBody`): its film load is balanced by a uniform
-d'Alembert body force, its far pole is pinned (u_z) to make the problem definite, and c is its
-centre-of-mass displacement. A wall is clamped at its base, 40 radii below (c = 0).
+the hat-weighted vertical motion of the true surfaces at fixed r (u_z - u_r dz/dr on each face,
+u_z - u_r r/a on the sphere at leading order), the column j of the compliance matrix. A sphere
+is a free body (:class:`ehdfem.solids.fe.bodies.FreeBody`): the vertical resultant Z_b . g of
+any film load g on it is balanced by a uniform d'Alembert body force, g - w_b (Z_b . g) (Z_b its
+rigid translation along z, w_b . v = its mean v_z), its far pole is pinned (u_z), and c_b = w_b
+. u is its centre-of-mass displacement. A wall is clamped at its base, 40 radii below. Loads and
+read-outs being the same balanced functionals, M C = G^T K^-1 G is symmetric (M = diag m): the
+compliance is reciprocal to the solver's rounding, and 1/2 P . M C P is the elastic energy. The
+squeeze-shear traction acts along each face's tangent (outward), read out likewise. All columns
+come from one factorisation condensed onto the loads (:mod:`ehdfem.solids.fe.condensation`), on
+one process.
 
 Scales: stresses in units of E_ref (the upper sphere's modulus) make u come out in units of
 a p / E_ref; the film pressure unit mu V0 a / x0^2 and the gap unit x0 turn this into the
@@ -48,7 +56,7 @@ from .condensation import condensed
 from .fields import Deformation, SolidsFields
 from .linear_algebra import CholeskySolver, interpolation_matrix, scipy_matrix
 from .mesh import cached_matrices
-from .meshed import FACES, MeshedBodies
+from .meshed import MeshedBodies
 
 
 def solids_of(compliance, purpose: str) -> FESolids:
@@ -208,12 +216,8 @@ class FESolids:
         n = ufl.FacetNormal(bodies.mesh)
         self._tractions = {
             "pressure": bodies.traction_matrix(-ufl.dot(n, v)),
-            "shear": bodies.traction_matrix(v[0]),
+            "shear": bodies.traction_matrix(ufl.dot(bodies.face_tangent(), v)),
         }
-        resultant = ufl.TestFunction(bodies.profile_space) * bodies.r * bodies.ds(FACES[1])
-        form = dolfinx_compat.form(resultant)
-        self._resultant = dolfinx_compat.assemble_vector(form, []).getArray()
-        self._volumes = [bodies.body_integral(1, body.cell_tag) for body in self.free_bodies]
         self._u = dolfinx_compat.function(V)
         self._constrained = dolfinx_compat.constrained_rows(
             dolfinx_compat.form(v[0] * bodies.r * ufl.dx), self._bcs
@@ -238,29 +242,34 @@ class FESolids:
     def _film_loads(self, pressure: np.ndarray, shear: np.ndarray | None = None) -> np.ndarray:
         """The owned rows (rows, columns) of the loads of film pressures ``pressure`` (N,
         columns) at the film nodes, in the film pressure unit, normal on both contact faces,
-        and of radial shear tractions ``shear`` (the same unit, outward positive, on both
-        faces; None: none), with the d'Alembert body forces that balance the pressure on the
-        free spheres (uniform, int f . v r dx over the body = the resultant times the centre
-        weights); zero on the constrained rows."""
+        and of shear tractions ``shear`` (the same unit, along each face's outward tangent, on
+        both faces; None: none), balanced on the free spheres (:meth:`_balanced`)."""
         bodies = self.meshed
-        values = bodies.profile_values((pressure, pressure))
-        loads = bodies.traction_loads(self._tractions["pressure"], values)
+        loads = bodies.traction_loads(
+            self._tractions["pressure"], bodies.profile_values((pressure, pressure))
+        )
         if shear is not None:
             loads += bodies.traction_loads(
                 self._tractions["shear"], bodies.profile_values((shear,) * 2)
             )
-        resultant = self.comm.allreduce(self._resultant @ values)
-        for body, weights in zip(self.free_bodies, self._centre_weights, strict=True):
-            loads += np.outer(body.direction * weights, resultant)
+        return self._balanced(loads)
+
+    def _balanced(self, loads: np.ndarray) -> np.ndarray:
+        """The load columns (owned rows) with each free body's vertical resultant Z_b . g
+        balanced by its uniform d'Alembert body force, g - w_b (Z_b . g) (module docstring);
+        zero on the constrained rows."""
+        loads = loads.copy()
+        for translation, weights in zip(self._translations, self._centre_weights, strict=True):
+            loads -= np.outer(weights, self.comm.allreduce(translation @ loads))
         loads[self._constrained] = 0.0
         return loads
 
     def displacement(self, nodal_pressure, nodal_shear=None):
         """Solve for the film pressure with values ``nodal_pressure`` (N,) at the film nodes, in
         the film pressure unit: normal pressure on both contact faces, d'Alembert body forces
-        on free spheres; and a radial shear traction ``nodal_shear`` (the same unit, outward
-        positive; None: none) on both faces. Returns the displacement (a DOLFINx function, in
-        units of a p/E_ref), also kept for :meth:`gap_opening`."""
+        on free spheres; and a shear traction ``nodal_shear`` (the same unit, along each face's
+        outward tangent; None: none) on both faces. Returns the displacement (a DOLFINx
+        function, in units of a p/E_ref), also kept for :meth:`gap_opening`."""
         columns = [
             None if x is None else np.asarray(x, float)[:, None]
             for x in (nodal_pressure, nodal_shear)
@@ -283,21 +292,16 @@ class FESolids:
             for weights in self._centre_weights
         ]
 
-    def _surface(self, tag):
-        """(r, u_z) at the dofs of a contact face, gathered from all ranks and sorted by r."""
-        rows, r = self._surface_rows[tag]
-        pairs = np.concatenate(self.comm.allgather(np.column_stack([r, self._u.x.array[rows]])))
-        r, index = np.unique(pairs[:, 0], return_index=True)
-        return r, pairs[index, 1]
-
     def gap_opening(self):
-        """W (in units of a p/E_ref) at the film nodes for the current displacement."""
-        upper, lower = [*self.centres(), 0.0][:2]  # a clamped wall's centre does not move
-        r_up, u_up = self._surface(FACES[0])
-        r_lo, u_lo = self._surface(FACES[1])
-        return (np.interp(self.radii_a, r_up, u_up) - upper) - (
-            np.interp(self.radii_a, r_lo, u_lo) - lower
-        )
+        """W (in units of a p/E_ref) at the film nodes for the current displacement: the
+        pressure loads' read-outs G_i . u' / m_i of both faces, u' relative to the free
+        bodies' centres (module docstring)."""
+        owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
+        values = self._u.x.array[:owned].copy()
+        for translation, weights in zip(self._translations, self._centre_weights, strict=True):
+            values -= translation * self.comm.allreduce(weights @ values)
+        upper, lower = self.meshed.face_read_outs(self._tractions["pressure"], values[:, None])
+        return (upper + lower)[:, 0] / self.meshed.film_weights
 
     def close(self) -> None:
         """Free the factorised stiffness (PETSc memory, a few hundred MB at production
@@ -325,8 +329,9 @@ class FESolids:
         gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
         pressure unit, :meth:`ehdfem.film.reynolds.Film.squeeze_shear`) on both faces. The unit
         loads (hat pressures, then hat shear tractions) are condensed onto the contact faces on
-        one process (:meth:`on_one_process`, :meth:`_condensed`)."""
-        n = len(self.radii)
+        one process (:meth:`on_one_process`, :meth:`_condensed`); the faces' mean tangential
+        displacements per unit pressure and shear (``unit_surface_radial``,
+        ``unit_surface_radial_shear``) come with them whether or not the shear is applied."""
         arrays = cached_matrices(
             self.comm,
             ("axisymmetric", *self.cache_arguments, shear),
@@ -334,7 +339,13 @@ class FESolids:
             lambda: self.on_one_process(lambda solids: solids._condensed(shear)),
         )
         return FECompliance(
-            self, arrays["gap"][:, :n], eps, arrays.get("shear"), arrays["surface_sum"]
+            self,
+            arrays["gap"],
+            eps,
+            arrays.get("shear"),
+            arrays["surface_sum"],
+            arrays["radial_pressure"],
+            arrays["radial_shear"],
         )
 
     def on_one_process(self, compute):
@@ -360,71 +371,82 @@ class FESolids:
         return result
 
     def _condensed(self, shear: bool) -> dict:
-        """{"gap", "surface_sum"[, "shear"]}: the (N, N) unit matrices of :meth:`compliance` (in
-        units of a p/E_ref per unit nodal load), on one process, from the stiffness condensed
-        onto (:func:`ehdfem.solids.fe.condensation.condensed`) the loads (the hat pressures,
-        then the hat shear tractions, on both faces), the read-outs (u_z of each face at the
-        film nodes) and each free body's uniform d'Alembert body force w (its centre weights,
-        which also read out its centre of mass: w . u)."""
+        """{"gap", "surface_sum", "radial_pressure", "radial_shear"[, "shear"]}: the (N, N)
+        unit matrices of :meth:`compliance` (in units of a p/E_ref per unit nodal load, the
+        shear loads by sqrt(delta) p), on one process, from the stiffness condensed onto
+        (:func:`ehdfem.solids.fe.condensation.condensed`) the unit loads of each face, pressure
+        and shear (G), and each free body's body force w: the balanced loads are the columns
+        X A (:meth:`_balancing`), so every block is (X A)^T K^-1 (X A) divided by the film
+        weights m, symmetric once multiplied by them. "radial_*" is the mean of the two faces'
+        tangential (outward) displacements per unit nodal pressure and shear traction."""
         import scipy.sparse
 
         n = len(self.radii)
-        both_faces = self.meshed.face_hats[0] + self.meshed.face_hats[1]
-        kinds = {"pressure": 1.0, "shear": math.sqrt(self.delta)} if shear else {"pressure": 1.0}
-        loads = [
-            scale * (scipy_matrix(self._tractions[kind]) @ both_faces)
-            for kind, scale in kinds.items()
+        bodies = self.meshed
+        faces = [
+            scipy_matrix(self._tractions[kind]) @ hats
+            for kind in ("pressure", "shear")
+            for hats in bodies.face_hats
         ]
-        read_outs = [self._face_read_out(tag) for tag in FACES]
-        weights = scipy.sparse.csr_matrix(np.column_stack(self._centre_weights))
-        columns = scipy.sparse.hstack([*loads, *read_outs, weights]).tolil()
+        columns = scipy.sparse.hstack(
+            [*faces, scipy.sparse.csr_matrix(np.column_stack(self._centre_weights))]
+        ).tolil()
+        balancing = self._balancing(columns.tocsr(), n)
         columns[self._constrained] = 0.0
         matrix = condensed(scipy_matrix(self._solver.matrix), columns.tocsr())
-        # blocks of K^-1 between the column groups: loads L, read-outs R, body weights W
-        m = len(kinds) * n
-        load, read, weight = slice(0, m), slice(m, m + 2 * n), slice(m + 2 * n, None)
-        resultant = np.zeros(m)
-        resultant[:n] = self._resultant @ both_faces
-        directions = np.array([body.direction for body in self.free_bodies])
-        # total load of column k: l_k + sum_b direction_b w_b resultant_k
-        response = matrix[:, load] + np.outer(matrix[:, weight] @ directions, resultant)
-        centres = [*response[weight], np.zeros(m)][:2]
-        upper, lower = (response[read][k * n : (k + 1) * n] - centres[k] for k in range(2))
-        gap, surface_sum = upper - lower, upper + lower
-        arrays = {"gap": gap[:, :n], "surface_sum": surface_sum[:, :n]}
+        # the film's loads and read-outs as combinations of the face columns: pressure on both
+        # faces, shear on both faces (by sqrt(delta)), the surfaces' vertical motion (upper
+        # minus lower face's pressure functional) and the faces' mean tangential motion
+        unit = np.eye(n)
+        combinations = np.zeros((columns.shape[1], 4 * n))
+        for k, weights in enumerate(([1, 1, 0, 0], [0, 0, 1, 1], [1, -1, 0, 0], [0, 0, 0.5, 0.5])):
+            for face, weight in enumerate(weights):
+                combinations[face * n : (face + 1) * n, k * n : (k + 1) * n] = weight * unit
+        combinations[:, n : 2 * n] *= math.sqrt(self.delta)
+        mixed = balancing @ combinations
+        blocks = (mixed.T @ matrix @ mixed) / np.tile(bodies.film_weights, 4)[:, None]
+        pressure, shears = slice(0, n), slice(n, 2 * n)
+        arrays = {
+            "gap": blocks[pressure, pressure],
+            "surface_sum": blocks[2 * n : 3 * n, pressure],
+            "radial_pressure": blocks[3 * n :, pressure],
+            "radial_shear": blocks[3 * n :, shears],
+        }
         if shear:
-            arrays["shear"] = gap[:, n:]
+            arrays["shear"] = blocks[pressure, shears]
         return arrays
 
-    def _face_read_out(self, tag):
-        """The sparse (unknowns, N) columns whose products with a displacement are its u_z at
-        the film nodes on the contact face ``tag`` (linear between the face's dofs); on one
-        process (a rank's own face dofs would not bracket every film node)."""
-        import scipy.sparse
+    def _balancing(self, columns, n: int) -> np.ndarray:
+        """The matrix A (columns x columns) whose product with the face load ``columns`` X (4N
+        face loads, then the free bodies' w_b) balances each on the free bodies: X A = X - sum_b
+        w_b (Z_b . X), as :meth:`_balanced` does to a load (serial)."""
+        balancing = np.eye(columns.shape[1])
+        for b, translation in enumerate(self._translations):
+            balancing[4 * n + b] -= columns.T @ translation
+        return balancing
 
-        rows, r = self._surface_rows[tag]
-        r, first = np.unique(r, return_index=True)
-        interpolation = interpolation_matrix(r, self.radii_a).T.tocoo()
-        owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
-        return scipy.sparse.csr_matrix(
-            (interpolation.data, (rows[first][interpolation.row], interpolation.col)),
-            shape=(owned, len(self.radii)),
-        )
+    @cached_property
+    def _translations(self):
+        """Per free body, the owned entries of its rigid translation along z, Z_b (1 on its
+        u_z dofs, 0 elsewhere)."""
+        translations, bodies = [], self.meshed
+        for body in self.free_bodies:
+            translation = dolfinx_compat.function(self.space)
+            cells = bodies.cell_tags.find(body.cell_tag)
+            translation.interpolate(lambda x: np.vstack([0 * x[0], 1 + 0 * x[0]]), cells)
+            owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
+            translations.append(translation.x.array[:owned].copy())
+        return translations
 
     @cached_property
     def _centre_weights(self):
         """Per free body, the owned entries of the vector w with w.u = its centre-of-mass u_z."""
         weights, bodies = [], self.meshed
-        for body, volume in zip(self.free_bodies, self._volumes, strict=True):
+        for body in self.free_bodies:
             form = dolfinx_compat.form(self._test[1] * bodies.r * bodies.dx(body.cell_tag))
             vector = dolfinx_compat.assemble_vector(form, [])
-            weights.append(vector.getArray() / volume)
+            weights.append(vector.getArray() / bodies.body_integral(1, body.cell_tag))
         return weights
-
-    @cached_property
-    def _surface_rows(self):
-        """Per contact face tag: the owned u_z rows of the solution vector and their r."""
-        return {tag: self.meshed.face_dofs(self.space, 1, tag) for tag in FACES}
 
     @cached_property
     def _fields(self) -> SolidsFields:
@@ -441,7 +463,11 @@ class FECompliance(LinearCompliance):
     """Compliance of FE solids at the film nodes (the interface of :mod:`ehdfem.solids.compliance`):
     C = solids.scale(eps) * the condensed matrix of gap openings per unit nodal pressure.
     ``solids`` (the :class:`FESolids`) and ``eps`` are kept for the full fields
-    (:meth:`FESolids.deformation`)."""
+    (:meth:`FESolids.deformation`). ``unit_surface_radial`` and ``unit_surface_radial_shear``
+    (None: not computed): the mean tangential (outward) displacement of the two faces,
+    (u_t(sphere) + u_t(lower)) / 2 at the film nodes, per unit nodal pressure and per unit nodal
+    squeeze-shear traction (by sqrt(delta) mu V0 a / x0^2), in units of a p / E_ref (times
+    :meth:`factor` for x0), as the other unit matrices."""
 
     model = "fem"
 
@@ -452,8 +478,12 @@ class FECompliance(LinearCompliance):
         eps: float,
         unit_shear=None,
         unit_surface_sum=None,
+        unit_surface_radial=None,
+        unit_surface_radial_shear=None,
     ):
         self.solids = solids
+        self.unit_surface_radial = unit_surface_radial
+        self.unit_surface_radial_shear = unit_surface_radial_shear
         super().__init__(solids.radii, unit_matrix, eps, unit_shear, unit_surface_sum)
 
     def factor(self, eps: float) -> float:

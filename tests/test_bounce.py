@@ -272,6 +272,7 @@ def test_command_writes_trajectory_contacts_json_and_plot(tmp_path, capsys):
     summary = json.loads((out / "bounce.json").read_text())
     assert summary["contacts"] == 1 and 0 < summary["first_e"] < 0.97
     assert summary["inputs"]["e_dry"] == 0.97
+    assert summary["provenance"]["command"][:2] == ["ehdfem", "bounce"]
     header = (out / "trajectory.csv").read_text().splitlines()[0]
     assert header.startswith("time,gap,velocity,phase")
     assert "rebound" in (out / "contacts.csv").read_text()

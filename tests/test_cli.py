@@ -226,6 +226,7 @@ def test_render_is_quiet(tmp_path):
     assert code == 0, err
     assert not [line for line in (out + err).splitlines() if COMPILER_OR_VTK.search(line)]
     assert json.loads(out)["model"] == "fem" and "wrote" in err
+    assert json.loads(out)["provenance"]["command"][:2] == ["ehdfem", "render"]
     assert (tmp_path / "r.png").stat().st_size > 10_000
 
 

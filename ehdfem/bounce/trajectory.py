@@ -57,9 +57,9 @@ from ..inputs.scales import (
     stokes_number,
 )
 from ..motion.timestepping import IntegratorOptions
+from ..outputs import provenance
 from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
-from ..version import __version__
 
 GRAVITY = 9.81  # m/s^2
 DRAG_LAWS = ("schiller-naumann", "abraham", "stokes")
@@ -513,13 +513,14 @@ class BounceResult:
         """The contacts as rows (:meth:`Contact.row`, numbered from 1)."""
         return [{"contact": i + 1, **c.row()} for i, c in enumerate(self.contacts)]
 
-    def summary(self) -> dict:
-        """The results as a JSON-ready dict: status, contacts, apexes, energy balance, the
-        ehdfem version and every input."""
+    def summary(self, command: list[str] | None = None) -> dict:
+        """The results as a JSON-ready dict: status, contacts, apexes, energy balance, where
+        it comes from (:func:`ehdfem.outputs.provenance.record`, ``command`` its command line,
+        default sys.argv) and every input."""
         inputs = asdict(self.inputs)
         first = self.contacts[0] if self.contacts else None
         return {
-            "ehdfem_version": __version__,
+            "provenance": provenance.record(command),
             "status": self.status,
             "model": self.model,
             "contacts": len(self.contacts),

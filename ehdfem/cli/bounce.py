@@ -120,7 +120,7 @@ def bounce_command(args) -> int:
         max_bounces=args.max_bounces,
         rest_apex=args.rest_apex,
     )
-    summary = result.summary()
+    summary = result.summary(args.command_line)
     report = report_stream(args)
     diameter = inputs.diameter
     print(

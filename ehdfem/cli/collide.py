@@ -148,7 +148,7 @@ def render_command(args) -> int:
     args.model = "fem"  # no option of render: its pictures are of the FE solids
     result = collide(collision_inputs(args), run_config(args))
     report = report_stream(args)
-    write_json(result.summary(), args.json)
+    write_json(result.summary(args.command_line), args.json)
     hist = result.normal.history
     time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
     pressure = dict(field_snapshots(result.normal, [time]))[time]

@@ -127,6 +127,17 @@ def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
     assert name in err and "Traceback" not in err
 
 
+def test_a_result_outside_the_theorys_range_is_warned_of_and_flagged(capsys):
+    """St 1000, eps 0.1, delta 0.1 compresses the sphere by 1.78 radii: one warning line in
+    the command's own form, and the flag in the JSON."""
+    assert main(["collide", "--St", "1000", "--eps", "0.1", "--delta", "0.1", "--json", "-"]) == 0
+    captured = capsys.readouterr()
+    warned = [line for line in captured.err.splitlines() if "warning" in line]
+    assert len(warned) == 1
+    assert warned[0].startswith("ehdfem collide: warning: the half-space theory is outside")
+    assert json.loads(captured.out)["halfspace_range_flag"] is True
+
+
 def test_abbreviated_options_are_refused(capsys):
     """argparse would read --sphere-mod as --sphere-modulus, and in a command without --radius
     read --radius as --radius-ratio: an option is taken only as spelt."""

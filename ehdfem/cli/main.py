@@ -14,13 +14,16 @@ Output: the results table on standard output, or on standard error when ``--json
 JSON alone on standard output. The form compiler's build log and VTK's warnings are hidden
 unless ``--verbose`` (:mod:`ehdfem.console.quiet`); progress bars show on a terminal only
 (:mod:`ehdfem.console.progress`). Bad input: ``ehdfem <command>: error: <flag>: <message>``
-and exit status 2.
+and exit status 2. A result outside a model's checked range (the half-space theory's range, the
+sliding film's superposition or energy) is warned of as ``ehdfem <command>: warning:
+<message>`` on standard error, once (by MPI rank 0), and flagged in the result.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 
 from .. import checks
 from ..console.quiet import is_quiet, set_quiet
@@ -72,6 +75,18 @@ def flag_of(parser: argparse.ArgumentParser, name: str | None) -> str | None:
     return None
 
 
+def _warning_printer(command: str):
+    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` on standard
+    error, on MPI rank 0 only."""
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        mpi = sys.modules.get("mpi4py.MPI")
+        if mpi is None or mpi.COMM_WORLD.rank == 0:
+            print(f"ehdfem {command}: warning: {message}", file=sys.stderr)
+
+    return show
+
+
 def main(argv=None) -> int:
     """The ``ehdfem`` command; returns the exit status (0 done, 2 bad input, 3 solver
     failure)."""
@@ -81,7 +96,9 @@ def main(argv=None) -> int:
     was_quiet = is_quiet()
     set_quiet(not args.verbose)
     try:
-        return COMMANDS[args.command][2](args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _warning_printer(args.command)
+            return COMMANDS[args.command][2](args)
     except checks.InputError as err:
         flag = flag_of(commands[args.command], err.name)
         where = f"{flag}: " if flag else ""

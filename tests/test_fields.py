@@ -154,8 +154,11 @@ def test_si_fields_are_the_scaled_fields_times_the_scales(written):
 def test_warp_at_factor_one_opens_the_gap_by_the_compliance(written):
     """The mesh and ``displacement_a`` share the unit a: warped at factor 1, the gap on the
     axis between the sphere's pole (r = 0, z = delta) and the wall (r = 0, z = 0) opens by
-    delta W(0), W = C P the compliance's gap opening (by x0) at the first film node (1e-8: the
-    vertex values of the P2 solution, exact to the solve)."""
+    delta W(0), W = C P the compliance's gap opening (by x0) at the first film node. W(0) is
+    the load's own functional (the average over the first film node's hat, docs/fem.md), the
+    warp the vertex value on the axis: they differ by the displacement's curvature over the
+    hat (measured 7.3e-4 here; 1e-2 asserted, against the factor 1/delta = 100 that mixed
+    length units would give)."""
     compliance, folder = written
     if MPI.COMM_WORLD.rank != 0:
         return
@@ -167,7 +170,7 @@ def test_warp_at_factor_one_opens_the_gap_by_the_compliance(written):
             warped = points + point[f"displacement_{unit}"]
             gap = warped[pole, 1].mean() - warped[wall, 1].mean()
             opening = compliance.deflection(nodal)[0] * DELTA * length
-            assert gap - DELTA * length == pytest.approx(opening, rel=1e-8)
+            assert gap - DELTA * length == pytest.approx(opening, rel=1e-2)
 
 
 def test_regions_are_tagged_by_body(written):

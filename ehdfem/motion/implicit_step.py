@@ -4,7 +4,8 @@ Scaled as in :mod:`ehdfem.motion.normal`: pressure P by mu V0 a / x0^2 at the fi
 x0, velocity V by V0, time by x0/V0. With the compliance C (W = C P, by x0) and a BDF formula
 dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.motion.timestepping`) the step solves
 
-    m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
+    m (a0 theta H + past_(theta H)) / dt + K(H, P) P
+        + sqrt(delta) B(theta H) (a0 U + past_U) / dt = 0     at the wet film nodes,
     a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt (f.P + sum_i F_i) = 0,
     H = X + S(R) + C P + C_T T(H0, P),   H0 = X + S(R) + C P,
 
@@ -17,12 +18,16 @@ paraboloid). C_T T is the opening by the squeeze-shear traction T = -(H/2) dP/dR
 H0, the film without its own shear opening (the neglected product is of relative size
 sqrt(delta) kappa (W_shear / H)), and the Newton matrix leaves the shear opening out (it is
 O(sqrt(delta)) of the pressure's), so the simplified Newton still contracts while the residual
-holds it in full. The Jacobian is dense (the compliance couples all nodes). It is
-factorised only when needed (simplified Newton): the LU
-(:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while a0/dt
-has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that become dry,
-wet or cavitated, and the columns of nodes whose unknown switches between P and theta at a
-mass-conserving cavity, are swapped in by the Woodbury identity.
+holds it in full. U = C_r P + C_rT T(H0, P) is the faces' mean radial displacement (by x0) when
+the compliance gives it (:class:`SurfaceMotion`), and B the film's transport of the liquid it
+drags (:meth:`ehdfem.film.reynolds.Film.surface_transport`); the Newton matrix holds
+sqrt(delta) (a0/dt) B C_r, with B's dependence on H and T's on P and X lagged like the shear
+opening (docs/model.md, "Tangential surface effects at order sqrt(delta)"). The Jacobian is
+dense (the compliance couples all nodes). It is factorised only when needed (simplified Newton):
+the LU (:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while
+a0/dt has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that
+become dry, wet or cavitated, and the columns of nodes whose unknown switches between P and theta
+at a mass-conserving cavity, are swapped in by the Woodbury identity.
 """
 
 from __future__ import annotations

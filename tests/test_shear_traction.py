@@ -107,10 +107,11 @@ def test_fe_shear_opening_matches_the_half_space(sphere, wall, delta, tolerance)
 
 
 def test_energy_balance_with_the_shear_traction():
-    """Half-space solids with the squeeze-shear traction (delta = 0.05, St = 10, eps = 1e-3,
-    no cavitation): kinetic + elastic (with the pressure's work on the shear opening) +
-    dissipated energy stays the impact energy, 9.3e-5 at rtol 2e-6 (bound 5e-4; 2.5e-4 without
-    the shear); the outflow's shear thins the film and lowers e_n (by 1.2 % here)."""
+    """Half-space solids with the tangential surface effects (delta = 0.05, St = 10,
+    eps = 1e-3, no cavitation): kinetic + elastic (with the film's work on the shear opening and
+    on the faces' radial motion) + dissipated energy stays the impact energy, 4.1e-5 at rtol
+    2e-6 (bound 5e-4); the outflow's shear and the liquid the faces carry outwards in the
+    rebound thin the film and lower e_n (by 2.9 % here: 1.2 % from the shear opening)."""
     from ehdfem import CollisionParameters, IntegratorOptions, collide
 
     options = IntegratorOptions(rtol=2e-6)
@@ -123,7 +124,7 @@ def test_energy_balance_with_the_shear_traction():
     ]
     assert [r.summary()["shear_traction"] for r in results] == [False, True]
     assert results[1].normal.energy_error < 5e-4
-    assert 0.005 < 1 - results[1].normal.e_n / results[0].normal.e_n < 0.02
+    assert 0.02 < 1 - results[1].normal.e_n / results[0].normal.e_n < 0.04
 
 
 @pytest.mark.parametrize("layer", ["thin", "immersed"])

@@ -178,10 +178,24 @@ class FilmState:
     force_weights: np.ndarray
     dry: np.ndarray
     edge_radius: float
+    transport: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def flux(self, pressure: np.ndarray) -> np.ndarray:
         """(K(H) P)_i, the net outward lubrication flux from node i (times 2 pi, scaled)."""
         return tridiagonal_product(self.conductance, pressure)
+
+    def surface_flux(self, surface_velocity: np.ndarray) -> np.ndarray:
+        """(B U_t)_i, the net outward flux from node i of the liquid the surfaces carry at their
+        mean radial velocity U_t (by V0; :meth:`Film.surface_transport`, held in ``transport``),
+        to be multiplied by sqrt(delta)."""
+        return tridiagonal_product(self.transport, surface_velocity)
+
+    def surface_flux_weights(self, pressure: np.ndarray) -> np.ndarray:
+        """w = B^T P, so that w . v = P . (B v) (zero without ``transport``)."""
+        if self.transport is None:
+            return np.zeros_like(pressure)
+        lower, diagonal, upper = self.transport
+        return tridiagonal_product((np.roll(upper, 1), diagonal, np.roll(lower, -1)), pressure)
 
 
 def tridiagonal_product(bands, vector):
@@ -562,6 +576,35 @@ class Film:
         if cavitated is not None:
             free &= ~np.asarray(cavitated, bool)
         return free
+
+    def surface_transport(self, film_thickness: np.ndarray, fill=None) -> tuple:
+        """Bands (lower, diagonal, upper) of B, (B v)_i = int phi_i d/dR (R theta H v) dR: the
+        net outward flux from node i of the liquid that the surfaces carry at the nodal mean
+        radial velocity v (P1 on the grid's cells, also on a cut element, whose dry right node
+        keeps its velocity), by parts -int phi_i' R theta H v dR plus, at the immersed film's
+        last node, the outflow R_N theta_N H_N v_N. H (by x0) at the Gauss points with the
+        undeformed gap exact between nodes, as the conductance: exact for the paraboloid and
+        linear theta; theta the nodal ``fill`` (1 if not given). Scaled: R by sqrt(a x0), v by
+        V0; sqrt(delta) B v is in the units of the film's rows."""
+        h = film_thickness
+        n = len(self.radii)
+        _, _, el = self._elements(h)
+        regular = el.right >= 0
+        full = self._length[np.minimum(el.left, n - 2)]
+        rising = (el.gauss_r - self.radii[el.left, None]) / full[:, None]
+        content = self._gauss_thickness(el) * _at_gauss_points(el, fill, 1.0)
+        weight = _GAUSS_W * el.gauss_r * content  # R theta H times the element's length over it
+        from_left = (weight * (1.0 - rising)).sum(axis=1)
+        from_right = (weight * rising).sum(axis=1)
+        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+        np.add.at(diagonal, el.left, from_left)
+        np.add.at(upper, el.left, from_right)
+        np.add.at(lower, el.right[regular], -from_left[regular])
+        np.add.at(diagonal, el.right[regular], -from_right[regular])
+        if self.layer == "immersed":
+            theta = 1.0 if fill is None else fill[-1]
+            diagonal[-1] += self.radii[-1] * theta * h[-1]
+        return lower, diagonal, upper
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
         """T at the nodes: the radial shear traction -(H/2) dP/dR that the pressure-driven flow

@@ -85,10 +85,12 @@ class CollisionParameters:
     roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
     (:mod:`ehdfem.film.viscosity`); gap "paraboloid" (the asymptotic theory), "exact" (the true
     spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.film.gap`);
-    shear_traction: load the solids with the squeeze flow's shear traction too (True), only
-    with the pressure (False), or None, the model's default (on for the FE solids, off for the
-    half-space theory; :mod:`ehdfem.solids.halfspace`); external_force: a constant force on the
-    sphere, scaled by 6 pi mu V0 a^2 / x0, positive away from the wall (finite; 0: none);
+    shear_traction: the tangential surface effects of order sqrt(delta) (True: the squeeze
+    flow's shear traction loads the solids too and the film carries the liquid the faces' radial
+    velocity drags), only the pressure (False), or None, the model's default (on for the FE
+    solids, off for the half-space theory; :mod:`ehdfem.solids.halfspace`, docs/model.md);
+    external_force: a constant force on the sphere, scaled by 6 pi mu V0 a^2 / x0, positive
+    away from the wall (finite; 0: none);
     buoyant_weight: the sphere's weight less the displaced fluid's, (m - rho_f V_s) g, scaled
     likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`).
     """
@@ -146,7 +148,8 @@ class CollisionParameters:
     )
     shear_traction: bool | None = setting(
         None,
-        help="load the solids with the squeeze flow's shear traction too",
+        help="tangential surface effects: the squeeze flow's shear traction on the solids and "
+        "the liquid their radial velocity carries",
         default_text="on for FE solids, off for the half-space theory",
     )
     external_force: float = setting(

@@ -4,10 +4,12 @@ Scaled (DSH 1986): time by x0/V0, gap X and film thickness H by x0, velocity V b
 P by mu V0 a / x0^2 at the film nodes, force by 6 pi mu V0 a^2 / x0, radius by sqrt(a x0).
 Energies are by m V0^2 / St, so that the kinetic energy is St V^2 / 2 (St / 2 at impact), the
 elastic energy stored in the solids is (1/6) P.M C P (M the film's lumped mass, C the
-compliance; with the squeeze-shear traction, plus the pressure's work on the shear opening,
-(1/3) int P.M dW_shear), the dissipation is the time integral of the film's viscous
-dissipation rate (:meth:`ehdfem.film.reynolds.Film.dissipation_rate`) and the work is that of the
-forces applied to the sphere since first touch (:class:`ehdfem.motion.forces.SphereForce`;
+compliance; with the tangential surface effects, plus the pressure's work on the shear
+opening, (1/3) int P.M dW_shear, and the film's work on the faces' radial motion,
+(sqrt(delta)/3) int P.B dU, B the film's surface transport), the dissipation is the time
+integral of the film's viscous dissipation rate
+(:meth:`ehdfem.film.reynolds.Film.dissipation_rate`) and the work is that of the forces
+applied to the sphere since first touch (:class:`ehdfem.motion.forces.SphereForce`;
 F_ext (X - 1) for a constant force). Without cavitation and with e_dry = 1 the balance
 kinetic + elastic + dissipated - work = St / 2 holds to discretisation error.
 """
@@ -29,7 +31,9 @@ class NormalHistory:
     ``pressure``, ``fill`` and ``film_thickness`` are (steps, nodes): ``fill`` is the liquid
     fraction theta of the gap (1 where the film is full, and everywhere but in mass-conserving
     cavities), so theta H is the liquid per area (by x0). ``force`` is the film's force
-    (1/3) int P R dR; ``work`` the applied forces' work on the sphere.
+    (1/3) int P R dR; ``work`` the applied forces' work on the sphere. ``surface_radial``
+    (steps, nodes): the faces' mean radial displacement U (by x0), recorded only when the film
+    carries the surfaces' radial velocity (empty otherwise).
     """
 
     time: list = field(default_factory=list)
@@ -46,6 +50,7 @@ class NormalHistory:
     pressure: list = field(default_factory=list)
     fill: list = field(default_factory=list)
     film_thickness: list = field(default_factory=list)
+    surface_radial: list = field(default_factory=list)
 
     def arrays(self):
         """Convert every history to a numpy array in place; returns self."""
@@ -56,9 +61,9 @@ class NormalHistory:
     def record(self, time, gap, velocity, pressure, fill, h, state: FilmState, energies):
         """Append one accepted step. ``energies``: (the sphere
         (:class:`ehdfem.motion.sphere.Sphere`), compliance matrix, full lumped mass, dissipation
-        so far, the pressure's work on the shear opening so far), from which the kinetic and
-        elastic energies and the applied forces' work are formed."""
-        sphere, compliance, mass, dissipated, shear_work = energies
+        so far, the film's work on the tangential surface effects so far), from which the
+        kinetic and elastic energies and the applied forces' work are formed."""
+        sphere, compliance, mass, dissipated, tangential_work = energies
         self.time.append(time)
         self.gap.append(gap)
         self.velocity.append(velocity)
@@ -67,7 +72,8 @@ class NormalHistory:
         self.min_film.append(h.min())
         self.edge_radius.append(state.edge_radius)
         self.kinetic.append(sphere.kinetic_energy(velocity))
-        self.elastic.append(float(mass * pressure @ (compliance @ pressure)) / 6.0 + shear_work)
+        normal_work = float(mass * pressure @ (compliance @ pressure)) / 6.0
+        self.elastic.append(normal_work + tangential_work)
         self.dissipated.append(dissipated)
         self.work.append(sphere.work(SphereState(time, gap, velocity, h)))
         self.pressure.append(pressure)

@@ -4,7 +4,8 @@ Scaled as in :mod:`ehdfem.motion.normal`: pressure P by mu V0 a / x0^2 at the fi
 x0, velocity V by V0, time by x0/V0. With the compliance C (W = C P, by x0) and a BDF formula
 dy/dT ~ (a0 y + past_y) / dt (:mod:`ehdfem.motion.timestepping`) the step solves
 
-    m (a0 theta H + past_(theta H)) / dt + K(H, P) P = 0     at the wet film nodes,
+    m (a0 theta H + past_(theta H)) / dt + K(H, P) P
+        + sqrt(delta) B(theta H) (a0 U + past_U) / dt = 0     at the wet film nodes,
     a0 X + past_X - dt V = 0,     St (a0 V + past_V) - dt (f.P + sum_i F_i) = 0,
     H = X + S(R) + C P + C_T T(H0, P),   H0 = X + S(R) + C P,
 
@@ -17,17 +18,21 @@ paraboloid). C_T T is the opening by the squeeze-shear traction T = -(H/2) dP/dR
 H0, the film without its own shear opening (the neglected product is of relative size
 sqrt(delta) kappa (W_shear / H)), and the Newton matrix leaves the shear opening out (it is
 O(sqrt(delta)) of the pressure's), so the simplified Newton still contracts while the residual
-holds it in full. The Jacobian is dense (the compliance couples all nodes). It is
-factorised only when needed (simplified Newton): the LU
-(:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while a0/dt
-has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that become dry,
-wet or cavitated, and the columns of nodes whose unknown switches between P and theta at a
-mass-conserving cavity, are swapped in by the Woodbury identity.
+holds it in full. U = C_r P + C_rT T(H0, P) is the faces' mean radial displacement (by x0) when
+the compliance gives it (:class:`SurfaceMotion`), and B the film's transport of the liquid it
+drags (:meth:`ehdfem.film.reynolds.Film.surface_transport`); the Newton matrix holds
+sqrt(delta) (a0/dt) B C_r, with B's dependence on H and T's on P and X lagged like the shear
+opening (docs/model.md, "Tangential surface effects at order sqrt(delta)"). The Jacobian is
+dense (the compliance couples all nodes). It is factorised only when needed (simplified Newton):
+the LU (:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while
+a0/dt has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that
+become dry, wet or cavitated, and the columns of nodes whose unknown switches between P and theta
+at a mass-conserving cavity, are swapped in by the Woodbury identity.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 
 import numpy as np
@@ -73,21 +78,45 @@ class _Iterate:
     sets: tuple
 
 
+@dataclass(frozen=True)
+class SurfaceMotion:
+    """The faces' mean radial displacement U = C_r P (by x0, positive away from the axis; the
+    part the squeeze shear causes is of second order in the flux, docs/model.md) and
+    sqrt(delta), the size of the flux it carries relative to the film's: the film's rows gain
+    sqrt(delta) B dU/dT (module docstring)."""
+
+    matrix: np.ndarray
+    sqrt_delta: float
+
+    def displacement(self, pressure) -> np.ndarray:
+        """U at the film nodes for nodal P (by x0)."""
+        return self.matrix @ pressure
+
+
 class ImplicitStep:
     """Newton for one step of the coupled system (module docstring).
 
     ``film``: :class:`ehdfem.film.reynolds.Film`; ``compliance_matrix``: C (by x0 per unit
     pressure); ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the
     sphere's equation of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T
-    (by x0 per unit T) or None.
+    (by x0 per unit T) or None; ``surface_motion``: the surfaces' mean radial displacement
+    (:class:`SurfaceMotion`) or None (not carried in the flux).
     """
 
     def __init__(
-        self, film: Film, compliance_matrix, cavitation, sphere, options=None, shear_matrix=None
+        self,
+        film: Film,
+        compliance_matrix,
+        cavitation,
+        sphere,
+        options=None,
+        shear_matrix=None,
+        surface_motion: SurfaceMotion | None = None,
     ):
         self.film = film
         self.compliance = np.asarray(compliance_matrix, dtype=float)
         self.shear = shear_matrix
+        self.surface_motion = surface_motion
         self.compliance_diagonal = np.diag(self.compliance).copy()
         self.cavitation = cavitation
         self.sphere = sphere
@@ -101,13 +130,16 @@ class ImplicitStep:
         return self.thickness_parts(pressure, gap)[0]
 
     def thickness_parts(self, pressure, gap):
-        """(H, W_shear): the film thickness and its shear opening C_T T(H0, P) (by x0; None
-        without the shear traction), T formed with H0 = X + S(R) + C P."""
+        """(H, W_shear, U): the film thickness, its shear opening C_T T(H0, P) and the faces'
+        mean radial displacement C_r P (by x0; None without the shear traction, without the
+        surface motion), T formed with H0 = X + S(R) + C P."""
         h0 = gap + self.undeformed + self.compliance @ pressure
+        motion = self.surface_motion
+        radial = None if motion is None else motion.displacement(pressure)
         if self.shear is None:
-            return h0, None
+            return h0, None, radial
         opening = self.shear @ self.film.squeeze_shear(h0, pressure)
-        return h0 + opening, opening
+        return h0 + opening, opening, radial
 
     def solve(self, guess, step, a0, past, time) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step to the time ``time``, where
@@ -161,13 +193,17 @@ class ImplicitStep:
     def _residual(self, pressure, gap, velocity, fill, cavitated, step, a0, past, time):
         """The residual at an iterate, with the cavitation model's rows and the sphere's;
         returns (iterate, cavitated, theta)."""
-        content_past, gap_past, velocity_past = past
-        h = self.thickness(pressure, gap)
+        content_past, gap_past, velocity_past, *radial_past = past
+        h, _, radial = self.thickness_parts(pressure, gap)
         if h.min() <= 0.0:
             raise StepFailed("film thickness not positive", np.nan)
         state = self.film.assemble(h, pressure)
         fill, cavitated = self.cavitation.wet(fill, cavitated, state.dry)
         residual = state.mass * (a0 * fill * h + content_past) / step + state.flux(pressure)
+        if radial is not None:
+            state = replace(state, transport=self.film.surface_transport(h, fill))
+            surface_velocity = (a0 * radial + radial_past[0]) / step
+            residual += self.surface_motion.sqrt_delta * state.surface_flux(surface_velocity)
 
         def sensitivity():
             return state.mass * a0 / step * self.compliance_diagonal + state.conductance[1]
@@ -257,6 +293,14 @@ class ImplicitStep:
             out[j, rows] += k_diag[rows]
             out[j, below] += k_low[rows]
             out[j, above] += k_up[rows]
+        if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
+            b_low, b_diag, b_up = state.transport
+            c = self.surface_motion.sqrt_delta * a0 / step * self.surface_motion.matrix
+            out[:, :n] += (
+                b_diag[rows, None] * c[rows]
+                + b_low[rows, None] * c[below]
+                + b_up[rows, None] * c[above]
+            )
         out[:, n] = lower[rows] + diag[rows] + upper[rows]
         if theta_nodes is not None:
             out[:, np.flatnonzero(theta_nodes)] = 0.0

@@ -38,7 +38,7 @@ import numpy as np
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
 from .history import NormalHistory
-from .implicit_step import ImplicitStep, StepFailed
+from .implicit_step import ImplicitStep, StepFailed, SurfaceMotion
 from .sphere import IMPACT_VELOCITY, LAYER_SURFACE, Sphere
 from .timestepping import (
     BDFStepper,
@@ -115,6 +115,15 @@ class NormalResult:
     gap: Paraboloid
 
 
+def _surface_motion(compliance, delta) -> SurfaceMotion | None:
+    """The faces' mean radial displacement the film's flux carries, from the compliance's
+    ``surface_radial_matrix``; None if it has none."""
+    radial = getattr(compliance, "surface_radial_matrix", None)
+    if radial is None:
+        return None
+    return SurfaceMotion(radial, float(np.sqrt(delta)))
+
+
 def solve_normal(
     params: CollisionParameters, compliance: Compliance, options: IntegratorOptions | None = None
 ) -> NormalResult:
@@ -147,36 +156,51 @@ class _NormalIntegration:
             self.sphere,
             options,
             compliance.shear_matrix,
+            _surface_motion(compliance, params.delta),
         )
         self.hist = NormalHistory()
         self.stepper = BDFStepper(options, self.hist.time)
         n = len(self.radii)
         self.pressure, self.gap, self.velocity = np.zeros(n), LAYER_SURFACE, IMPACT_VELOCITY
         self.cavitated = np.zeros(n, bool)
-        self.dissipation_rates, self.shear_work = [0.0], 0.0
+        self.dissipation_rates, self.tangential_work = [0.0], 0.0
         self.rejected = self.iterations = 0
         self.rebounding = False
         self.end_time = self.exit_velocity = np.nan
-        h, opening = self.step_solver.thickness_parts(self.pressure, self.gap)
-        state = self.film.assemble(h, self.pressure)
+        thickness = self.step_solver.thickness_parts(self.pressure, self.gap)
+        state = self.film.assemble(thickness[0], self.pressure)
         self.full = self._full(self.pressure, state)
         self.full_changed_at = 0  # the latest accepted step whose full nodes differ from before
-        self.thinnest = float(np.min(h))  # the thinnest film of the accepted steps
-        self._record(0.0, np.ones(n), (h, opening), state, 0.0)
+        self.thinnest = float(np.min(thickness[0]))  # the thinnest film of the accepted steps
+        self.surface_weights = np.zeros(n)
+        self._record(0.0, np.ones(n), thickness, state, 0.0)
 
     def _record(self, time, fill, thickness, state, dissipated):
-        """Record the current state, with ``thickness`` = (H, shear opening or None) from
-        :meth:`ImplicitStep.thickness_parts`; the pressure's work on the shear opening is
-        accumulated by the trapezoidal rule, (1/3) int P.M dW_shear (the elastic energy's
-        shear part)."""
-        (h, opening), mass = thickness, self.film.full_mass
+        """Record the current state, with ``thickness`` = (H, shear opening, the faces' mean
+        radial displacement U; None where not applied) from
+        :meth:`ImplicitStep.thickness_parts`. The film's work on the tangential surface effects
+        is accumulated by the trapezoidal rule: the pressure's work on the shear opening,
+        (1/3) int P.M dW_shear, and the work of the film on the faces' radial motion,
+        (sqrt(delta)/3) int P.B dU (docs/model.md, "Tangential surface effects at order
+        sqrt(delta)"); both are in the elastic energy."""
+        (h, opening, radial), mass = thickness, self.film.full_mass
         if opening is not None and self.hist.time:
             mean = 0.5 * (self.hist.pressure[-1] + self.pressure)
-            self.shear_work += float(mass * mean @ (opening - self.opening)) / 3.0
+            self.tangential_work += float(mass * mean @ (opening - self.opening)) / 3.0
+        if radial is not None:
+            weights = state.surface_flux_weights(self.pressure)
+            if self.hist.time:
+                mean = 0.5 * (self.surface_weights + weights)
+                change = radial - self.hist.surface_radial[-1]
+                motion = self.step_solver.surface_motion
+                self.tangential_work += motion.sqrt_delta * float(mean @ change) / 3.0
+            self.surface_weights = weights
         self.opening = opening
         compliance = self.step_solver.compliance
-        energies = (self.sphere, compliance, mass, dissipated, self.shear_work)
+        energies = (self.sphere, compliance, mass, dissipated, self.tangential_work)
         self.hist.record(time, self.gap, self.velocity, self.pressure, fill, h, state, energies)
+        if radial is not None:
+            self.hist.surface_radial.append(radial)
 
     def run(self) -> NormalResult:
         status = None
@@ -196,9 +220,10 @@ class _NormalIntegration:
         order = stepper.order()
         weights = stepper.weights(t_new, order)
         content = np.array(latest(hist.fill, order)) * np.array(latest(hist.film_thickness, order))
-        past = stepper.past(
-            weights, [content, latest(hist.gap, order), latest(hist.velocity, order)]
-        )
+        recent = [content, latest(hist.gap, order), latest(hist.velocity, order)]
+        if hist.surface_radial:
+            recent.append(latest(hist.surface_radial, order))
+        past = stepper.past(weights, recent)
         guess = stepper.guess(t_new, (hist.pressure, hist.gap, hist.velocity))
         guess[0] = np.where(self.cavitated, self.cavitation.p_cav, guess[0])
         try:

@@ -35,6 +35,9 @@ class Compliance(Protocol):
     surface_sum_matrix: np.ndarray | None  # (N, N) sum of the two surfaces' displacements along
     # z (from the wall into the sphere; by x0) per unit nodal pressure; None: zero (identical
     # half-spaces, rigid solids). The sliding film's force needs it (ehdfem.tangential.motion).
+    surface_radial_matrix: np.ndarray | None  # (N, N) mean radial displacement of the two faces,
+    # (u_r sphere face + u_r lower face)/2, positive away from the axis (by x0), per unit nodal
+    # pressure; None: zero (the surfaces' radial velocity is not carried in the film's flux)
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""
@@ -67,8 +70,10 @@ class LinearCompliance(ProportionalToEps):
     """A compliance C = factor(eps) * unit_matrix: ``unit_matrix`` comes from the solids
     (half-space kernel, FE condensation) and ``factor`` turns it into the units of the module
     docstring at a given eps; the same for the squeeze-shear opening ``unit_shear`` (None: the
-    shear traction of the film is not applied). Subclasses define ``factor``. The surfaces are
-    a sphere of radius a on a wall unless a subclass says otherwise."""
+    shear traction of the film is not applied), the faces' displacement sum along z
+    ``unit_surface_sum`` and their mean radial displacement per unit pressure
+    ``unit_surface_radial`` (None: zero). Subclasses define ``factor``. The surfaces are a
+    sphere of radius a on a wall unless a subclass says otherwise."""
 
     surface_radii = (1.0, math.inf)
 
@@ -79,20 +84,25 @@ class LinearCompliance(ProportionalToEps):
         eps: float | None,
         unit_shear=None,
         unit_surface_sum=None,
+        unit_surface_radial=None,
     ):
         self.radii = np.asarray(radii, dtype=float)
         self.unit_matrix, self.unit_shear = unit_matrix, unit_shear
         self.unit_surface_sum = unit_surface_sum
+        self.unit_surface_radial = unit_surface_radial
         self._set_eps(eps)
 
     def _set_eps(self, eps):
         self.eps = eps
         factor = self.factor(eps)
+
+        def scaled(unit):
+            return None if unit is None else factor * unit
+
         self.matrix = factor * self.unit_matrix
-        self.shear_matrix = None if self.unit_shear is None else factor * self.unit_shear
-        self.surface_sum_matrix = (
-            None if self.unit_surface_sum is None else factor * self.unit_surface_sum
-        )
+        self.shear_matrix = scaled(self.unit_shear)
+        self.surface_sum_matrix = scaled(self.unit_surface_sum)
+        self.surface_radial_matrix = scaled(self.unit_surface_radial)
 
     def deflection(self, pressure: np.ndarray) -> np.ndarray:
         """Gap opening W (by x0) for nodal pressures P (by mu V0 a / x0^2)."""

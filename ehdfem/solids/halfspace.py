@@ -31,6 +31,18 @@ with T = -(H/2) dP/dR by sqrt(delta) mu V0 a / x0^2,
     W_shear(R) = -eps sqrt(delta) kappa int_R^inf T dS,
     kappa = (pi/4) sum (1 - 2 nu)(1 + nu)/E / sum (1 - nu^2)/E   (0.449 for nu = 0.3).
 
+The same pressure moves each face radially towards the axis (Johnson, Contact Mechanics,
+1985, eq. 3.41b for the Hertz pressure; rings outside r do not move it):
+u_r(r) = -((1 - 2 nu)(1 + nu)/(E r)) int_0^r p(s) s ds. Both faces are pressed into their own
+solids and both move inwards, so their mean radial displacement U (by x0), which carries liquid
+in the film's flux (docs/model.md, "Tangential surface effects at order sqrt(delta)"), is, with
+eps = 4 theta mu V0 a^(3/2) / x0^(5/2),
+
+    U(R) = -eps (kappa/2) (1/R) int_0^R P(S) S dS     (the same kappa, for any two solids).
+
+The mean radial displacement by the squeeze shear is O(sqrt(delta) H/R) smaller still (its flux
+is of second order) and is not formed.
+
 The theory's own range: the half-spaces and the paraboloid gap stand for a sphere whose
 loaded region is small against its radius. :func:`halfspace_range` measures, over a collision,
 the largest compression and the radius that carries the film force, both by a, and flags the
@@ -143,7 +155,9 @@ class HalfSpaceCompliance(LinearCompliance):
     elasticity parameter 4 theta mu V0 a^(3/2) / x0^(5/2) (> 0; 0 gives rigid solids).
     ``shear``: None (the squeeze shear is not applied, the asymptotic theory) or (delta,
     solids) with solids the (Young's modulus, Poisson ratio) pairs of sphere and wall: then
-    ``shear_matrix`` = -eps sqrt(delta) kappa B (module docstring). ``solids``: those pairs for
+    ``shear_matrix`` = -eps sqrt(delta) kappa B and ``surface_radial_matrix`` =
+    -eps (kappa/2) Q, the faces' mean radial displacement (module docstring; the tangential
+    surface effects are switched together). ``solids``: those pairs for
     the split of the opening between the faces (each takes its share of theta,
     (1 - nu^2)/E over the sum): ``surface_sum_matrix`` = (share_sphere - share_wall) * matrix,
     None for equal shares (identical solids, the default).
@@ -153,18 +167,20 @@ class HalfSpaceCompliance(LinearCompliance):
 
     def __init__(self, radii: np.ndarray, eps: float, shear=None, solids=None):
         radii = film_nodes(radii)
-        unit_shear = None
+        unit_shear = unit_radial = None
         if shear is not None:
             delta, solids = shear
             kappa = shear_coefficient(solids)
             unit_shear = -np.sqrt(delta) * kappa * outer_integral_matrix(radii)
+            unit_radial = -0.5 * kappa * inner_moment_matrix(radii)
         kernel = influence_matrix(radii)
         self.materials, unit_sum = solids, None
         if solids is not None:
             sphere, wall = theta_shares(solids)
             if sphere != wall:
                 unit_sum = (sphere - wall) * kernel
-        super().__init__(radii, kernel, number("eps", eps, lower=0.0), unit_shear, unit_sum)
+        eps = number("eps", eps, lower=0.0)
+        super().__init__(radii, kernel, eps, unit_shear, unit_sum, unit_radial)
 
     def factor(self, eps: float) -> float:
         """The kernel is per unit eps: C = eps * kernel."""
@@ -182,6 +198,20 @@ def outer_integral_matrix(radii: np.ndarray) -> np.ndarray:
         matrix[i, i + 1 :] += half[i:]
         matrix[i, i + 1 : -1] += half[i + 1 :]
     return matrix
+
+
+def inner_moment_matrix(radii: np.ndarray) -> np.ndarray:
+    """Q[i, j] = (1/R_i) int_0^{R_i} phi_j S dS for hat functions on ``radii`` (by sqrt(a x0)),
+    exact for the piecewise linear P; row 0 (R = 0) is 0, the limit of (1/R) int_0^R P S dS."""
+    r = np.asarray(radii, dtype=float)
+    left, right = r[:-1], r[1:]
+    cells = np.zeros((len(r) - 1, len(r)))
+    cell = np.arange(len(r) - 1)
+    cells[cell, cell] = (right - left) * (2.0 * left + right) / 6.0
+    cells[cell, cell + 1] = (right - left) * (left + 2.0 * right) / 6.0
+    moments = np.vstack([np.zeros(len(r)), np.cumsum(cells, axis=0)])
+    moments[1:] /= r[1:, None]
+    return moments
 
 
 def shear_coefficient(solids=IDENTICAL_SOLIDS) -> float:

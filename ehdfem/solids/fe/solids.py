@@ -329,9 +329,11 @@ class FESolids:
         gap opening per unit nodal squeeze-shear traction T (by sqrt(delta) times the film
         pressure unit, :meth:`ehdfem.film.reynolds.Film.squeeze_shear`) on both faces. The unit
         loads (hat pressures, then hat shear tractions) are condensed onto the contact faces on
-        one process (:meth:`on_one_process`, :meth:`_condensed`); the faces' mean tangential
-        displacements per unit pressure and shear (``unit_surface_radial``,
-        ``unit_surface_radial_shear``) come with them whether or not the shear is applied."""
+        one process (:meth:`on_one_process`, :meth:`_condensed`). With ``shear`` the faces'
+        mean tangential displacement per unit pressure (``unit_surface_radial``) is passed on
+        too: its rate carries liquid in the film (docs/model.md, "Tangential surface effects
+        at order sqrt(delta)"); the one per unit shear is of second order there and, as on
+        half-spaces, left out."""
         arrays = cached_matrices(
             self.comm,
             ("axisymmetric", *self.cache_arguments, shear),
@@ -344,8 +346,7 @@ class FESolids:
             eps,
             arrays.get("shear"),
             arrays["surface_sum"],
-            arrays["radial_pressure"],
-            arrays["radial_shear"],
+            arrays["radial_pressure"] if shear else None,
         )
 
     def on_one_process(self, compute):
@@ -463,11 +464,10 @@ class FECompliance(LinearCompliance):
     """Compliance of FE solids at the film nodes (the interface of :mod:`ehdfem.solids.compliance`):
     C = solids.scale(eps) * the condensed matrix of gap openings per unit nodal pressure.
     ``solids`` (the :class:`FESolids`) and ``eps`` are kept for the full fields
-    (:meth:`FESolids.deformation`). ``unit_surface_radial`` and ``unit_surface_radial_shear``
-    (None: not computed): the mean tangential (outward) displacement of the two faces,
-    (u_t(sphere) + u_t(lower)) / 2 at the film nodes, per unit nodal pressure and per unit nodal
-    squeeze-shear traction (by sqrt(delta) mu V0 a / x0^2), in units of a p / E_ref (times
-    :meth:`factor` for x0), as the other unit matrices."""
+    (:meth:`FESolids.deformation`). ``unit_surface_radial`` (None: not applied): the mean
+    tangential (outward) displacement of the two faces, (u_t(sphere) + u_t(lower)) / 2 at the
+    film nodes, per unit nodal pressure, in units of a p / E_ref (times :meth:`factor` for x0),
+    as the other unit matrices."""
 
     model = "fem"
 
@@ -479,12 +479,11 @@ class FECompliance(LinearCompliance):
         unit_shear=None,
         unit_surface_sum=None,
         unit_surface_radial=None,
-        unit_surface_radial_shear=None,
     ):
         self.solids = solids
-        self.unit_surface_radial = unit_surface_radial
-        self.unit_surface_radial_shear = unit_surface_radial_shear
-        super().__init__(solids.radii, unit_matrix, eps, unit_shear, unit_surface_sum)
+        super().__init__(
+            solids.radii, unit_matrix, eps, unit_shear, unit_surface_sum, unit_surface_radial
+        )
 
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""

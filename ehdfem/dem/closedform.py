@@ -108,11 +108,11 @@ def _errors(predicted, actual) -> dict:
 
 def table_rows(rows: list[dict]) -> list[dict]:
     """The successful rows of a study table (as read from its CSV: values as strings or
-    numbers) with every number a float, an empty cell None (for P_cav: no limit) and a missing
-    column at its default (delta and the model labels of GROUPED: a study that does not sweep
-    them holds them at their defaults). A table without the REQUIRED_COLUMNS, without a
-    successful point, or with a cell that is not a number is refused by name (column, and the
-    line of the CSV file)."""
+    numbers) with every number a float, an empty cell None (for P_cav: no limit), and delta and
+    the model labels of GROUPED at their defaults where their column or cell is empty (a study
+    that does not sweep them holds them there). A table without the REQUIRED_COLUMNS, without
+    a successful point, or with a cell that is not a number is refused by name (column, and
+    the line of the CSV file)."""
     missing = [c for c in REQUIRED_COLUMNS if not rows or c not in rows[0]]
     if missing:
         raise checks.InputError(
@@ -126,7 +126,12 @@ def table_rows(rows: list[dict]) -> list[dict]:
         raise checks.InputError(
             f"the table has no successful point to fit (status ok:...; {len(rows)} failed)"
         )
-    return [_numbers({**DEFAULTS, **{k: v for k, v in r.items() if k}}, line) for line, r in ok]
+    return [_numbers({**DEFAULTS, **_given(r)}, line) for line, r in ok]
+
+
+def _given(row: dict) -> dict:
+    """The cells of ``row`` but the empty ones of the columns with a default."""
+    return {k: v for k, v in row.items() if k and not (k in DEFAULTS and v in EMPTY)}
 
 
 def _numbers(row: dict, line: int) -> dict:

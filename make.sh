@@ -25,6 +25,17 @@ PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export MPLBACKEND=Agg
 
+# Run "$@" with its output appended to the set-up log $SETUP_LOG (made on first use); if it
+# fails, show the end of the log and stop. The terminal gets one line per step, not dpkg's.
+quietly() {
+    [ -n "${SETUP_LOG:-}" ] || SETUP_LOG=$(mktemp "${TMPDIR:-/tmp}/ehdfem-setup.XXXXXX.log")
+    if ! "$@" >>"$SETUP_LOG" 2>&1; then
+        echo "setup: failed: $*; the end of its log $SETUP_LOG:" >&2
+        tail -n 40 "$SETUP_LOG" >&2
+        exit 1
+    fi
+}
+
 setup() {
     local missing=() sudo=""
     for package in "${APT_PACKAGES[@]}"; do
@@ -33,16 +44,21 @@ setup() {
     done
     if ((${#missing[@]})); then
         [ "$(id -u)" -eq 0 ] || sudo=sudo
-        echo "setup: installing Debian packages: ${missing[*]}"
-        $sudo apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+        echo "setup: updating the Debian package lists (apt-get update)"
+        quietly $sudo apt-get update
+        echo "setup: installing Debian packages: ${missing[*]} (log: $SETUP_LOG)"
+        quietly $sudo env DEBIAN_FRONTEND=noninteractive \
+            apt-get install -y --no-install-recommends "${missing[@]}"
     fi
-    [ -x "$PY" ] || /usr/bin/python3 -m venv --system-site-packages "$VENV"
+    if [ ! -x "$PY" ]; then
+        echo "setup: creating the venv $VENV on Debian's python (system site packages)"
+        quietly /usr/bin/python3 -m venv --system-site-packages "$VENV"
+    fi
     local stamp="$VENV/.ehdfem-installed" want
     want=$(cat pyproject.toml constraints.txt | sha256sum | cut -d' ' -f1)
     if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
         echo "setup: installing ehdfem and its Python dependencies into $VENV"
-        "$PY" -m pip install -q --disable-pip-version-check -c constraints.txt -e ".[test]"
+        quietly "$PY" -m pip install --disable-pip-version-check -c constraints.txt -e ".[test]"
         echo "$want" > "$stamp"
     fi
     "$PY" -c 'import numpy, sys; sys.exit(numpy.__version__.startswith("1.") == False)' \

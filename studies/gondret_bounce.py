@@ -204,6 +204,13 @@ def plot_digitised(ax, points, unit, diameter):
         )
 
 
+def shown(run, data) -> str:
+    """What a figure of ``run`` shows: the model alone with the run's published inputs, or
+    with the digitised measurements where they were given (``data``)."""
+    measured = " and its digitised measurements" if run.label in data else ""
+    return f"Model with the inputs of Gondret et al. 2002's run {run.label}{measured}"
+
+
 def plot_case(run, row, data):
     inputs = case_inputs(run)
     unit, diameter = inputs.time_scale(), inputs.diameter
@@ -226,7 +233,7 @@ def plot_case(run, row, data):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(
-        f"Gondret et al. 2002, {run.label}: steel D = {diameter * 1e3:g} mm, "
+        f"{shown(run, data)}: steel D = {diameter * 1e3:g} mm, "
         f"mu = {run.viscosity * 1e3:g} mPa s, Re = {run.reynolds:g}",
         fontsize=10,
     )
@@ -258,7 +265,7 @@ def plot_choices(run, rows, data):
     ax.set_ylabel("gap / D")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    ax.set_title(f"{run.label}: one modelling choice changed at a time", fontsize=10)
+    ax.set_title(f"{shown(run, data)}: one modelling choice changed at a time", fontsize=10)
     fig.tight_layout()
     path = FIGURES / f"bounce_choices_{run.label}.png"
     fig.savefig(path, dpi=110)

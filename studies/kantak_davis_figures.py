@@ -13,6 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib import ticker  # noqa: E402
 
 from ehdfem.dem.closedform import (  # noqa: E402
     davis_rager_good,
@@ -25,6 +26,23 @@ from ehdfem.dem.closedform import (  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies" / "results"
 FIGURES = ROOT / "docs" / "figures"
+
+
+class PlainLogFormatter(ticker.LogFormatterSciNotation):
+    """Log-axis tick labels as plain numbers (6, 20, 0.001), on the ticks matplotlib would
+    label, instead of 6x10^0."""
+
+    def __call__(self, x, pos=None):
+        return f"{x:g}" if super().__call__(x, pos) else ""
+
+
+def plain_log_ticks(*axes) -> None:
+    """Plain-number labels on the log axes of ``axes``."""
+    for ax in axes:
+        for axis, scale in ((ax.xaxis, ax.get_xscale()), (ax.yaxis, ax.get_yscale())):
+            if scale == "log":
+                axis.set_major_formatter(PlainLogFormatter())
+                axis.set_minor_formatter(PlainLogFormatter(labelOnlyBase=False))
 
 
 def main():
@@ -66,6 +84,7 @@ def main():
     ax_c.set_xlabel("eps")
     ax_c.set_ylabel("St_c")
     ax_c.legend(fontsize=8)
+    plain_log_ticks(ax_n, ax_c)
     fig.suptitle("thin layer, delta = 0.01, P_cav = -10")
     fig.tight_layout()
     fig.savefig(FIGURES / "kantak_davis_normal.png", dpi=120)
@@ -86,6 +105,7 @@ def main():
     for ax in (ax_t, ax_s):
         ax.set_xlabel("St")
     ax_t.legend(fontsize=7)
+    plain_log_ticks(ax_t, ax_s)
     fig.suptitle("rebounding spheres; lines: the closed forms delta exp(Q(ln St, ln eps))")
     fig.tight_layout()
     fig.savefig(FIGURES / "kantak_davis_tangential.png", dpi=120)

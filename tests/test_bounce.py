@@ -300,4 +300,4 @@ def test_command_names_a_missing_or_bad_input(capsys):
         "3",
     ]
     assert main(bad) == 2
-    assert "added_mass = 3.0 is outside the allowed range [0, 1]" in capsys.readouterr().err
+    assert "--added-mass: 3.0 is outside the allowed range [0, 1]" in capsys.readouterr().err

@@ -1,6 +1,7 @@
 """`ehdfem collide`: results, JSON, plots, and refusal of bad inputs before any work; clean
 machine-readable output, quiet runs, custom materials and liquids."""
 
+import csv
 import json
 import os
 import platform
@@ -107,18 +108,21 @@ def test_film_options_reach_the_collision(capsys):
         (["--St", "10", "--eps", "1e-3", "--delta", "0"], "delta"),
         (["--St", "10", "--eps", "1e-3", "--angle", "90"], "angle"),
         (["--St", "10", "--eps", "1e-3", "--angle=-1"], "angle"),
-        (["--St", "10", "--eps", "1e-3", "--e-dry", "0"], "e_dry"),
-        (["--St", "10", "--eps", "1e-3", "--e-dry", "1.2"], "e_dry"),
-        (["--St", "10", "--eps", "1e-3", "--p-cav", "3"], "p_cav"),
+        (["--St", "10", "--eps", "1e-3", "--e-dry", "0"], "--e-dry"),
+        (["--St", "10", "--eps", "1e-3", "--e-dry", "1.2"], "--e-dry"),
+        (["--St", "10", "--eps", "1e-3", "--p-cav", "3"], "--p-cav"),
         (["--St", "nan", "--eps", "1e-3"], "St"),
         (["--example", "--sphere", "unobtainium"], "unobtainium"),
         (["--example", "--liquid", "mercury_tea"], "mercury_tea"),
         (["--St", "10"], "eps"),
         (["--St", "10", "--eps", "1e-3", "--viscosity", "barus", "--alpha=-1"], "alpha"),
-        (["--St", "10", "--eps", "1e-3", "--viscosity", "roelands"], "roelands_pressure"),
+        (["--St", "10", "--eps", "1e-3", "--viscosity", "roelands"], "--roelands-pressure"),
         (["--St", "10", "--eps", "1e-3", "--pressure-viscosity", "1e-8"], "--alpha"),
         (["--example", "--alpha", "0.1"], "--pressure-viscosity"),
-        (["--example", "--viscosity", "barus", "--pressure-viscosity", "1"], "pressure_viscosity"),
+        (
+            ["--example", "--viscosity", "barus", "--pressure-viscosity", "1"],
+            "--pressure-viscosity",
+        ),
     ],
 )
 def test_bad_inputs_are_refused_with_the_parameter_named(args, name, capsys):
@@ -292,7 +296,7 @@ def test_one_changed_value_changes_the_collision(capsys):
         (["--liquid-viscosity", "0"], "--liquid-viscosity"),
         (["--liquid-density=-1"], "--liquid-density"),
         (["--vapour-pressure=-1"], "--vapour-pressure"),
-        (["--vapour-pressure", "2e5"], "vapour_pressure"),
+        (["--vapour-pressure", "2e5"], "--vapour-pressure"),
         (["--liquid-viscosity", "nan"], "--liquid-viscosity"),
         (["--sphere", "unobtainium", "--sphere-modulus", "1e9"], "unobtainium"),
     ],
@@ -478,3 +482,185 @@ def test_provenance_without_git_has_no_commit_and_no_error(monkeypatch):
     assert provenance.git_state.__wrapped__() is None
     monkeypatch.setattr(provenance, "git_state", lambda: None)
     assert provenance.record(["ehdfem"])["git"] is None and provenance.commit_text() == ""
+
+
+# --- Paths, error form, fit's tables, the sweep's counter -------------------------------------
+
+
+def refusal(capsys, *argv) -> str:
+    """The one error line of ``ehdfem ARGV`` refused with exit status 2, before any work."""
+    assert main(list(argv)) == 2
+    err = capsys.readouterr().err
+    lines = [line for line in err.splitlines() if "error" in line]
+    assert len(lines) == 1 and "Traceback" not in err
+    return lines[0]
+
+
+SMALL_STUDY = '[grid]\nSt = [10.0]\neps = [1e-3]\n[numerics]\nnodes = 40\n[output]\ntable = "{}"\n'
+
+
+@pytest.fixture
+def places(tmp_path):
+    """A file where a folder is expected, a missing folder, an unwritable one (/proc), a study
+    file and a fit table, all in ``tmp_path``."""
+    (tmp_path / "F").write_text("a file")
+    (tmp_path / "study.toml").write_text(SMALL_STUDY.format("F/out/t.csv"))
+    table = tmp_path / "t.csv"
+    table.write_text("status,St,eps,e_n\nok:rebound,10,1e-3,0.3\nok:rebound,20,1e-3,0.6\n")
+    return tmp_path
+
+
+@pytest.mark.parametrize(
+    ("argv", "option", "reason"),
+    [
+        (["collide", *SMALL_COLLISION, "--plots", "{F}/x"], "--plots", "is a file, not a folder"),
+        (["collide", *SMALL_COLLISION, "--json", "{missing}/r.json"], "--json", "does not exist"),
+        (["collide", *SMALL_COLLISION, "--json", "/proc/r.json"], "--json", "cannot write in"),
+        (["collide", *SMALL_COLLISION, "--json", "{dir}"], "--json", "is a folder"),
+        (["collide", *SMALL_COLLISION, "--histories", "{F}/h.npz"], "--histories", "is a file"),
+        (["collide", *SMALL_COLLISION, "--fields", "{missing}/f.xdmf"], "--fields", "not exist"),
+        (["collide", "--from", "{dir}"], "--from", "is a folder"),
+        (["render", *SMALL_COLLISION, "--out", "{missing}/r.png"], "--out", "does not exist"),
+        (["render", *SMALL_COLLISION, "--animation", "{F}/a.gif"], "--animation", "is a file"),
+        (["bounce", "--out", "{F}/b", "--radius", "1e-3"], "--out", "is a file"),
+        (["bounce", "--json", "{missing}/b.json"], "--json", "does not exist"),
+        (["critical", "--eps", "1e-3", "--json", "{F}/c.json"], "--json", "is a file"),
+        (["presets", "--json", "{missing}/p.json"], "--json", "does not exist"),
+        (["fit", "{dir}/t.csv", "--json", "{missing}/f.json"], "--json", "does not exist"),
+        (["fit", "{dir}/t.csv", "--python", "{F}/forms.py"], "--python", "is a file"),
+        (["fit", "{dir}/none.csv"], "table", "does not exist"),
+        (["sweep", "{dir}/none.toml"], "study", "does not exist"),
+        (["sweep", "{dir}/study.toml"], "study", "[output] table"),
+    ],
+)
+def test_unusable_paths_are_refused_naming_the_option(places, capsys, argv, option, reason):
+    """A file where a folder must be, a missing folder for an output file (refused, not
+    made), an unwritable place, a folder for a file: one error line naming the option, before
+    any work (on main, --plots under a file ended in NotADirectoryError and --json made the
+    missing folders)."""
+    names = {"F": places / "F", "missing": places / "missing", "dir": places}
+    line = refusal(capsys, *(arg.format(**names) for arg in argv))
+    assert line.startswith(f"ehdfem {argv[0]}: error: {option}: ") and reason in line
+    assert not (places / "missing").exists()
+
+
+def test_errors_have_one_form_naming_the_option_as_typed(capsys):
+    """``ehdfem <command>: error: --flag: message``: the field's name of the library becomes
+    the option (St = 0.0 -> --St: 0.0, roelands_pressure -> --roelands-pressure), and
+    argparse's own refusals (a bad number, an option the command does not have) take the same
+    form under the command's name."""
+    line = refusal(capsys, "collide", "--St", "0", "--eps", "1e-3")
+    assert line == "ehdfem collide: error: --St: 0.0 is outside the allowed range (0, inf)"
+    line = refusal(capsys, "collide", "--St", "10", "--eps", "1e-3", "--viscosity", "roelands")
+    assert "--roelands-pressure" in line and "roelands_pressure" not in line
+    line = refusal(capsys, "collide", "--example", "--vapour-pressure", "2e5")
+    assert "--vapour-pressure" in line and "vapour_pressure" not in line
+    assert refusal(capsys, "bounce", "--radius", "1e-3").startswith(
+        "ehdfem bounce: error: the bounce needs --sphere"
+    )
+    with pytest.raises(SystemExit) as exit_info:
+        main(["collide", "--St", "x", "--eps", "1e-3"])
+    assert exit_info.value.code == 2
+    assert "ehdfem collide: error: --St: invalid float value: 'x'" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["critical", "--St", "3", "--eps", "1e-3"])
+    assert "ehdfem critical: error: unrecognized arguments: --St 3" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["--St", "0", "--eps", "1e-3"], "ehdfem collide: error: --St: "),
+        (["--St", "x", "--eps", "1e-3"], "ehdfem collide: error: --St: invalid float"),
+    ],
+)
+def test_an_error_under_mpirun_is_printed_once_with_a_failing_status(argv, expected):
+    """Under ``mpirun -n 2`` both ranks meet the same bad input: the error is printed once (by
+    rank 0; on main it was printed by each rank) and mpirun's exit status is 2."""
+    done = subprocess.run(
+        ["mpirun", "-n", "2", sys.executable, "-m", "ehdfem", "collide", *argv],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env={
+            **os.environ,
+            "OMPI_ALLOW_RUN_AS_ROOT": "1",
+            "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+            "OMPI_MCA_rmaps_base_oversubscribe": "1",
+        },
+    )
+    errors = [line for line in done.stderr.splitlines() if line.startswith("ehdfem collide:")]
+    assert len(errors) == 1 and errors[0].startswith(expected), done.stderr
+    assert done.returncode == 2
+
+
+def write_csv_table(path, rows):
+    """``rows`` as a CSV table, the union of their keys as header (empty cells where a row has
+    no value), as ehdfem sweep writes it."""
+    with path.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in rows for k in r)))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def fit_rows(eps_of=lambda St: 1e-3, **extra):
+    """A table of e_n = 0.9 (1 - 5/St) at St 6..100 (eps by ``eps_of``), with ``extra``
+    columns."""
+    return [
+        {"status": "ok:rebound", "St": St, "eps": eps_of(St), "e_n": 0.9 * (1 - 5 / St), **extra}
+        for St in (6.0, 10.0, 20.0, 50.0, 100.0)
+    ]
+
+
+def test_fit_json_writes_numbers_as_numbers_and_no_limit_as_null(tmp_path, capsys):
+    """p_cav and alpha are numbers in fit's JSON (strings on main), P_cav none is null; a
+    table without delta (a study that does not sweep it) is fitted at delta's default."""
+    table = tmp_path / "t.csv"
+    write_csv_table(table, fit_rows(p_cav=-2.0, alpha=0.5) + fit_rows(eps_of=lambda St: 1e-2))
+    assert main(["fit", str(table), "--json", "-"]) == 0
+    groups = json.loads(capsys.readouterr().out)["normal"]
+    assert [(g["p_cav"], g["alpha"], g["delta"]) for g in groups] == [
+        (-2.0, 0.5, 0.01),
+        (None, 0.0, 0.01),
+    ]
+    assert groups[0]["St_c"] == pytest.approx(5.0, rel=1e-10)
+
+
+@pytest.mark.parametrize(
+    ("rows", "expected"),
+    [
+        ([{"St": 10, "eps": 1e-3, "e_n": 0.5}], "no column status"),
+        ([{"status": "ok:rebound", "St": "x", "eps": 1e-3, "e_n": 0.5}], "column St = 'x'"),
+        ([{"status": "failed: InputError", "St": 1, "eps": 1e-3, "e_n": ""}], "no successful"),
+        (
+            fit_rows(eps_of=lambda St: St * 1e-5, angle=30.0),
+            "group(s), the most rebounding points in one is 1",
+        ),
+    ],
+)
+def test_fit_names_what_a_table_lacks(tmp_path, capsys, rows, expected):
+    """A table fit cannot use gets one error line saying what is missing (KeyError on main for
+    a table without status; a physical study, whose eps changes at every point, now says how
+    many rebounding points its groups have)."""
+    table = tmp_path / "t.csv"
+    write_csv_table(table, rows)
+    line = refusal(capsys, "fit", str(table))
+    assert line.startswith("ehdfem fit: error: table: ") and expected in line
+
+
+def test_sweep_counts_only_its_own_points_and_prints_short_numbers(tmp_path):
+    """Result files of another grid in the point folder do not count (on main: [4/1]), and
+    the progress line gives its numbers to four digits (St = 10.000000000000002 -> 10)."""
+    from ehdfem.study.sweep import Study, run_study
+
+    (tmp_path / "s.toml").write_text(
+        SMALL_STUDY.replace("[10.0]", "[10.000000000000002]").format("t.csv")
+    )
+    study = Study(tmp_path / "s.toml")
+    study.point_dir.mkdir()
+    for name in ("a", "b", "c"):  # the finished points of an earlier grid
+        (study.point_dir / f"{name}.json").write_text("{}")
+    lines = []
+    run_study(study, None, progress=lines.append)
+    assert len(lines) == 1 and lines[0].startswith("[1/1] rank 0: St=10, eps=0.001 -> ok:")
+    assert re.search(r"e_n=0\.\d{4} \(", lines[0])

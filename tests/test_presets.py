@@ -205,5 +205,5 @@ def test_progress_bars_only_on_a_terminal_of_rank_zero(monkeypatch):
     monkeypatch.setenv("EHDFEM_PROGRESS", "0")
     assert progress.progress(items) is items
     monkeypatch.setenv("EHDFEM_PROGRESS", "1")
-    monkeypatch.setattr(progress, "_rank", lambda: 1)
+    monkeypatch.setattr(progress, "rank", lambda: 1)
     assert progress.progress(items) is items and not progress.enabled()

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..console.progress import rank
 from ..inputs.settings import allowed_text, default_text, described, kind, meta
 from ..outputs import registry
 from ..study.sweep import write_atomic
@@ -28,12 +29,21 @@ class Parser(argparse.ArgumentParser):
     """An argument parser that reads -1e1, -.5 and -inf as numbers (argparse's own reads
     only -1 and -1.5 so; its subcommands' parsers are of this class too) and takes no
     abbreviated option (argparse's own would read --radius as --radius-ratio where there is
-    no --radius)."""
+    no --radius), and prints its refusals in the form of the others, once under MPI."""
 
     def __init__(self, *args, **kwargs):
         kwargs.setdefault("allow_abbrev", False)
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = NEGATIVE_NUMBER
+
+    def error(self, message: str):
+        """Exit with status 2 after ``<usage>`` and ``<prog>: error: --flag: message`` (the
+        form of every refused input; argparse's own says ``argument --flag: message``), printed
+        by MPI rank 0 only."""
+        if rank() == 0:
+            self.print_usage(sys.stderr)
+            print(f"{self.prog}: error: {message.removeprefix('argument ')}", file=sys.stderr)
+        sys.exit(2)
 
 
 def option(f) -> str:
@@ -124,8 +134,9 @@ def json_ready(value):
 
 
 def write_json(data: dict, target: str | None) -> None:
-    """Write ``data`` as strict JSON to the file ``target``, or alone to standard output when
-    ``target`` is "-"; nothing when it is None."""
+    """Write ``data`` as strict JSON to the file ``target`` (in a folder that exists:
+    :func:`ehdfem.cli.paths.output_file`), or alone to standard output when ``target`` is "-";
+    nothing when it is None."""
     if not target:
         return
     text = json.dumps(json_ready(data), indent=2, allow_nan=False)
@@ -133,7 +144,6 @@ def write_json(data: dict, target: str | None) -> None:
         sys.stdout.write(text + "\n")
         sys.stdout.flush()
     else:
-        Path(target).parent.mkdir(parents=True, exist_ok=True)
         write_atomic(Path(target), text + "\n")
 
 

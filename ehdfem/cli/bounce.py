@@ -13,6 +13,7 @@ from ..film import cavitation
 from ..inputs.scales import ATMOSPHERE
 from ..outputs import plots
 from ..study.sweep import write_csv
+from . import paths
 from .arguments import report_stream, write_json
 from .inputs import BODIES, add_body_arguments, body_hint, body_of
 
@@ -80,7 +81,8 @@ def add_bounce(b) -> None:
     num.add_argument(
         "--out",
         metavar="DIR",
-        help="write trajectory.csv, contacts.csv, bounce.json and bounce.png into DIR",
+        help="write trajectory.csv, contacts.csv, bounce.json and bounce.png into DIR (made if "
+        "missing)",
     )
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
 
@@ -92,7 +94,7 @@ def _bounce_inputs(args) -> BounceInputs:
     if args.radius is None:
         missing.append("--radius")
     if missing:
-        raise checks.InputError(f"ehdfem bounce needs {', '.join(missing)}")
+        raise checks.InputError(f"the bounce needs {', '.join(missing)}")
     return BounceInputs(
         radius=args.radius,
         **bodies,
@@ -109,6 +111,8 @@ def _bounce_inputs(args) -> BounceInputs:
 
 
 def bounce_command(args) -> int:
+    paths.output_file("json", args.json, stdout=True)
+    paths.output_folder("out", args.out)
     inputs = _bounce_inputs(args)
     result = bounce(
         inputs,
@@ -139,6 +143,7 @@ def bounce_command(args) -> int:
     write_json(summary, args.json)
     if args.out:
         out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
         write_json(summary, str(out / "bounce.json"))
         wrote = [
             write_csv(out / "trajectory.csv", result.trajectory_rows()),

@@ -14,6 +14,7 @@ from ..config import read_inputs
 from ..outputs import plots
 from ..outputs.fields import field_snapshots, write_fields
 from ..outputs.histories import write_histories
+from . import paths
 from .arguments import JSON_HELP, print_table, report_stream, write_json
 from .inputs import add_collision_arguments, collision_inputs, run_config
 
@@ -61,6 +62,15 @@ def add_collide(parser) -> None:
     )
 
 
+def check_outputs(args) -> None:
+    """Refuse, before any work, an output that cannot be written (:mod:`ehdfem.cli.paths`):
+    --json, --histories and --fields in existing folders, --plots a folder (made if missing)."""
+    paths.output_file("json", args.json, stdout=True)
+    paths.output_file("histories", args.histories)
+    paths.output_file("fields", args.fields)
+    paths.output_folder("plots", args.plots)
+
+
 def replayed_inputs(args):
     """The collision inputs and run configuration of ``--from FILE`` (its JSON "inputs", or
     the "inputs" text of a histories file), refusing every input or run setting also given."""
@@ -71,9 +81,7 @@ def replayed_inputs(args):
                 "settings as they are (run without --from to change them)",
                 dest,
             )
-    path = Path(args.from_file)
-    if not path.is_file():
-        raise checks.InputError(f"{args.from_file!r} does not exist", "from_file")
+    path = paths.input_file("from_file", args.from_file)
     try:
         if path.suffix == ".npz":
             with np.load(path) as stored:
@@ -90,12 +98,13 @@ def replayed_inputs(args):
 
 
 def collide_command(args) -> int:
+    check_outputs(args)
     if args.from_file is not None:
         inputs, config = replayed_inputs(args)
     else:
         inputs, config = collision_inputs(args), run_config(args)
     if args.fields and config.model != "fem":
-        raise checks.InputError("--fields needs --model fem (the half-space has no mesh)")
+        raise checks.InputError("needs --model fem (the half-space has no mesh)", "fields")
     result = collide(inputs, config)
     summary = result.summary(args.command_line)
     report = report_stream(args)
@@ -146,6 +155,9 @@ def render_command(args) -> int:
     from ..outputs.render import animate_film, render_solids
 
     args.model = "fem"  # no option of render: its pictures are of the FE solids
+    paths.output_file("out", args.out)
+    paths.output_file("animation", args.animation)
+    paths.output_file("json", args.json, stdout=True)
     result = collide(collision_inputs(args), run_config(args))
     report = report_stream(args)
     write_json(result.summary(args.command_line), args.json)

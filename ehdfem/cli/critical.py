@@ -11,6 +11,7 @@ from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
 from ..study.sweep import critical_speed, critical_stokes
+from . import paths
 from .arguments import add_fields, report_stream, write_json
 from .inputs import add_body_arguments, add_run_arguments, collision_inputs, run_config, shared
 
@@ -54,6 +55,7 @@ def add_critical(parser) -> None:
 
 
 def critical_command(args) -> int:
+    paths.output_file("json", args.json, stdout=True)
     config = run_config(args)
     low = BRACKETS["speed"][0] if args.bracket is None else args.bracket[0]
     inputs = collision_inputs(args, sought={"St": 1.0, "speed": low})

@@ -9,13 +9,16 @@ from .. import checks
 from ..dem.closedform import GROUPED, describe_ranges, fit_table, python_source
 from ..study.sweep import write_atomic
 from ..version import __version__
+from . import paths
 from .arguments import report_stream, write_json
 
 HELP = "closed-form fits (and DEM formulas) against a sweep table"
 
 
 def add_fit(parser) -> None:
-    parser.add_argument("table", help="CSV table written by ehdfem sweep")
+    parser.add_argument(
+        "table", help="CSV table written by ehdfem sweep (columns status, St, eps, e_n, ...)"
+    )
     parser.add_argument(
         "--json", metavar="FILE", help="write the fits as JSON ('-': stdout); default: none"
     )
@@ -28,12 +31,42 @@ def add_fit(parser) -> None:
 
 
 def fit_command(args) -> int:
-    path = Path(args.table)
-    if not path.is_file():
-        raise checks.InputError(f"table {args.table!r} does not exist")
-    with path.open() as f:
-        fits = fit_table(list(csv.DictReader(f)))
+    path = paths.input_file("table", args.table)
+    paths.output_file("json", args.json, stdout=True)
+    paths.output_file("python", args.python)
+    try:
+        fits = fit_table(read_table(path))
+    except checks.InputError as err:
+        raise checks.InputError(f"{args.table!r}: {err}", "table") from err
+    if not fits["normal"] and "closed_forms" not in fits:
+        raise checks.InputError(
+            f"nothing to fit in {args.table!r}: {fits['normal_skipped']}; "
+            f"{fits['closed_forms_skipped']}",
+            "table",
+        )
+    if args.python and "closed_forms" not in fits:
+        raise checks.InputError(fits["closed_forms_skipped"], "python")
     report = report_stream(args)
+    print_fits(fits, report)
+    write_json(fits, args.json)
+    if args.python:
+        write_atomic(Path(args.python), python_source(fits["closed_forms"], path.name, __version__))
+        print(f"wrote {args.python}", file=report)
+    return 0
+
+
+def read_table(path: Path) -> list[dict]:
+    """The rows of the CSV table at ``path``; a file that is not a readable CSV table is
+    refused (the table's columns are checked by :func:`ehdfem.dem.closedform.table_rows`)."""
+    try:
+        with path.open(newline="") as f:
+            return list(csv.DictReader(f))
+    except (UnicodeDecodeError, csv.Error) as err:
+        raise checks.InputError(f"not a CSV table ({err})", "table") from err
+
+
+def print_fits(fits: dict, report) -> None:
+    """The fits, one line each, and why a fit was left out (``..._skipped``)."""
     for group in fits["normal"]:
         print(
             f"{_labels(group)}, eps = {group['eps']:g}: "
@@ -59,18 +92,16 @@ def fit_command(args) -> int:
                 + ("" if relative is None else f", max relative error {relative:.3g}"),
                 file=report,
             )
-    elif args.python:
-        raise checks.InputError(f"--python: {fits['closed_forms_skipped']}")
     for name, errors in fits["dem_formulas"].items():
         error, rms = errors["max_error"], errors["rms_error"]
         print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
-    write_json(fits, args.json)
-    if args.python:
-        write_atomic(Path(args.python), python_source(forms, path.name, __version__))
-        print(f"wrote {args.python}", file=report)
-    return 0
+    for skipped in ("normal_skipped", "closed_forms_skipped"):
+        if skipped in fits:
+            print(f"left out: {fits[skipped]}", file=report)
 
 
 def _labels(group: dict) -> str:
     """The model labels of a fit group (delta, layer, P_cav, cavitation, viscosity, alpha)."""
-    return ", ".join(f"{k} = {group[k]}" for k in ("delta", *(k for k, _ in GROUPED)) if k in group)
+    keys = ("delta", *(k for k, _ in GROUPED))
+    shown = {k: "none" if group[k] is None else group[k] for k in keys if k in group}
+    return ", ".join(f"{k} = {v}" for k, v in shown.items())

@@ -13,19 +13,24 @@ a steel sphere hitting a glass plate through a 0.3 mm silicone-oil layer at 30 d
 Output: the results table on standard output, or on standard error when ``--json -`` puts the
 JSON alone on standard output. The form compiler's build log and VTK's warnings are hidden
 unless ``--verbose`` (:mod:`ehdfem.console.quiet`); progress bars show on a terminal only
-(:mod:`ehdfem.console.progress`). Bad input: ``ehdfem <command>: error: <flag>: <message>``
-and exit status 2. A result outside a model's checked range (the half-space theory's range, the
-sliding film's superposition or energy) is warned of as ``ehdfem <command>: warning:
-<message>`` on standard error, once (by MPI rank 0), and flagged in the result.
+(:mod:`ehdfem.console.progress`). Bad input, including an output path that cannot be
+written (:mod:`ehdfem.cli.paths`), is refused before any work starts: ``ehdfem <command>:
+error: <flag>: <message>`` on standard error, once (by MPI rank 0), and exit status 2 on
+every rank; a file that cannot be read or written later gives exit status 1. A result
+outside a model's checked range (the half-space theory's range, the sliding film's
+superposition or energy) is warned of as ``ehdfem <command>: warning: <message>`` on standard
+error, once (by MPI rank 0), and flagged in the result.
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import warnings
 
 from .. import checks
+from ..console.progress import rank
 from ..console.quiet import is_quiet, set_quiet
 from ..motion.normal import NormalSolverError
 from ..version import __version__
@@ -68,30 +73,53 @@ def parsers() -> tuple[argparse.ArgumentParser, dict]:
 
 
 def flag_of(parser: argparse.ArgumentParser, name: str | None) -> str | None:
-    """The option of ``parser`` whose destination is ``name`` (a field's name), else None."""
+    """How the user names the field or argument ``name`` on ``parser``'s command line: its
+    option (``--p-cav`` for p_cav), or a positional argument's name; None when it has none."""
     for action in parser._actions:
-        if action.dest == name and action.option_strings:
-            return action.option_strings[0]
+        if action.dest == name:
+            return action.option_strings[0] if action.option_strings else action.dest
     return None
 
 
+FIELD_NAME = re.compile(r"(?<![\w-])[a-z]\w*_\w+")  # a field's name such as vapour_pressure
+
+
+def error_text(err: checks.InputError, parser: argparse.ArgumentParser) -> str:
+    """``--flag: message`` for a refused input: the message names the options as typed on the
+    command line where the library names the fields (``St = 0.0 is ...`` becomes ``--St: 0.0
+    is ...``; ``vapour_pressure`` becomes ``--vapour-pressure``)."""
+    text, flag = str(err), flag_of(parser, err.name)
+    for prefix in (f"{err.name} = ", f"{err.name} ", f"{flag} "):
+        if flag and text.startswith(prefix):
+            text = text[len(prefix) :]
+            break
+    text = FIELD_NAME.sub(lambda m: flag_of(parser, m.group()) or m.group(), text)
+    return f"{flag}: {text}" if flag else text
+
+
+def say(command: str, kind: str, text: str) -> None:
+    """``ehdfem <command>: <kind>: <text>`` on standard error, by MPI rank 0 only (every rank
+    has the same inputs and meets the same error or warning)."""
+    if rank() == 0:
+        print(f"ehdfem {command}: {kind}: {text}", file=sys.stderr)
+
+
 def _warning_printer(command: str):
-    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` on standard
-    error, on MPI rank 0 only."""
+    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` (rank 0)."""
 
     def show(message, category, filename, lineno, file=None, line=None):
-        mpi = sys.modules.get("mpi4py.MPI")
-        if mpi is None or mpi.COMM_WORLD.rank == 0:
-            print(f"ehdfem {command}: warning: {message}", file=sys.stderr)
+        say(command, "warning", str(message))
 
     return show
 
 
 def main(argv=None) -> int:
-    """The ``ehdfem`` command; returns the exit status (0 done, 2 bad input, 3 solver
-    failure)."""
+    """The ``ehdfem`` command; returns the exit status (0 done, 1 a file could not be read or
+    written, 2 bad input, 3 solver failure), the same on every MPI rank."""
     parser, commands = parsers()
-    args = parser.parse_args(argv)
+    args, unknown = parser.parse_known_args(argv)
+    if unknown:
+        commands[args.command].error(f"unrecognized arguments: {' '.join(unknown)}")
     args.command_line = ["ehdfem", *(sys.argv[1:] if argv is None else argv)]
     was_quiet = is_quiet()
     set_quiet(not args.verbose)
@@ -100,13 +128,15 @@ def main(argv=None) -> int:
             warnings.showwarning = _warning_printer(args.command)
             return COMMANDS[args.command][2](args)
     except checks.InputError as err:
-        flag = flag_of(commands[args.command], err.name)
-        where = f"{flag}: " if flag else ""
-        print(f"ehdfem {args.command}: error: {where}{err}", file=sys.stderr)
+        say(args.command, "error", error_text(err, commands[args.command]))
         return 2
     except NormalSolverError as err:
-        print(f"ehdfem {args.command}: solver failure: {err}", file=sys.stderr)
+        say(args.command, "solver failure", str(err))
         return 3
+    except OSError as err:  # a file that could not be read or written, possibly on one rank
+        where = f"{err.filename}: " if err.filename else ""
+        print(f"ehdfem {args.command}: error: {where}{err.strerror or err}", file=sys.stderr)
+        return 1
     finally:
         set_quiet(was_quiet)
 

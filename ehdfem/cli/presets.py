@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import asdict, fields
 
 from ..inputs.presets import LIQUIDS, MATERIALS
+from . import paths
 from .arguments import report_stream, write_json
 
 HELP = "list the material and liquid presets: values (SI) and sources"
@@ -18,6 +19,7 @@ def add_presets(parser) -> None:
 
 def presets_command(args) -> int:
     """The material and liquid presets: a table each (SI units in the header), with sources."""
+    paths.output_file("json", args.json, stdout=True)
     report = report_stream(args)
     tables = [
         ("materials", MATERIALS, ("E [Pa]", "nu", "density [kg/m^3]")),

@@ -2,20 +2,29 @@
 
 from __future__ import annotations
 
+from .. import checks
 from ..study.sweep import Study, run_study
+from . import paths
 
 HELP = "run a study file (TOML) over the MPI ranks; resumable"
 
 
 def add_sweep(parser) -> None:
-    parser.add_argument("study", help="study file, e.g. studies/kantak_davis.toml")
+    parser.add_argument(
+        "study",
+        help="study file, e.g. studies/kantak_davis.toml; its table's folder is made if missing",
+    )
 
 
 def sweep_command(args) -> int:
     from mpi4py import MPI
 
     comm = MPI.COMM_WORLD
-    study = Study(args.study)
+    study = Study(paths.input_file("study", args.study))
+    try:
+        paths.output_folder("study", study.table.parent)
+    except checks.InputError as err:
+        raise checks.InputError(f"[output] table {str(study.table)!r}: {err}", "study") from err
     if comm.rank == 0:
         print(f"ehdfem sweep {study.name}: {len(study.points)} points on {comm.size} rank(s)")
     run_study(study, comm, progress=print if comm.rank == 0 else None)

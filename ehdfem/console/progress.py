@@ -16,7 +16,7 @@ import sys
 RANK_VARIABLES = ("OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK")
 
 
-def _rank() -> int:
+def rank() -> int:
     """This process's MPI rank: mpi4py's if it is loaded already, else the launcher's
     environment (mpirun sets it), else 0. Never initialises MPI itself."""
     mpi = sys.modules.get("mpi4py.MPI")
@@ -31,7 +31,7 @@ def _rank() -> int:
 def enabled() -> bool:
     """Whether a bar would be drawn here: rank 0, standard error a terminal, EHDFEM_PROGRESS
     not "0", and tqdm importable."""
-    if os.environ.get("EHDFEM_PROGRESS", "1") == "0" or _rank() != 0:
+    if os.environ.get("EHDFEM_PROGRESS", "1") == "0" or rank() != 0:
         return False
     if not (hasattr(sys.stderr, "isatty") and sys.stderr.isatty()):
         return False

@@ -28,15 +28,21 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from .. import checks
+from ..inputs.scales import CollisionParameters
 
-# the labels besides eps and delta that tell the fit groups apart, with their defaults
+# the labels besides eps and delta that tell the fit groups apart, with their defaults (P_cav
+# None: no cavitation limit)
 GROUPED = (
     ("layer", "thin"),
-    ("p_cav", ""),
+    ("p_cav", None),
     ("cavitation", "truncate"),
     ("viscosity", "constant"),
     ("alpha", 0.0),
 )
+REQUIRED_COLUMNS = ("status", "St", "eps", "e_n")  # the others have their defaults
+NUMBERS = ("St", "eps", "delta", "e_n", "e_t", "spin_change", "alpha", "p_cav")  # None if empty
+DEFAULTS = {"delta": CollisionParameters.__dataclass_fields__["delta"].default, **dict(GROUPED)}
+EMPTY = ("", "None", "none", "-inf", None)  # an empty cell; for P_cav, no limit
 
 
 def davis_rager_good(St, St_c, e_dry=1.0):
@@ -100,22 +106,71 @@ def _errors(predicted, actual) -> dict:
     return {"max_error": float(np.abs(diff).max()), "rms_error": float(np.sqrt(np.mean(diff**2)))}
 
 
+def table_rows(rows: list[dict]) -> list[dict]:
+    """The successful rows of a study table (as read from its CSV: values as strings or
+    numbers) with every number a float, an empty cell None (for P_cav: no limit), and delta and
+    the model labels of GROUPED at their defaults where their column or cell is empty (a study
+    that does not sweep them holds them there). A table without the REQUIRED_COLUMNS, without
+    a successful point, or with a cell that is not a number is refused by name (column, and
+    the line of the CSV file)."""
+    missing = [c for c in REQUIRED_COLUMNS if not rows or c not in rows[0]]
+    if missing:
+        raise checks.InputError(
+            f"the table has no column {', '.join(missing)} (a table of ehdfem sweep has "
+            f"{', '.join(REQUIRED_COLUMNS)} and the other outputs)"
+            if rows
+            else "the table has no rows"
+        )
+    ok = [(line, r) for line, r in enumerate(rows, 2) if str(r["status"]).startswith("ok")]
+    if not ok:
+        raise checks.InputError(
+            f"the table has no successful point to fit (status ok:...; {len(rows)} failed)"
+        )
+    return [_numbers({**DEFAULTS, **_given(r)}, line) for line, r in ok]
+
+
+def _given(row: dict) -> dict:
+    """The cells of ``row`` but the empty ones of the columns with a default."""
+    return {k: v for k, v in row.items() if k and not (k in DEFAULTS and v in EMPTY)}
+
+
+def _numbers(row: dict, line: int) -> dict:
+    """``row`` with its NUMBERS as floats (None where empty; P_cav None for no limit)."""
+    for key in NUMBERS:
+        value = row.get(key)
+        if value in EMPTY:
+            row[key] = None
+            continue
+        try:
+            row[key] = float(value)
+        except (TypeError, ValueError):
+            raise checks.InputError(
+                f"line {line}: column {key} = {value!r} is not a number", key
+            ) from None
+    for key in REQUIRED_COLUMNS[1:]:
+        if row[key] is None:
+            raise checks.InputError(f"line {line}: column {key} is empty", key)
+    return row
+
+
+def _group_order(item) -> tuple:
+    """Sort key of a fit group: its labels, a missing value (None) first."""
+    return tuple((value is not None, "" if value is None else value) for value in item[0])
+
+
 def fit_table(rows: list[dict]) -> dict:
     """Closed-form fits to a study table (rows as read from the CSV, values as strings or
-    numbers). Returns the fitted coefficients and their max / rms errors over the data, and the
-    errors of the DEM formulas against the computed e_n."""
-    ok = [r for r in rows if str(r["status"]).startswith("ok")]
-    if not ok:
-        raise checks.InputError("the table has no successful points to fit")
-    num = lambda r, k: float(r[k])  # noqa: E731
+    numbers; :func:`table_rows`). Returns the fitted coefficients and their max / rms errors
+    over the data, and the errors of the DEM formulas against the computed e_n; a fit that the
+    table cannot give is left out, and its "..._skipped" entry says why."""
+    ok = table_rows(rows)
     groups = defaultdict(list)
     for r in ok:
-        key = (num(r, "eps"), num(r, "delta"), *(str(r.get(k, d)) for k, d in GROUPED))
-        groups[key].append(r)
+        groups[(r["eps"], r["delta"], *(r[k] for k, _ in GROUPED))].append(r)
     normal = []
-    for (eps, delta, *labels), members in sorted(groups.items()):
-        St = np.array([num(r, "St") for r in members])
-        e_n = np.array([num(r, "e_n") for r in members])
+    for (eps, delta, *labels), members in sorted(groups.items(), key=_group_order):
+        St = np.array([r["St"] for r in members])
+        e_n = np.array([r["e_n"] for r in members])
         if (e_n > 0).sum() < 2:
             continue
         e_inf, St_c = fit_normal(St, e_n)
@@ -131,6 +186,10 @@ def fit_table(rows: list[dict]) -> dict:
             }
         )
     out = {"normal": normal}
+    if not normal:
+        out["normal_skipped"] = _too_few(
+            "e_n = e_inf (1 - St_c/St)", groups.values(), 2, "eps, delta and model"
+        )
     models = defaultdict(list)  # St_c against eps, for each model (delta and labels)
     for g in normal:
         models[(g["delta"], *(g[k] for k, _ in GROUPED))].append(g)
@@ -146,21 +205,9 @@ def fit_table(rows: list[dict]) -> dict:
     out["critical_stokes_laws"] = laws
     if len(laws) == 1:  # a table of one model (the usual case)
         out["critical_stokes_law"] = laws[0]
-    oblique = [r for r in ok if r.get("e_t") not in (None, "", "None")]
-    if oblique:
-        labels = {k: {str(r.get(k) or d) for r in oblique} for k, d in MODEL_LABELS}
-        mixed = [k for k, values in labels.items() if len(values) > 1]
-        if mixed:
-            out["closed_forms_skipped"] = (
-                f"no closed forms: the table mixes {', '.join(mixed)} (fit one model at a time)"
-            )
-        else:
-            out["closed_forms"] = {
-                **fit_closed_forms(oblique),
-                "model": {k: values.pop() for k, values in labels.items()},
-            }
-    St_all = np.array([num(r, "St") for r in ok])
-    e_all = np.array([num(r, "e_n") for r in ok])
+    out.update(_closed_forms_of(ok))
+    St_all = np.array([r["St"] for r in ok])
+    e_all = np.array([r["e_n"] for r in ok])
     out["dem_formulas"] = {
         "legendre_2006": _errors(legendre(St_all), e_all),
         "exponential_fitted": _exponential_errors(St_all, e_all),
@@ -170,6 +217,45 @@ def fit_table(rows: list[dict]) -> dict:
 
 # the labels of one model, besides the closed forms' inputs (delta and P_cav are inputs)
 MODEL_LABELS = (*((k, d) for k, d in GROUPED if k != "p_cav"), ("tangential", "couette"))
+
+
+def _closed_forms_of(rows: list[dict]) -> dict:
+    """{"closed_forms": ...} fitted to the rows with e_t (:func:`fit_closed_forms`), or
+    {"closed_forms_skipped": why} when the table has none, mixes models or cannot give them."""
+    oblique = [r for r in rows if r.get("e_t") is not None]
+    if not oblique:
+        return {"closed_forms_skipped": "no closed forms: the table has no e_t (no angle)"}
+    labels = {k: {r.get(k) or d for r in oblique} for k, d in MODEL_LABELS}
+    mixed = [k for k, values in labels.items() if len(values) > 1]
+    if mixed:
+        return {
+            "closed_forms_skipped": f"no closed forms: the table mixes {', '.join(mixed)} (fit "
+            "one model at a time)"
+        }
+    try:
+        forms = fit_closed_forms(oblique)
+    except checks.InputError as err:
+        return {"closed_forms_skipped": f"no closed forms: {err}"}
+    return {"closed_forms": {**forms, "model": {k: v.pop() for k, v in labels.items()}}}
+
+
+def _too_few(what: str, groups, needed: int, alike: str) -> str:
+    """Why ``what`` cannot be fitted: no group of points of equal ``alike`` has ``needed``
+    rebounds (e_n > 0)."""
+    groups = list(groups)
+    best = max(sum(r["e_n"] > 0 for r in members) for members in groups)
+    points = sum(len(members) for members in groups)
+    text = (
+        f"{what} needs a group of points of equal {alike} with {needed} "
+        f"rebounding points (e_n > 0); the table's {points} points make {len(groups)} "
+        f"group(s), the most rebounding points in one is {best}"
+    )
+    if len(groups) > points / 2:
+        text += (
+            " (eps changes at nearly every point, as in a physical study, where it changes "
+            "with the speed: fit a dimensionless study over St at fixed eps)"
+        )
+    return text
 
 
 def describe_ranges(ranges: dict) -> str:
@@ -247,7 +333,7 @@ def normal_closed_form(forms: dict, St, eps, p_cav):
 def _varying(rows, names) -> tuple:
     """Those of ``names`` that take more than one value in ``rows`` (the others are held fixed
     by the table and left out of the forms)."""
-    return tuple(n for n in names if len({float(r[n]) for r in rows}) > 1)
+    return tuple(n for n in names if len({r[n] for r in rows}) > 1)
 
 
 def fit_closed_forms(rows: list[dict]) -> dict:
@@ -266,17 +352,24 @@ def fit_closed_forms(rows: list[dict]) -> dict:
     Inputs held fixed by the table are left out. Each form carries its maximum and rms error
     (absolute, in e_n, e_t, spin change); the result also has the number of points and the
     ranges it was fitted over."""
-    num = lambda r, k: float(r[k])  # noqa: E731
+    rows = table_rows(rows)
+    for name in ("p_cav", "e_t", "spin_change"):
+        empty = sum(r[name] is None for r in rows)
+        if empty:
+            raise checks.InputError(
+                f"they need {name} at every point ({name} = none at {empty} of {len(rows)}; "
+                "ln |P_cav| is one of their inputs)"
+            )
     varying = _varying(rows, ("eps", "p_cav"))
-    columns = {k: np.array([num(r, k) for r in rows]) for k in ("St", "eps", "p_cav", "delta")}
-    e_n = np.array([num(r, "e_n") for r in rows])
+    columns = {k: np.array([r[k] for r in rows]) for k in ("St", "eps", "p_cav", "delta")}
+    e_n = np.array([r["e_n"] for r in rows])
     ranges = {k: [float(v.min()), float(v.max())] for k, v in columns.items()}
     normal = _fit_normal_form(columns, e_n, varying)
     out = {"points": len(rows), "ranges": ranges, "normal": normal}
     clear, near = e_n >= CLEAR_REBOUND, (e_n > 0) & (e_n < CLEAR_REBOUND)
     for name, target in (
-        ("tangential_loss", 1 - np.array([num(r, "e_t") for r in rows])),
-        ("spin_change", np.array([num(r, "spin_change") for r in rows])),
+        ("tangential_loss", 1 - np.array([r["e_t"] for r in rows])),
+        ("spin_change", np.array([r["spin_change"] for r in rows])),
     ):
         inputs = {k: columns[k][clear] for k in ("St", *varying)}
         form = _fit_log_polynomial(inputs, target[clear] / columns["delta"][clear], DEGREE)
@@ -330,7 +423,8 @@ def _fit_normal_form(columns: dict, e_n, varying: tuple) -> dict:
         )
         per_group[key] = result.x
     if len(per_group) < 1:
-        raise checks.InputError("the closed form of e_n needs a group with 3 rebounding points")
+        members = [[{"e_n": e_n[i]} for i in group] for group in groups.values()]
+        raise checks.InputError(_too_few("the closed form of e_n", members, 3, "eps and P_cav"))
     group_inputs = {k: np.array([key[i] for key in per_group]) for i, k in enumerate(varying)}
     forms = {
         name: _fit_log_polynomial(

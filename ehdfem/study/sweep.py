@@ -270,7 +270,7 @@ def _output_columns(study: Study, summary: dict) -> dict:
 def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     """Run every point not yet in the study's point folder, spread over the ranks of ``comm``
     (mpi4py communicator or None), then write the table. Returns the rows (on every rank).
-    ``progress(line)`` reports each finished point ("[done/total] rank r: inputs -> outcome");
+    ``progress(line)`` reports each finished point (:func:`progress_line`);
     on a terminal, rank 0 also draws a bar of the points done with rate and time left
     (:mod:`ehdfem.console.progress`)."""
     rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
@@ -283,21 +283,17 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     if comm is not None:
         comm.Barrier()
     order = sorted(range(len(study.points)), key=lambda i: -study.stokes_numbers[i])  # costly 1st
-    total = len(study.points)
-    with Counter(total, f"sweep {study.name}", _finished(points_dir), unit="point") as bar:
+    total, keys = len(study.points), {study.key(point) for point in study.points}
+    with Counter(total, f"sweep {study.name}", _finished(points_dir, keys), unit="point") as bar:
         for i in order:
             row = _claim_and_run(study, study.points[i], claims)
             if row is None:
                 continue
-            finished = _finished(points_dir)
+            finished = _finished(points_dir, keys)
             bar.advance_to(finished)
             if progress is not None:
                 with bar.paused():
-                    progress(
-                        f"[{finished}/{total}] rank {rank}: "
-                        + ", ".join(f"{k}={v}" for k, v in study.points[i].items())
-                        + f" -> {row['status']} e_n={row['e_n']} ({row['seconds']} s)"
-                    )
+                    progress(progress_line(finished, total, rank, study.points[i], row))
     if comm is not None:
         comm.Barrier()
     rows = collect(study)
@@ -325,9 +321,26 @@ def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
     return row
 
 
-def _finished(points_dir: Path) -> int:
-    """How many points are finished (result files in ``points_dir``)."""
-    return sum(1 for _ in points_dir.glob("*.json"))
+def _finished(points_dir: Path, keys: set[str]) -> int:
+    """How many of the points named ``keys`` are finished (have their result file in
+    ``points_dir``, which may also hold the points of an earlier grid or earlier fixed
+    settings: those are not counted)."""
+    return len(keys.intersection(path.stem for path in points_dir.glob("*.json")))
+
+
+def progress_line(finished: int, total: int, rank: int, point: dict, row: dict) -> str:
+    """``[done/total] rank r: St=3.16, eps=0.001 -> ok:rebound e_n=0.5432 (1.2 s)``: numbers to
+    four significant digits."""
+    inputs = ", ".join(f"{k}={_short(v)}" for k, v in point.items())
+    return (
+        f"[{finished}/{total}] rank {rank}: {inputs} -> {row['status']} "
+        f"e_n={_short(row['e_n'])} ({row['seconds']:.3g} s)"
+    )
+
+
+def _short(value) -> str:
+    """A float to four significant digits; anything else as it is."""
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
 
 
 def collect(study: Study) -> list[dict]:

@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fe_bodies import LOWER_BODIES
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
@@ -209,14 +210,7 @@ def antisymmetry(matrix) -> float:
 
 
 @pytest.mark.serial
-@pytest.mark.parametrize(
-    "options",
-    [
-        {},
-        {"lower": "coated", "coating": (0.2, 0.45), "coating_thickness": 0.02},
-        {"lower": "sphere", "radius_ratio": 2.0},
-    ],
-)
+@pytest.mark.parametrize("options", LOWER_BODIES)
 def test_compliance_is_reciprocal(options):
     """delta = 0.05, 16 film nodes. Loads and read-outs are the same balanced functionals, so
     with M the film's lumped mass (Film.full_mass), all four blocks are reciprocal to the

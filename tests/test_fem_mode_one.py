@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 import ufl
 from dolfinx import fem, mesh
+from fe_bodies import LOWER_BODIES
 from hat_averages import averaged, hat_average
 from mpi4py import MPI
 
@@ -451,14 +452,7 @@ def reciprocal_pairs(compliance) -> np.ndarray:
 
 
 @pytest.mark.serial
-@pytest.mark.parametrize(
-    "options",
-    [
-        {},
-        {"lower": "coated", "coating": (0.2, 0.45), "coating_thickness": 0.02},
-        {"lower": "sphere", "radius_ratio": 2.0},
-    ],
-)
+@pytest.mark.parametrize("options", LOWER_BODIES)
 def test_mode_one_compliance_is_reciprocal(options):
     """delta = 0.05, 16 film nodes: the loads and read-outs are the same functionals, so the
     matrix of :func:`reciprocal_pairs` is symmetric to the direct solver's rounding, 1e-12

@@ -52,23 +52,13 @@ def _dense(values: np.ndarray, comm):
     return dense
 
 
-def matrix_product(matrix, values: np.ndarray, comm) -> np.ndarray:
-    """The owned rows of the PETSc ``matrix`` times the columns whose owned rows are ``values``
-    (rows, columns; rows distributed as the matrix's columns), as a dense array."""
+def matrix_product(matrix, values: np.ndarray, comm, transpose: bool = False) -> np.ndarray:
+    """The owned rows of the PETSc ``matrix`` (``transpose``: of its transpose) times the
+    columns whose owned rows are ``values`` (rows, columns; rows distributed as the matrix's
+    columns, or as its rows with ``transpose``), as a dense array. The transpose gives the
+    read-outs b . u of the loads b that ``matrix`` makes, for displacements u."""
     dense = _dense(values, comm)
-    product = matrix.matMult(dense)
-    result = product.getDenseArray().copy()
-    for petsc_object in (dense, product):  # PETSc memory is not freed by Python's GC
-        petsc_object.destroy()
-    return result
-
-
-def transpose_product(matrix, values: np.ndarray, comm) -> np.ndarray:
-    """The owned rows of the transpose of the PETSc ``matrix`` times the columns whose owned
-    rows are ``values`` (rows, columns; rows distributed as the matrix's rows), as a dense
-    array: the read-outs b . u of the loads b that ``matrix`` makes, for displacements u."""
-    dense = _dense(values, comm)
-    product = matrix.transposeMatMult(dense)
+    product = matrix.transposeMatMult(dense) if transpose else matrix.matMult(dense)
     result = product.getDenseArray().copy()
     for petsc_object in (dense, product):  # PETSc memory is not freed by Python's GC
         petsc_object.destroy()

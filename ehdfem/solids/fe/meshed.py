@@ -32,7 +32,7 @@ from ... import checks
 from ...film.reynolds import Film
 from . import dolfinx_compat
 from .bodies import FreeBody, LowerBody, checked_material
-from .linear_algebra import interpolation_matrix, matrix_product, transpose_product
+from .linear_algebra import interpolation_matrix, matrix_product
 from .mesh import contact_mesh
 
 FACES = (contact.SPHERE_CONTACT, contact.LOWER_CONTACT)
@@ -200,5 +200,5 @@ class MeshedBodies:
         the load's unit times a^2 times the displacement's unit. Divided by
         :attr:`film_weights` they are the displacements in the load's direction (module
         docstring)."""
-        works = transpose_product(matrix, values, self.comm)
+        works = matrix_product(matrix, values, self.comm, transpose=True)
         return [self.comm.allreduce(hats.T @ works) for hats in self.face_hats]

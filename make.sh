@@ -92,6 +92,7 @@ shift || true
 case "$job" in
     setup) setup ;;
     example) setup
+        mkdir -p out/example/halfspace out/example/fem
         echo "== half-space model (asymptotic theory)"
         "$VENV/bin/ehdfem" collide --example --plots out/example/halfspace --json out/example/halfspace.json "$@"
         echo "== FE model (DOLFINx solids)"

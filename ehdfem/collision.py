@@ -317,7 +317,7 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None):
     if compliance.model == "halfspace":
         largest = normal.history.pressure[int(np.argmax(normal.history.force))]
         result.halfspace_range = halfspace_range(
-            normal.radii, largest, normal.max_compression, params.delta
+            normal.radii, largest, normal.compression_by_radius, params.delta
         )
         if result.halfspace_range.flagged:
             warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)

@@ -114,6 +114,11 @@ class NormalResult:
     order: int
     gap: Paraboloid
 
+    @property
+    def compression_by_radius(self) -> float:
+        """The largest compression by the sphere radius a, delta max(-X, 0)."""
+        return max(self.max_compression, 0.0) * self.params.delta
+
 
 def _surface_motion(compliance, delta) -> SurfaceMotion | None:
     """The faces' mean radial displacement the film's flux carries, from the compliance's

@@ -129,7 +129,7 @@ OUTPUTS: tuple[Output, ...] = (
     Output("max_compression", "largest overlap -min X of the undeformed surfaces", "x0", "m",
            lambda r: r.normal.max_compression, "max_compression_m", lambda p: p.scales().gap),
     Output("compression_by_radius", "largest compression over the sphere radius, delta max(-X)",
-           "a", "m", lambda r: max(r.normal.max_compression, 0.0) * r.params.delta),
+           "a", "m", lambda r: r.normal.compression_by_radius),
     Output("load_radius", "radius carrying 95 % of the largest film force (half-space model)",
            "a", "m", _halfspace_range("load_radius"), "load_radius_m", lambda p: p.radius,
            optional=True),

@@ -55,6 +55,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.integrate import cumulative_trapezoid
 from scipy.special import ellipkm1
 
 from ..checks import InputError, number
@@ -261,20 +262,19 @@ def load_radius(radii: np.ndarray, pressure: np.ndarray) -> float:
     """The radius (by sqrt(a x0)) within which LOAD_SHARE of the positive part of the film
     force int P R dR acts, for nodal pressures P on the film nodes ``radii`` (trapezoid rule;
     the suction does not carry the load)."""
-    load = np.maximum(pressure, 0.0) * radii
-    cumulative = np.concatenate(([0.0], np.cumsum(0.5 * (load[1:] + load[:-1]) * np.diff(radii))))
+    cumulative = cumulative_trapezoid(np.maximum(pressure, 0.0) * radii, radii, initial=0.0)
     if cumulative[-1] <= 0.0:
         return 0.0
     return float(np.interp(LOAD_SHARE * cumulative[-1], cumulative, radii))
 
 
 def halfspace_range(
-    radii: np.ndarray, pressure: np.ndarray, max_compression: float, delta: float
+    radii: np.ndarray, pressure: np.ndarray, compression: float, delta: float
 ) -> HalfSpaceRange:
     """The :class:`HalfSpaceRange` of a collision from its film nodes ``radii`` (by
     sqrt(a x0)), its nodal pressure at the largest force (by mu V0 a / x0^2), its largest
-    compression (by x0) and delta = x0/a."""
+    compression (by a) and delta = x0/a."""
     return HalfSpaceRange(
-        compression=max(max_compression, 0.0) * delta,
+        compression=compression,
         load_radius=load_radius(radii, pressure) * float(np.sqrt(delta)),
     )

@@ -67,6 +67,20 @@ class NormalSolverError(RuntimeError):
     """The time integration failed; the message carries time, step size and residual."""
 
 
+@dataclass(frozen=True)
+class SolidImpact:
+    """The asperities' solid collision that ends a rough sphere's approach (scaled): at the
+    recorded step ``index`` (time ``time``, by x0/V0) the sphere meets the wall at the
+    approach velocity ``approach_velocity`` (V < 0, by V0) and leaves at
+    -e_dry approach_velocity; ``normal_impulse`` = St (1 + e_dry) |V| is the asperities'
+    impulse on the sphere (by 6 pi mu a^2, the force scale times the time scale)."""
+
+    index: int
+    time: float
+    approach_velocity: float
+    normal_impulse: float
+
+
 class FilmClosedError(NormalSolverError):
     """The film thickness collapsed (below CLOSED_FILM) and the step failed: either the solids
     are about to touch or the grid does not resolve the thin rim of the flattened contact."""
@@ -91,6 +105,9 @@ class NormalResult:
     used (docs/model.md says what the default guarantees; ``energy_error`` is the achieved
     accuracy of the balance).
     ``gap``: the undeformed gap used (:mod:`ehdfem.film.gap`; ``gap.name`` says which).
+    ``asperity_force``: the asperities' load on the sphere at each recorded step (by
+    6 pi mu V0 a^2 / x0; None for smooth surfaces). ``solid_impact``: the asperities' solid
+    collision, if the approach ended in one (:class:`SolidImpact`).
     """
 
     params: CollisionParameters
@@ -113,6 +130,8 @@ class NormalResult:
     film_control: bool
     order: int
     gap: Paraboloid
+    asperity_force: np.ndarray | None = None
+    solid_impact: SolidImpact | None = None
 
     @property
     def compression_by_radius(self) -> float:

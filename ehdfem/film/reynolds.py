@@ -65,6 +65,9 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
 # contact_grid): knots (rho, spacing) and the slope beyond the last knot.
 _CONTACT_SPACING_KNOTS = ((0.0, 0.7), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
 _CONTACT_SPACING_SLOPE = 8.0
+# The lubrication film's relative spacing dR / R beyond its narrowest width (film_grid), in
+# the units of the contact spacing.
+LUBRICATION_SPACING = 0.25
 
 
 def contact_grid(
@@ -80,9 +83,47 @@ def contact_grid(
     a node of its own if it lies inside the grid (the sphere's radius, where the immersed film's
     shear integrals end).
     """
-    n = checks.integer("n (film nodes)", n, lower=8)
     rim_radius = checks.positive("rim_radius", rim_radius)
     outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
+    if node_at is not None and node_at <= rim_radius:
+        node_at = None
+    return graded_grid(n, _contact_spacing(rim_radius, outer_radius), node_at)
+
+
+def film_grid(
+    n: int,
+    rim_radius: float | None,
+    lubrication_width: float,
+    outer_radius: float,
+    node_at: float | None = None,
+) -> np.ndarray:
+    """Film nodes resolving both an elastic contact of rim R_c and the lubrication film of a
+    sphere that is still rigid, by sqrt(a x0).
+
+    A rigid sphere at gap X carries its film force (1/3) int P R dR, P = 3 |V| / H^2,
+    H = X + R^2/2, over the width sqrt(2 X) (the integrand P R^2 peaks there and falls as R^-2
+    beyond), and the error of P1 elements is set by the spacing relative to that width. Along
+    the approach X runs from 1 down to the stopping gap, so the film needs a fixed number of
+    nodes per decade of radius from the narrowest width w it reaches out to the film's edge: the
+    spacing is c min(s_c(R), LUBRICATION_SPACING max(R, w)), s_c the contact spacing of
+    :func:`contact_grid` (left out for ``rim_radius`` None, a sphere that stops before it
+    flattens), with c set by n and ``node_at`` as there.
+    """
+    width = checks.positive("lubrication_width", lubrication_width)
+    outer_radius = checks.number("outer_radius", outer_radius, lower=width, lower_open=True)
+    knots = (
+        np.array([0.0, width, outer_radius]),
+        LUBRICATION_SPACING * np.array([width, width, outer_radius]),
+    )
+    if rim_radius is not None:
+        rim_radius = checks.number("rim_radius", rim_radius, upper=outer_radius, upper_open=True)
+        knots = _lower_envelope(knots, _contact_spacing(rim_radius, outer_radius))
+    return graded_grid(n, knots, node_at)
+
+
+def _contact_spacing(rim_radius: float, outer_radius: float) -> tuple[np.ndarray, np.ndarray]:
+    """(R, s) knots of the contact grid's spacing law (:func:`contact_grid`) out to the grid's
+    end, in the units of R."""
     end = outer_radius / rim_radius
     knots = [(rho, s) for rho, s in _CONTACT_SPACING_KNOTS if rho < end]
     last_rho, last_s = _CONTACT_SPACING_KNOTS[len(knots) - 1]
@@ -93,17 +134,38 @@ def contact_grid(
         )
     rho = np.array([k[0] for k in knots] + [end])
     spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
-    pieces = _SpacingPieces(rho, spacing)
-    if node_at is None or not rim_radius < node_at < outer_radius:
-        radii = rim_radius * pieces.position(np.linspace(0.0, 1.0, n))
-    else:  # node k at node_at: equal steps of the share on either side of it
-        at = pieces.share(node_at / rim_radius)
+    return rim_radius * rho, rim_radius * spacing
+
+
+def _lower_envelope(first, second) -> tuple[np.ndarray, np.ndarray]:
+    """The knots (R, s) of min(s_1, s_2) for two piecewise-linear spacings over the same
+    [0, R_end]: both knot sets plus the radii where the two cross."""
+    radii = np.union1d(first[0], second[0])
+    gap = np.interp(radii, *first) - np.interp(radii, *second)
+    crossing = np.flatnonzero(gap[:-1] * gap[1:] < 0)
+    share = gap[crossing] / (gap[crossing] - gap[crossing + 1])
+    radii = np.union1d(radii, radii[crossing] + share * np.diff(radii)[crossing])
+    return radii, np.minimum(np.interp(radii, *first), np.interp(radii, *second))
+
+
+def graded_grid(n: int, knots, node_at: float | None = None) -> np.ndarray:
+    """n nodes at equal steps of int dR / s(R) from 0 to the last knot, s piecewise linear
+    through ``knots`` (R, s) (R from 0, s > 0); ``node_at``: a radius given a node of its own
+    if it lies inside the grid (equal steps of the share on either side of it)."""
+    n = checks.integer("n (film nodes)", n, lower=8)
+    radii, spacing = (np.asarray(k, dtype=float) for k in knots)
+    outer_radius = radii[-1]
+    pieces = _SpacingPieces(radii, spacing)
+    if node_at is None or not 0.0 < node_at < outer_radius:
+        nodes = pieces.position(np.linspace(0.0, 1.0, n))
+    else:
+        at = pieces.share(node_at)
         k = min(max(round(at * (n - 1)), 1), n - 2)
         share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
-        radii = rim_radius * pieces.position(share)
-        radii[k] = node_at
-    radii[0], radii[-1] = 0.0, outer_radius
-    return radii
+        nodes = pieces.position(share)
+        nodes[k] = node_at
+    nodes[0], nodes[-1] = 0.0, outer_radius
+    return nodes
 
 
 class _SpacingPieces:

@@ -87,7 +87,9 @@ def contact_grid(
     outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
     if node_at is not None and node_at <= rim_radius:
         node_at = None
-    return graded_grid(n, _contact_spacing(rim_radius, outer_radius), node_at)
+    radii = graded_grid(n, _contact_spacing(outer_radius / rim_radius), rim_radius, node_at)
+    radii[-1] = outer_radius  # not rim_radius * (outer_radius / rim_radius)
+    return radii
 
 
 def film_grid(
@@ -117,14 +119,14 @@ def film_grid(
     )
     if rim_radius is not None:
         rim_radius = checks.number("rim_radius", rim_radius, upper=outer_radius, upper_open=True)
-        knots = _lower_envelope(knots, _contact_spacing(rim_radius, outer_radius))
-    return graded_grid(n, knots, node_at)
+        rho, spacing = _contact_spacing(outer_radius / rim_radius)
+        knots = _lower_envelope(knots, (rim_radius * rho, rim_radius * spacing))
+    return graded_grid(n, knots, 1.0, node_at)
 
 
-def _contact_spacing(rim_radius: float, outer_radius: float) -> tuple[np.ndarray, np.ndarray]:
-    """(R, s) knots of the contact grid's spacing law (:func:`contact_grid`) out to the grid's
-    end, in the units of R."""
-    end = outer_radius / rim_radius
+def _contact_spacing(end: float) -> tuple[np.ndarray, np.ndarray]:
+    """(rho, s) knots of the contact grid's spacing law (:func:`contact_grid`) out to the grid's
+    end rho = R_end / R_c, both by the rim radius R_c."""
     knots = [(rho, s) for rho, s in _CONTACT_SPACING_KNOTS if rho < end]
     last_rho, last_s = _CONTACT_SPACING_KNOTS[len(knots) - 1]
     slope = _CONTACT_SPACING_SLOPE
@@ -134,7 +136,7 @@ def _contact_spacing(rim_radius: float, outer_radius: float) -> tuple[np.ndarray
         )
     rho = np.array([k[0] for k in knots] + [end])
     spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
-    return rim_radius * rho, rim_radius * spacing
+    return rho, spacing
 
 
 def _lower_envelope(first, second) -> tuple[np.ndarray, np.ndarray]:
@@ -148,24 +150,25 @@ def _lower_envelope(first, second) -> tuple[np.ndarray, np.ndarray]:
     return radii, np.minimum(np.interp(radii, *first), np.interp(radii, *second))
 
 
-def graded_grid(n: int, knots, node_at: float | None = None) -> np.ndarray:
+def graded_grid(n: int, knots, scale: float = 1.0, node_at: float | None = None) -> np.ndarray:
     """n nodes at equal steps of int dR / s(R) from 0 to the last knot, s piecewise linear
-    through ``knots`` (R, s) (R from 0, s > 0); ``node_at``: a radius given a node of its own
-    if it lies inside the grid (equal steps of the share on either side of it)."""
+    through ``knots`` (R, s), both in units of ``scale`` (R from 0, s > 0); ``node_at``: a
+    radius given a node of its own if it lies inside the grid (equal steps of the share on
+    either side of it)."""
     n = checks.integer("n (film nodes)", n, lower=8)
-    radii, spacing = (np.asarray(k, dtype=float) for k in knots)
-    outer_radius = radii[-1]
-    pieces = _SpacingPieces(radii, spacing)
+    rho, spacing = (np.asarray(k, dtype=float) for k in knots)
+    outer_radius = scale * rho[-1]
+    pieces = _SpacingPieces(rho, spacing)
     if node_at is None or not 0.0 < node_at < outer_radius:
-        nodes = pieces.position(np.linspace(0.0, 1.0, n))
+        radii = scale * pieces.position(np.linspace(0.0, 1.0, n))
     else:
-        at = pieces.share(node_at)
+        at = pieces.share(node_at / scale)
         k = min(max(round(at * (n - 1)), 1), n - 2)
         share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
-        nodes = pieces.position(share)
-        nodes[k] = node_at
-    nodes[0], nodes[-1] = 0.0, outer_radius
-    return nodes
+        radii = scale * pieces.position(share)
+        radii[k] = node_at
+    radii[0], radii[-1] = 0.0, outer_radius
+    return radii
 
 
 class _SpacingPieces:

@@ -36,6 +36,7 @@ from .tangential.superposition import (
     SuperpositionWarning,
     superposition_validity,
 )
+from .threads import one_blas_thread
 
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
@@ -66,6 +67,7 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
 
 
+@one_blas_thread
 def elasticity(
     params: CollisionParameters,
     radii,
@@ -219,6 +221,7 @@ class CollisionResult:
         }
 
 
+@one_blas_thread
 def collide(
     params: CollisionParameters | PhysicalCollision,
     config: RunConfig | None = None,

@@ -19,7 +19,10 @@ cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
               python3-scipy python3-matplotlib python3-h5py python3-tqdm python3-venv python3-pip
-              openmpi-bin)
+              openmpi-bin libopenblas0-pthread)
+# libopenblas0-pthread: Debian's threaded BLAS (it becomes the system's BLAS), which most
+# machines have; ehdfem pins it to one thread in its computations (ehdfem/threads.py) and
+# tests/test_threads.py shows the results do not depend on its thread count.
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1

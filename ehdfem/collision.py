@@ -42,6 +42,7 @@ from .tangential.superposition import (
     SuperpositionWarning,
     superposition_validity,
 )
+from .threads import one_blas_thread
 
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
@@ -93,6 +94,7 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     return contact_grid(nodes, rim, outer, node_at=sphere)
 
 
+@one_blas_thread
 def elasticity(
     params: CollisionParameters,
     radii,
@@ -246,6 +248,7 @@ class CollisionResult:
         }
 
 
+@one_blas_thread
 def collide(
     params: CollisionParameters | PhysicalCollision,
     config: RunConfig | None = None,

@@ -1,0 +1,50 @@
+"""Results do not depend on the BLAS thread count (ehdfem.threads).
+
+A threaded BLAS changes the rounding of the dense products with the thread count; unpinned,
+the 24 collisions of benchmarks/sweep.py all differed between 1 and 2 OpenBLAS threads (by 1e-12
+to 1e-9 in e_n, and a soft case's step sequence diverged). The set-up installs Debian's threaded
+OpenBLAS (make.sh), so these tests can see the difference; each run is a fresh process, since a
+BLAS reads its thread count when it loads.
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+pytestmark = pytest.mark.serial
+
+COLLISION = """
+import json, sys
+from threadpoolctl import threadpool_info
+from ehdfem.collision import collide
+from ehdfem.inputs.scales import CollisionParameters
+params = CollisionParameters(St=3.0, eps=0.01, p_cav=-10.0, angle=30.0)
+result = collide(params, tangential="lubrication", deformation="gap", nodes=80)
+threads = max(info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas")
+values = (result.normal.e_n, result.normal.min_film_thickness, result.normal.steps,
+          result.tangential.e_t, result.tangential.spin_change)
+print(json.dumps({"threads": threads, "values": [repr(v) for v in values]}))
+"""
+
+
+def run_with_blas_threads(threads: int) -> dict:
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": str(threads), "OMP_NUM_THREADS": str(threads)}
+    out = subprocess.run(
+        [sys.executable, "-c", COLLISION], env=env, capture_output=True, text=True, check=True
+    )
+    return json.loads(out.stdout.splitlines()[-1])
+
+
+def test_the_machine_has_a_threaded_blas():
+    """Outside a computation the BLAS keeps the thread count it was given, so the next test
+    compares two different thread counts (fails on a machine without a threaded BLAS: run the
+    set-up)."""
+    assert run_with_blas_threads(2)["threads"] == 2
+
+
+def test_a_collision_is_bit_equal_on_one_and_two_blas_threads():
+    """A soft oblique collision with the sliding film: every output equal bit for bit."""
+    assert run_with_blas_threads(1)["values"] == run_with_blas_threads(2)["values"]

@@ -68,7 +68,7 @@ def flattens(params: CollisionParameters) -> bool:
     rigid film's pressure 3 |V| / H^2, W(0) = (3 sqrt(2) pi^2 / 8) eps |V| X^(-3/2), reaches
     the gap (all by x0, speed by V0)."""
     stop = rigid_stopping_gap(params.St, params.layer)
-    gaps = np.geomspace(max(stop, 1e-300), 1.0, 400)
+    gaps = np.geomspace(max(stop, 1e-100), 1.0, 400)  # any eps >= 1e-40 flattens above 1e-100
     speed = 1.0 - rigid_velocity_loss(gaps, params.layer) / params.St
     deflection = 3.0 * np.sqrt(2.0) * np.pi**2 / 8.0 * params.eps * speed * gaps**-1.5
     return bool(np.any(deflection >= gaps))

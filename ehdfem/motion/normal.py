@@ -61,6 +61,10 @@ NEAR_THINNEST = 1.1  # the thinnest node's film is checked within this factor of
 # With film control, the error weight of X (relative to the thinnest film): e_n near St_c,
 # through X at exit, is the output most sensitive to the time step (docs/model.md, "Time").
 GAP_WEIGHT = 3.0
+# With film control, the factor on the velocity error's effect on the gap (_momentum_weight):
+# the stopping gap's error is the sum of the steps' errors over the approach; 5 brings a rigid
+# sphere's stop at St = 10 within 0.33 % (1.7 % with 1, 0.55 % with 3; docs/performance.md).
+MOMENTUM_WEIGHT = 5.0
 
 
 class NormalSolverError(RuntimeError):
@@ -283,7 +287,7 @@ class _NormalIntegration:
         measures the kink, an error of first order in the step, and holding it to rtol cost up to 9
         times the steps while a cavity grew node by node (docs/model.md, "Time"). X and V, integrals
         over the film, stay controlled across such switches; with film control |dX|/H_min weighs
-        GAP_WEIGHT times."""
+        GAP_WEIGHT times and |dV| by the gap error it will cause (:meth:`_momentum_weight`)."""
         hist, stepper = self.hist, self.stepper
         share = stepper.error_share(t_new, order)
         if share is None:
@@ -298,6 +302,7 @@ class _NormalIntegration:
             abs(stepper.correction(t_new, order, hist.velocity, solution.velocity)),
         ]
         if control:
+            errors[1] *= max(1.0, MOMENTUM_WEIGHT * self._momentum_weight(solution, h_min))
             film = stepper.correction(t_new, order, hist.film_thickness, film_thickness)
             relative = film / film_thickness
             near = film_thickness[thinnest] <= NEAR_THINNEST * min(self.thinnest, h_min)
@@ -310,6 +315,20 @@ class _NormalIntegration:
             if steady and full.any():
                 errors.append(np.sqrt(np.mean(relative[full] ** 2)))
         return share * max(errors) / self.options.rtol
+
+    def _momentum_weight(self, solution, h_min) -> float:
+        """How much a velocity error dV moves the gap, relative to the thinnest film, by the
+        time the film has taken up the sphere's momentum: the film's damping g = f.P / |V|
+        stops a speed error within St / g, over which the gap moves by St dV / g, so the weight
+        is St |V| / (f.P H_min) while approaching (V < 0) against a film that pushes (f.P > 0),
+        0 otherwise (force by 6 pi mu V0 a^2 / x0, V by V0, H by x0). A rigid sphere near
+        its stopping gap X_stop has g H_min = 1: the weight is St, and a control of dV
+        alone to rtol left X_stop 5-7 % high at St = 10 (docs/performance.md). With film control
+        the velocity error counts MOMENTUM_WEIGHT times this weight where that is above 1."""
+        force = float(solution.state.force_weights @ solution.pressure)
+        if solution.velocity >= 0.0 or force <= 0.0:
+            return 0.0
+        return self.params.St * -solution.velocity / (force * h_min)
 
     def _full(self, pressure, state):
         """Nodes whose film is full: wet and above the cavitation pressure."""

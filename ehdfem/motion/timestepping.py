@@ -25,7 +25,9 @@ class IntegratorOptions:
     and, with ``film_control``, in the film thickness H relative to itself, at the thinnest
     node near the thinnest film yet and in the root mean square over the nodes whose film is
     full, so that the thinnest film and the fast suction phase of the rebound are resolved;
-    with ``film_control`` X is held to rtol/3 (GAP_WEIGHT of :mod:`ehdfem.motion.normal`). Without
+    with ``film_control`` X is held to rtol/3 (GAP_WEIGHT of :mod:`ehdfem.motion.normal`) and,
+    while the film takes up the sphere's momentum, V to rtol over 5 times the gap error a
+    velocity error causes (``_momentum_weight`` there: St at a rigid sphere's stop). Without
     it only X and V are controlled, which left the minimum film thickness up to 10 % off at
     the old default rtol 5e-5 (docs/performance.md). ``order``: the highest BDF order (1 to
     5; BDF is zero-stable up to 6, and orders 3 to 5 are stable on the negative real axis,

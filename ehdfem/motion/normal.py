@@ -321,14 +321,17 @@ class _NormalIntegration:
         time the film has taken up the sphere's momentum: the film's damping g = f.P / |V|
         stops a speed error within St / g, over which the gap moves by St dV / g, so the weight
         is St |V| / (f.P H_min) while approaching (V < 0) against a film that pushes (f.P > 0),
-        0 otherwise (force by 6 pi mu V0 a^2 / x0, V by V0, H by x0). A rigid sphere near
-        its stopping gap X_stop has g H_min = 1: the weight is St, and a control of dV
-        alone to rtol left X_stop 5-7 % high at St = 10 (docs/performance.md). With film control
-        the velocity error counts MOMENTUM_WEIGHT times this weight where that is above 1."""
+        0 otherwise (force by 6 pi mu V0 a^2 / x0, V by V0, H by x0). It is at most St, the
+        weight of a rigid sphere (g H_min = 1 immersed and near the stop), whose stopping gap
+        moves by St dV relative for a speed error anywhere on its approach: a thin layer's
+        film barely damps as the sphere enters (g = (1 - X)^2 / X), yet the error reaches the
+        stop. A control of dV alone to rtol left X_stop 5-7 % high at St = 10
+        (docs/performance.md). With film control the velocity error counts MOMENTUM_WEIGHT
+        times this weight where that is above 1."""
         force = float(solution.state.force_weights @ solution.pressure)
         if solution.velocity >= 0.0 or force <= 0.0:
             return 0.0
-        return self.params.St * -solution.velocity / (force * h_min)
+        return self.params.St * min(1.0, -solution.velocity / (force * h_min))
 
     def _full(self, pressure, state):
         """Nodes whose film is full: wet and above the cavitation pressure."""

@@ -17,14 +17,8 @@ import numpy as np
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
-from .film.reynolds import contact_grid, film_grid
-from .inputs.scales import (
-    CollisionParameters,
-    PhysicalCollision,
-    hertz_max_compression,
-    rigid_stopping_gap,
-    rigid_velocity_loss,
-)
+from .film.reynolds import contact_grid
+from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import provenance
 from .outputs import registry as outputs
@@ -61,37 +55,19 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
     return rim, max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
 
 
-def flattens(params: CollisionParameters) -> bool:
-    """Whether the solids flatten before the film stops the sphere: somewhere on the rigid
-    approach (gap X from 1 down to :func:`ehdfem.inputs.scales.rigid_stopping_gap`, speed
-    |V| = 1 - rigid_velocity_loss(X) / St) the central deflection of two half-spaces under the
-    rigid film's pressure 3 |V| / H^2, W(0) = (3 sqrt(2) pi^2 / 8) eps |V| X^(-3/2), reaches
-    the gap (all by x0, speed by V0)."""
-    stop = rigid_stopping_gap(params.St, params.layer)
-    gaps = np.geomspace(max(stop, 1e-100), 1.0, 400)  # any eps >= 1e-40 flattens above 1e-100
-    speed = 1.0 - rigid_velocity_loss(gaps, params.layer) / params.St
-    deflection = 3.0 * np.sqrt(2.0) * np.pi**2 / 8.0 * params.eps * speed * gaps**-1.5
-    return bool(np.any(deflection >= gaps))
-
-
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)). Where the solids flatten (:func:`flattens`),
-    :func:`ehdfem.film.reynolds.contact_grid` graded to the rim of :func:`film_extent` (a thin
-    layer's grid ends at least 1.48 rims out: eps^(1/5) is cut to that at tiny St and large
-    eps). Where the film stops a still rigid sphere, :func:`ehdfem.film.reynolds.film_grid`
-    without a contact: a fixed number of nodes per decade of radius from half the film's
-    narrowest width, sqrt(2 X_stop) at the rigid stopping gap X_stop, to the film's end. An
-    immersed grid has a node at the sphere's radius 1/sqrt(delta), where the film's shear
-    integrals end.
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.reynolds.contact_grid` graded
+    to the rim of :func:`film_extent`. A thin layer's grid ends at least 1.48 rims out (eps^(1/5)
+    is cut to that at tiny St and large eps); an immersed one has a node at the sphere's radius
+    1/sqrt(delta), where the film's shear integrals end. The rigid approach needs no grading of
+    its own: the film's conductances make its force exact on any grid
+    (:mod:`ehdfem.film.reynolds`), so a sphere the film stops before the solids flatten (eps
+    1e-12 up to St = 10) stops at the rigid stopping gap on this grid too.
     """
     rim, outer = film_extent(params)
-    sphere = None if params.layer == "thin" else 1.0 / np.sqrt(params.delta)
-    if not flattens(params):
-        stop = rigid_stopping_gap(params.St, params.layer)
-        return film_grid(nodes, None, 0.5 * np.sqrt(2.0 * stop), outer, sphere)
     if params.layer == "thin":
         return contact_grid(nodes, min(rim, outer / 1.48), outer)
-    return contact_grid(nodes, rim, outer, node_at=sphere)
+    return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
 
 
 @one_blas_thread

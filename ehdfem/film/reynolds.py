@@ -72,9 +72,6 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
 # contact_grid): knots (rho, spacing) and the slope beyond the last knot.
 _CONTACT_SPACING_KNOTS = ((0.0, 0.7), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
 _CONTACT_SPACING_SLOPE = 8.0
-# The lubrication film's relative spacing dR / R beyond its narrowest width (film_grid), in
-# the units of the contact spacing.
-LUBRICATION_SPACING = 0.25
 
 
 def contact_grid(
@@ -99,38 +96,6 @@ def contact_grid(
     return radii
 
 
-def film_grid(
-    n: int,
-    rim_radius: float | None,
-    lubrication_width: float,
-    outer_radius: float,
-    node_at: float | None = None,
-) -> np.ndarray:
-    """Film nodes resolving both an elastic contact of rim R_c and the lubrication film of a
-    sphere that is still rigid, by sqrt(a x0).
-
-    A rigid sphere at gap X carries its film force (1/3) int P R dR, P = 3 |V| / H^2,
-    H = X + R^2/2, over the width sqrt(2 X) (the integrand P R^2 peaks there and falls as R^-2
-    beyond), and the error of P1 elements is set by the spacing relative to that width. Along
-    the approach X runs from 1 down to the stopping gap, so the film needs a fixed number of
-    nodes per decade of radius from the narrowest width w it reaches out to the film's edge: the
-    spacing is c min(s_c(R), LUBRICATION_SPACING max(R, w)), s_c the contact spacing of
-    :func:`contact_grid` (left out for ``rim_radius`` None, a sphere that stops before it
-    flattens), with c set by n and ``node_at`` as there.
-    """
-    width = checks.positive("lubrication_width", lubrication_width)
-    outer_radius = checks.number("outer_radius", outer_radius, lower=width, lower_open=True)
-    knots = (
-        np.array([0.0, width, outer_radius]),
-        LUBRICATION_SPACING * np.array([width, width, outer_radius]),
-    )
-    if rim_radius is not None:
-        rim_radius = checks.number("rim_radius", rim_radius, upper=outer_radius, upper_open=True)
-        rho, spacing = _contact_spacing(outer_radius / rim_radius)
-        knots = _lower_envelope(knots, (rim_radius * rho, rim_radius * spacing))
-    return graded_grid(n, knots, 1.0, node_at)
-
-
 def _contact_spacing(end: float) -> tuple[np.ndarray, np.ndarray]:
     """(rho, s) knots of the contact grid's spacing law (:func:`contact_grid`) out to the grid's
     end rho = R_end / R_c, both by the rim radius R_c."""
@@ -144,17 +109,6 @@ def _contact_spacing(end: float) -> tuple[np.ndarray, np.ndarray]:
     rho = np.array([k[0] for k in knots] + [end])
     spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
     return rho, spacing
-
-
-def _lower_envelope(first, second) -> tuple[np.ndarray, np.ndarray]:
-    """The knots (R, s) of min(s_1, s_2) for two piecewise-linear spacings over the same
-    [0, R_end]: both knot sets plus the radii where the two cross."""
-    radii = np.union1d(first[0], second[0])
-    gap = np.interp(radii, *first) - np.interp(radii, *second)
-    crossing = np.flatnonzero(gap[:-1] * gap[1:] < 0)
-    share = gap[crossing] / (gap[crossing] - gap[crossing + 1])
-    radii = np.union1d(radii, radii[crossing] + share * np.diff(radii)[crossing])
-    return radii, np.minimum(np.interp(radii, *first), np.interp(radii, *second))
 
 
 def graded_grid(n: int, knots, scale: float = 1.0, node_at: float | None = None) -> np.ndarray:
@@ -470,9 +424,10 @@ class Film:
     def wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
         """(number of wet nodes, R_edge) for the thin layer: R_edge is where H crosses 1.
 
-        The crossing is interpolated linearly between the last node with H < 1 and the next;
-        a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0 there) so the
-        cut element never degenerates.
+        The crossing is found on the element's H between the last node with H < 1 and the
+        next, W linear and the undeformed gap S exact (as in the conductances: a rigid film's
+        edge is exact); a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0
+        there) so the cut element never degenerates.
         """
         n = len(self.radii)
         if self.layer == "immersed":
@@ -484,11 +439,28 @@ class Film:
         if first_dry == 0:
             return 0, 0.0
         k = first_dry - 1
-        fraction = (1.0 - film_thickness[k]) / (film_thickness[first_dry] - film_thickness[k])
+        fraction = self._edge_fraction(k, film_thickness[k], film_thickness[first_dry])
         edge = self.radii[k] + fraction * self._length[k]
         if fraction < 1e-3:
             return k, edge
         return first_dry, edge
+
+    def _edge_fraction(self, k: int, h_left: float, h_right: float) -> float:
+        """xi in [0, 1] where H = h_left (1 - xi) + h_right xi + (S - its chord) = 1 on element
+        k (h_left < 1 <= h_right): Newton from the linear crossing, which lies left of the root
+        (S lies below its chord) on a convex H, so the iterates bracket it after one step."""
+        left, length = self.radii[k : k + 1], self._length[k : k + 1]
+        xi = (1.0 - h_left) / (h_right - h_left)
+        for _ in range(6):
+            point = np.array([xi])
+            excess = h_left + (h_right - h_left) * xi - 1.0
+            excess += self.gap.between_nodes(left, length, point)[0, 0]
+            curved = self.gap.slope_between_nodes(left, length, point)[0, 0]
+            slope = h_right - h_left + length[0] * curved
+            if slope <= 0.0:
+                break
+            xi = min(max(xi - excess / slope, 0.0), 1.0)
+        return xi
 
     def _elements(self, film_thickness: np.ndarray):
         """(number of wet nodes, R_edge, the wetted elements). A thin layer's last element is

@@ -63,7 +63,7 @@ NEAR_THINNEST = 1.1  # the thinnest node's film is checked within this factor of
 GAP_WEIGHT = 3.0
 # With film control, the factor on the velocity error's effect on the gap (_momentum_weight):
 # the stopping gap's error is the sum of the steps' errors over the approach; 5 brings a rigid
-# sphere's stop at St = 10 within 0.41 % (1.7-1.9 % with 1, 0.55 % with 3;
+# sphere's stop at St = 10 within 0.42 % (1.7-1.9 % with 1, 0.55 % with 3;
 # docs/performance.md).
 MOMENTUM_WEIGHT = 5.0
 

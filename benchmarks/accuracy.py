@@ -16,7 +16,8 @@ runs, the expensive part, are kept in benchmarks/results/accuracy_references.csv
 case and their film grid (a change of the grid recomputes them); the default and old runs are
 redone each time.
 Run: .venv/bin/python benchmarks/accuracy.py   (about 40 minutes from scratch, 6 after;
---stored: only the cases whose reference is stored)
+--stored: only the cases whose reference is stored; --corners: the corners of the box real
+collisions cover instead, to benchmarks/results/accuracy_corners.json)
 """
 
 import os
@@ -86,8 +87,31 @@ def cases():
     return [case for case in out if case not in slow] + slow  # the slowest references last
 
 
+def corners():
+    """(name, layer, film, St, eps, film parameters) of the corners of the box real collisions
+    cover (issue 34; eps 1e-12 to 0.1, P_cav -1e5 to -1 and none, St 1 to 1e4, delta 1e-3 to
+    0.5), as many as an hour of references allows: the rigid limit (eps 1e-12, St 10: the film
+    stops the sphere before it flattens), the mixed regime (eps 1e-9, St 100: rigid over
+    decades of gap, then flattened), the weakest suction on the softest impact (P_cav = -1,
+    eps = 0.1, St = 2) and the largest delta (0.5)."""
+    return [
+        ("corner thin none St=10 eps=1e-12", "thin", "none", 10.0, 1e-12, {}),
+        ("corner immersed none St=10 eps=1e-12", "immersed", "none", 10.0, 1e-12, {}),
+        ("corner immersed none St=100 eps=1e-9", "immersed", "none", 100.0, 1e-9, {}),
+        (
+            "corner thin truncate St=2 eps=0.1 P_cav=-1",
+            "thin",
+            "truncate",
+            2.0,
+            0.1,
+            {"p_cav": -1.0},
+        ),
+        ("corner thin none St=100 eps=1e-6 delta=0.5", "thin", "none", 100.0, 1e-6, {"delta": 0.5}),
+    ]
+
+
 def parameters(layer, St, eps, options, model):
-    base = dict(eps=eps, layer=layer, angle=30.0, delta=0.01, **options)
+    base = {**dict(eps=eps, layer=layer, angle=30.0, delta=0.01), **options}
     if St == "near":  # St_c with the fixed OLD numerics, so the case does not move with defaults
         head_on = CollisionParameters(St=1.0, **{**base, "angle": 0.0})
         St = (
@@ -167,15 +191,16 @@ def reference(table, name, params, model, compute=True):
     return row
 
 
-def run_case(references, name, layer, film, St, eps, options, compute=True):
-    """The row of one case (None if its reference is not stored and not ``compute``)."""
+def run_case(references, name, layer, film, St, eps, options, compute=True, repeats=REPEATS):
+    """The row of one case (None if its reference is not stored and not ``compute``), the
+    default and the old default timed ``repeats`` times each."""
     model = "fem" if name.startswith("fem") else "halfspace"
     params = parameters(layer, St, eps, options, model)
     exact = reference(references, name, params, model, compute)
     if exact is None:
         return None
-    default, seconds, tried = timed(params, model, DEFAULT_NODES, IntegratorOptions(), REPEATS)
-    _, old_seconds, old_tried = timed(params, model, DEFAULT_NODES, OLD, REPEATS, old_radii(params))
+    default, seconds, tried = timed(params, model, DEFAULT_NODES, IntegratorOptions(), repeats)
+    _, old_seconds, old_tried = timed(params, model, DEFAULT_NODES, OLD, repeats, old_radii(params))
     row = {"case": name, "St": params.St, "status": default["status"]}
     row.update(relative_errors(default, exact))
     row["reference_time_error"] = float(exact["time_error"])
@@ -183,23 +208,27 @@ def run_case(references, name, layer, film, St, eps, options, compute=True):
     return row
 
 
-def main(stored_only=False):
+def main(stored_only=False, corner_cases=False):
     """Every case, or with ``stored_only`` (--stored) only those whose reference is stored:
-    the cheap runs alone, e.g. to time them again on an idle machine."""
+    the cheap runs alone, e.g. to time them again on an idle machine; with ``corner_cases``
+    (--corners) the box's corners instead (:func:`corners`), written to accuracy_corners.json."""
     RESULTS.mkdir(exist_ok=True)
     references = ResultTable(RESULTS / "accuracy_references.csv", ("case", "grid"))
-    rows, grid = [], cases()
+    rows, grid = [], corners() if corner_cases else cases()
+    output = RESULTS / ("accuracy_corners.json" if corner_cases else "accuracy.json")
     for case in grid:
         print(case[0], flush=True)
         try:
-            row = run_case(references, *case, compute=not stored_only)
+            row = run_case(
+                references, *case, compute=not stored_only, repeats=1 if corner_cases else REPEATS
+            )
         except NormalSolverError as err:  # recorded, and left out of the figures
             row = {"case": case[0], "status": f"failed: {err}"}
         if row is None:
             continue
         rows.append(row)
         summary = summarise(rows, len(grid))
-        write_atomic(RESULTS / "accuracy.json", json.dumps(summary, indent=1) + "\n")
+        write_atomic(output, json.dumps(summary, indent=1) + "\n")
     print_table(summary)
 
 
@@ -239,4 +268,4 @@ def print_table(summary):
 
 
 if __name__ == "__main__":
-    main(stored_only="--stored" in sys.argv[1:])
+    main(stored_only="--stored" in sys.argv[1:], corner_cases="--corners" in sys.argv[1:])

@@ -30,26 +30,29 @@ def quasi_steady(film, gap, velocity):
 
 
 def test_edge_is_where_film_reaches_layer_thickness():
+    """The edge is found on the element's H with the undeformed gap exact between the nodes:
+    for a rigid sphere, X + R^2/2 = 1 to rounding (linear interpolation of H was 2e-3 off)."""
     film = Film(radial_grid(50, 0.3, 1.6), "thin")
     gap = 0.3
     n_wet, edge = film.wetted_edge(gap + 0.5 * film.radii**2)
-    assert edge == pytest.approx(np.sqrt(2 * (1 - gap)), rel=2e-3)  # linear interpolation of R^2
+    assert edge == pytest.approx(np.sqrt(2 * (1 - gap)), rel=1e-13)
     assert film.radii[n_wet - 1] < edge <= film.radii[n_wet]
 
 
 @pytest.mark.parametrize("layer", ["thin", "immersed"])
-def test_rigid_force_converges_at_second_order(layer):
+def test_rigid_force_is_exact_on_any_grid(layer):
+    """The quasi-steady rigid film's force equals -V (1/X - 2 + X) (thin) and -V / X
+    (immersed) on coarse and fine grids alike, to rounding (1e-12): the element conductances
+    make the dissipation, and so the force (1/3) m.P = (1/3) P.K P, exact for a uniform
+    squeeze (ehdfem.film.reynolds). The P1 Galerkin conductance converged at second order
+    (1.4e-3 off at 200 nodes)."""
     gap, velocity = 0.01, -1.0
     exact = -velocity * (1 / gap - 2 + gap) if layer == "thin" else -velocity / gap
     outer = 1.5 if layer == "thin" else 30.0
-    errors = []
-    for n in (50, 100, 200):
+    for n in (20, 50, 200):
         film = Film(radial_grid(n, np.sqrt(gap), outer), layer)
         _, force, _ = quasi_steady(film, gap, velocity)
-        errors.append(abs(force / exact - 1))
-    orders = np.log2(np.array(errors[:-1]) / errors[1:])
-    assert errors[-1] < 2e-3
-    assert np.all(orders > 1.7), orders
+        assert force / exact - 1 == pytest.approx(0.0, abs=1e-12), n
 
 
 def test_rigid_pressure_profile_thin_layer():

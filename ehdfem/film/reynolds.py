@@ -15,11 +15,12 @@ part, :mod:`ehdfem.film.cavitation`; the film supplies the pieces it works on.
 With a pressure-dependent viscosity mu(P) (:mod:`ehdfem.film.viscosity`) H^3 becomes H^3 mu0/mu(P).
 
 Discretisation: continuous piecewise-linear (P1) elements in R with the weight R, the lumped
-mass m_i = int phi_i R dR and element conductances k_e = A_e^2 / int_e 3 R^3 mu / (mu0 H^3) dR,
-A_e the flux through the element of a uniform unit squeeze (the masses up to its left node):
-the discrete dissipation P.K P and force (1/3) m.P are exact for the rigid film P = 3|V|/H^2
-at every gap and on every grid, where the P1 Galerkin conductance (1/(12 L^2)) int R H^3 dR,
-which k_e equals to leading order in L, fell short of the force by about 0.9 (L/R)^2.
+mass m_i = int phi_i R dR and element conductances k_e = <mu0/mu> A_e^2 / int_e 3 R^3/H^3 dR,
+A_e the flux through the element of a uniform unit squeeze (the masses up to its left node)
+and <mu0/mu> the element's mean fluidity over P linear on it: the discrete dissipation P.K P
+and force (1/3) m.P are exact for the rigid film P = 3|V|/H^2 at every gap and on every grid,
+where the P1 Galerkin conductance (1/(12 L^2)) int R H^3 mu0/mu dR, which k_e equals to
+leading order in L, fell short of the force by about 0.9 (L/R)^2.
 The thin-layer edge is cut into its element (the element is shortened to end at R_edge, where
 P = 0 and H = 1), so the edge moves continuously rather than node by node. The film does not
 know about time stepping: it assembles, for a given film thickness H and pressure P, the
@@ -690,33 +691,38 @@ def _gauss_values(left, right, xi=_GAUSS_XI):
 
 
 def _conductance(left_radius, length, h, p_left, p_right, viscosity: Viscosity):
-    """Element conductance k = A^2 / int_e 3 R^3 (mu/mu0) / H^3 dR, H at the points of
-    _FLUX_XI, P linear on the element, and its derivatives ((dk/dH_left, dk/dH_right),
-    (dk/dP_left, dk/dP_right)) by the nodal values. A = R_l^2/2 + L (3 R_l + L)/6 is the
-    flux through the element when every node's squeeze rate is 1 (the lumped masses m_j,
-    j <= left, summed), int_e 3 R^3 mu/(mu0 H^3) dR = int_e q^2 / (R H^3 mu0/(12 mu)) dR the
-    exact dissipation of the flux q = R^2/2 of a uniform squeeze: the film's dissipation
-    P.K P and force (1/3) m.P are then exact for a rigid sphere at any gap and grid; to
-    leading order in L, k = (1/(12 L^2)) int R H^3 mu0/mu dR, the P1 Galerkin conductance."""
+    """Element conductance k = A^2 / int_e 3 R^3 / H^3 dR times the element's mean fluidity
+    <mu0/mu(P)> over P linear on the element, H at the points of _FLUX_XI, and its derivatives
+    ((dk/dH_left, dk/dH_right), (dk/dP_left, dk/dP_right)) by the nodal values.
+    A = R_l^2/2 + L (3 R_l + L)/6 is the flux through the element when every node's squeeze
+    rate is 1 (the lumped masses m_j, j <= left, summed) and int_e 3 R^3/H^3 dR =
+    int_e q^2 / (R H^3/12) dR the exact dissipation of the flux q = R^2/2 of a uniform
+    squeeze: the film's dissipation P.K P and force (1/3) m.P are then exact for a rigid
+    sphere at any gap and grid. The mean fluidity is the exact factor of a piezoviscous
+    element that carries a constant flux, q int 12/(R H^3) dR = int mu0/mu dP over its
+    pressure drop. To leading order in L, k = (1/(12 L^2)) int R H^3 mu0/mu dR, the P1
+    Galerkin conductance."""
     radius = left_radius[:, None] + length[:, None] * _FLUX_XI
     squeeze_flux = 0.5 * left_radius**2 + _descending_mass(left_radius, left_radius + length)
-    weight = 3.0 * _FLUX_W * length[:, None] * radius**3
-    if viscosity.constant:
-        ratio, dlog = 1.0, None
-    else:
-        ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
-        if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
-            raise FilmError("the viscosity overflows (mu/mu0 > 1e308): pressure iterate too high")
-    density = weight * ratio / h**3
+    density = 3.0 * _FLUX_W * length[:, None] * radius**3 / h**3
     resistance = density.sum(axis=1)
-    k = squeeze_flux**2 / resistance
-    share = -(k / resistance)[:, None]  # dk = share * d(resistance)
-    dh = share * (-3.0 * density / h)
-    dk_dh = ((dh * (1.0 - _FLUX_XI)).sum(axis=1), (dh * _FLUX_XI).sum(axis=1))
-    if dlog is None:
-        return k, dk_dh, None
-    dp = share * density * dlog
-    return k, dk_dh, ((dp * (1.0 - _FLUX_XI)).sum(axis=1), (dp * _FLUX_XI).sum(axis=1))
+    geometric = squeeze_flux**2 / resistance
+    slope = (geometric / resistance)[:, None] * 3.0 * density / h  # dk_geometric/dH there
+    if viscosity.constant:
+        return geometric, _ends(slope), None
+    ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
+    if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
+        raise FilmError("the viscosity overflows (mu/mu0 > 1e308): pressure iterate too high")
+    fluidity = 1.0 / ratio
+    mean = (_FLUX_W * fluidity).sum(axis=1)
+    dk_dp = _ends(-geometric[:, None] * _FLUX_W * fluidity * dlog)
+    return geometric * mean, _ends(slope * mean[:, None]), dk_dp
+
+
+def _ends(values):
+    """(sum over the points of values (1 - xi), of values xi): an element's point values shared
+    between its left and right nodes, P or H linear on the element."""
+    return (values * (1.0 - _FLUX_XI)).sum(axis=1), (values * _FLUX_XI).sum(axis=1)
 
 
 def _derivative_bands(n, el: _Elements, regular, dk, jump):

@@ -33,9 +33,19 @@ it (same sign as u_s, or 0).
 Where the solid contact acts: at the step ``index`` of the normal solution's
 :class:`ehdfem.motion.normal.SolidImpact` (the impact model: N its normal impulse, a jump of U
 and a Omega at that step), and over each step with the asperities' load F_a of the mixed model
-(``NormalResult.asperity_force``, by 6 pi mu V0 a^2 / x0: N = int F_a dT over the step by the
-trapezoid rule). The film acts as before between the contact's impulses
-(:mod:`ehdfem.tangential.motion` applies :meth:`CoulombContact.act` after each of its steps).
+(``NormalResult.asperity_force``, by 6 pi mu V0 a^2 / x0). How the film's integrator takes
+them (:mod:`ehdfem.tangential.motion`):
+
+- the one-step models (couette, flat: exact; gcb: exact exponential per step) apply the
+  contact's impulse after each film step (:meth:`CoulombContact.act`), with N = int F_a dT over
+  the step by the trapezoid rule plus the impact's normal impulse at its step: the Moreau
+  time-stepping of a frictional contact, first order in the step;
+- the sliding film (BDF2, a multistep method that would carry an impulse of one step into the
+  next) takes the asperities' friction as a force inside its implicit step, F_f in
+  -(mu / tan(angle)) F_a Sign(u_s) at the step's end (:meth:`CoulombContact.resist`: the
+  step's solution is linear in F_f, so the complementarity is one scalar projection), and the
+  impact as a jump after its step, followed by a BDF1 step. Its friction dissipation is then
+  the trapezoid of -F_f u_s plus the impact's D.
 """
 
 from __future__ import annotations
@@ -43,6 +53,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.integrate
 
 from ..motion.normal import NormalResult
 
@@ -90,22 +101,26 @@ class ContactFriction:
 
 
 class CoulombContact:
-    """The friction bound of each step of a normal solution and the impulses taken, applied by
-    a tangential model after each of its steps (:meth:`act`)."""
+    """The friction bounds of each step of a normal solution and the friction taken, by a
+    tangential model as impulses after its steps (:meth:`act`) or as a force inside them
+    (:meth:`resist`)."""
 
     def __init__(self, normal: NormalResult):
         params, hist = normal.params, normal.history
         self.St, self.k, self.tangent = params.St, params.inertia_factor, params.tangential_speed
-        steps = len(hist.time)
-        load = np.zeros(steps)
+        self.time = np.asarray(hist.time, dtype=float)
+        steps = len(self.time)
+        per_load = params.friction_coefficient / self.tangent  # |J| <= per_load N
+        force = np.zeros(steps)
         if normal.asperity_force is not None:
             force = np.asarray(normal.asperity_force, dtype=float)
-            load[1:] = 0.5 * (force[1:] + force[:-1]) * np.diff(hist.time)
+        self.force_bounds = per_load * force
+        self.load_bounds = np.zeros(steps)
+        self.load_bounds[1:] = 0.5 * (self.force_bounds[1:] + self.force_bounds[:-1])
+        self.load_bounds[1:] *= np.diff(self.time)
         self.impact = normal.solid_impact
-        if self.impact is not None:
-            load[self.impact.index] += self.impact.normal_impulse
-        self.bounds = params.friction_coefficient / self.tangent * load
-        self.impulse, self.loss = np.zeros(steps), np.zeros(steps)
+        self.impact_bound = 0.0 if self.impact is None else per_load * self.impact.normal_impulse
+        self.impulse, self.loss, self.rate = np.zeros(steps), np.zeros(steps), np.zeros(steps)
         self.stuck = np.zeros(steps, bool)
         self.impact_psi = None
 
@@ -124,22 +139,42 @@ class CoulombContact:
         """Step ``step`` holds the solid impact (U and a Omega jump there)."""
         return self.impact is not None and self.impact.index == step
 
-    def act(self, step: int, velocity: float, spin: float) -> tuple[float, float]:
+    def act(self, step: int, velocity: float, spin: float, load=True) -> tuple[float, float]:
         """(U, a Omega) after the contact's impulse at ``step`` on the state (U, a Omega) the
-        film left there (by U0); records the impulse, the dissipation and whether it stuck."""
+        film left there (by U0): the impact's, and with ``load`` the asperities' over the step
+        ending there; records the impulse, its dissipation and whether it stuck."""
+        bound = self.impact_bound if self.is_impact(step) else 0.0
+        if load:
+            bound += self.load_bounds[step]
         slip = velocity - spin
-        impulse, stuck = coulomb_impulse(slip, self.bounds[step], self.St, self.k)
+        impulse, stuck = coulomb_impulse(slip, bound, self.St, self.k)
         after = slip + (1.0 + 1.0 / self.k) * impulse / self.St
-        self.impulse[step] = impulse
+        self.impulse[step] += impulse
         self.loss[step] = -0.5 * impulse * (slip + after)
-        self.stuck[step] = stuck and self.bounds[step] > 0.0
+        self.stuck[step] |= stuck and bound > 0.0
         if self.is_impact(step):  # psi per unit slip: U0 / (V0 |V|) = tan(angle) / |V|
             ratio = self.tangent / abs(self.impact.approach_velocity)
             self.impact_psi = (float(slip * ratio), float(after * ratio))
         return velocity + impulse / self.St, spin - impulse / (self.k * self.St)
 
+    def resist(self, step: int, slip: float, response: float) -> float:
+        """The asperities' friction force F_f at ``step`` (by 6 pi mu a^2 U0 / x0) inside an
+        implicit step whose slip is ``slip`` + ``response`` F_f (``response`` > 0: the film's
+        step solved for F_f = 0 and its change per unit F_f): F_f stops the slip if it can
+        within mu F_a / tan(angle), else F_f = -mu F_a sign(u_s) / tan(angle). Records the
+        impulse F_f dT over the step, the dissipation rate -F_f u_s >= 0 and the stick."""
+        bound = self.force_bounds[step]
+        stopping = -slip / response
+        stuck = abs(stopping) <= bound
+        force = stopping if stuck else -bound * np.sign(slip)
+        self.impulse[step] += force * (self.time[step] - self.time[step - 1])
+        self.rate[step] = -force * (slip + response * force)
+        self.stuck[step] |= bool(stuck) and bound > 0.0
+        return float(force)
+
     def record(self) -> ContactFriction:
         """The friction of the collision so far (:class:`ContactFriction`)."""
+        resisted = scipy.integrate.cumulative_trapezoid(self.rate, self.time, initial=0.0)
         return ContactFriction(
-            self.impulse.copy(), np.cumsum(self.loss), self.stuck.copy(), self.impact_psi
+            self.impulse.copy(), np.cumsum(self.loss) + resisted, self.stuck.copy(), self.impact_psi
         )

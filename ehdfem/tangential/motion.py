@@ -479,13 +479,13 @@ class _SlidingFilm:
                     name: (alpha[1] * values[i - 1] + alpha[2] * values[i - 2]) / step
                     for name, values in (*displacements.items(), ("z", z))
                 }
-                z[i] = self._step(mf, ops, alpha[0] / step, past, i)
+                z[i] = self._step(mf, ops, alpha[0] / step, past, i, contact)
                 for name, values in displacements.items():
                     if ops[name] is not None:
                         values[i] = ops[name] @ z[i]
                 self._check_tilts(z[i], displacements["gap"][i], i)
-                if contact is not None:
-                    self._contact_acts(contact, z[i], i)
+                if contact is not None and contact.is_impact(i):
+                    self._impact_acts(contact, z[i], i)
             force[i] = ops["force"] @ z[i]
             *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
         velocity, spin = z[:, self.u], z[:, self.omega]
@@ -509,19 +509,30 @@ class _SlidingFilm:
             contact=contact,
         )
 
-    def _contact_acts(self, contact: CoulombContact, z: np.ndarray, i: int) -> None:
-        """The solid contact's Coulomb impulse at step i on U and a Omega in z (in place); with
+    def _impact_acts(self, contact: CoulombContact, z: np.ndarray, i: int) -> None:
+        """The solid impact's Coulomb impulse at step i on U and a Omega in z (in place); with
         deformation "full" the nodal slips v = u_s + sqrt(delta) dD/dT change by the same jump
         of u_s (the faces' displacements D do not jump)."""
         slip = z[self.u] - z[self.omega]
-        z[self.u], z[self.omega] = contact.act(i, z[self.u], z[self.omega])
+        z[self.u], z[self.omega] = contact.act(i, z[self.u], z[self.omega], load=False)
         if self.deformation == "full":
             z[self.n : -2] += (z[self.u] - z[self.omega]) - slip
 
-    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int) -> np.ndarray:
-        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution."""
+    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int, contact=None):
+        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution;
+        with the asperities' friction force of ``contact`` (a :class:`CoulombContact`; None:
+        none) in the rows of U and a Omega (St dU/dT = F + F_f, k St d(a Omega)/dT = T - F_f)."""
         try:
-            z = _solve_equilibrated(*self._system(mf, ops, rate, past), self.u, self.omega)
+            matrix, rhs = self._system(mf, ops, rate, past)
+            if contact is None or contact.force_bounds[i] == 0.0:
+                z = _solve_equilibrated(matrix, rhs, self.u, self.omega)
+            else:
+                unit = np.zeros(self.size)
+                unit[self.u], unit[self.omega] = 1.0, -1.0
+                rhs = np.column_stack([rhs, unit])
+                free, response = _solve_equilibrated(matrix, rhs, self.u, self.omega).T
+                slips = [y[self.u] - y[self.omega] for y in (free, response)]
+                z = free + contact.resist(i, *slips) * response
         except (np.linalg.LinAlgError, ValueError):
             z = np.full(self.size, np.nan)
         if not np.isfinite(z).all():
@@ -664,7 +675,8 @@ class _SlidingFilm:
 
 
 def _solve_equilibrated(matrix, rhs, u: int, omega: int):
-    """Solve matrix z = rhs in the unknowns y = z except the sliding velocity U - a Omega in
+    """Solve matrix z = rhs (``rhs`` a vector, or one right-hand side per column) in the
+    unknowns y = z except the sliding velocity U - a Omega in
     place of U (index ``u``; ``omega`` that of a Omega), with every column of the transformed
     matrix and then every row scaled to unit largest entry. A piezoviscous film's Reynolds rows
     are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
@@ -677,6 +689,9 @@ def _solve_equilibrated(matrix, rhs, u: int, omega: int):
     column_scale = 1.0 / np.abs(transformed).max(axis=0)
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
+    if rhs.ndim == 2:  # several right-hand sides, one a column
+        sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale[:, None])
+        return basis @ (column_scale[:, None] * sliding)
     sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
     return basis @ (column_scale * sliding)
 

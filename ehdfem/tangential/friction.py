@@ -148,13 +148,16 @@ class CoulombContact:
             bound += self.load_bounds[step]
         slip = velocity - spin
         impulse, stuck = coulomb_impulse(slip, bound, self.St, self.k)
-        after = slip + (1.0 + 1.0 / self.k) * impulse / self.St
+        after = 0.0 if stuck else slip + (1.0 + 1.0 / self.k) * impulse / self.St
         self.impulse[step] += impulse
         self.loss[step] = -0.5 * impulse * (slip + after)
         self.stuck[step] |= stuck and bound > 0.0
         if self.is_impact(step):  # psi per unit slip: U0 / (V0 |V|) = tan(angle) / |V|
             ratio = self.tangent / abs(self.impact.approach_velocity)
             self.impact_psi = (float(slip * ratio), float(after * ratio))
+        if stuck:  # rolling: U = a Omega exactly, U + k a Omega conserved
+            rolling = (velocity + self.k * spin) / (1.0 + self.k)
+            return rolling, rolling
         return velocity + impulse / self.St, spin - impulse / (self.k * self.St)
 
     def resist(self, step: int, slip: float, response: float) -> float:

@@ -52,6 +52,10 @@ grows by more than 1 + sqrt(2)). Its energy balance (docs/tangential.md)
 
 is recorded term by term: E_1 the mode-1 elastic energy, X the work exchanged with the normal
 motion (zero on rigid solids, where the tangential motion only dissipates).
+
+Where the normal motion has a solid contact (a rough sphere's solid impact, an asperity load)
+and the friction coefficient mu > 0, its Coulomb friction acts in every model
+(:mod:`ehdfem.tangential.friction`), and the sliding film's balance gains its dissipation.
 """
 
 from __future__ import annotations

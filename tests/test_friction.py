@@ -207,3 +207,18 @@ def test_oblique_outputs_are_those_of_the_exit_state():
     assert 0 < out["effective_friction"] < 1e-2
     summary = result.summary()
     assert "contact_stuck" not in summary and "impact_psi_in" not in summary
+
+
+def test_impact_with_the_full_sliding_deformation(smooth):
+    """With deformation "full" (the nodal slips v = u_s + sqrt(delta) dD/dT jump with u_s, the
+    faces' displacements do not) the impact follows the closed form, the tangential energy
+    never rises and the balance closes (0.1, as above)."""
+    normal = roughened(smooth.normal)
+    params = replace(normal.params, friction_coefficient=0.05)
+    rough = replace(smooth, params=params, normal=replace(normal, params=params))
+    tangential = with_tangential(rough, "lubrication", deformation="full").tangential
+    psi_in, psi_out = tangential.friction.impact_psi
+    assert psi_out == pytest.approx(rigid_impact(psi_in, 0.05, 0.8, params.inertia_factor)[0])
+    assert tangential.energy.balance_error < 0.1
+    energy = tangential_energy(tangential, params.St, params.inertia_factor)
+    assert energy.max() <= energy[0] * (1 + 1e-12)

@@ -92,7 +92,9 @@ class CollisionParameters:
     external_force: a constant force on the sphere, scaled by 6 pi mu V0 a^2 / x0, positive
     away from the wall (finite; 0: none);
     buoyant_weight: the sphere's weight less the displaced fluid's, (m - rho_f V_s) g, scaled
-    likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`).
+    likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`);
+    friction_coefficient: Coulomb's mu >= 0 of the solid contact, which acts where the normal
+    motion has one (a solid impact, an asperity load; :mod:`ehdfem.tangential.friction`).
     """
 
     St: float = setting(help="Stokes number m V0 / (6 pi mu a^2)", lower=0.0, lower_open=True)
@@ -162,6 +164,12 @@ class CollisionParameters:
         help="the sphere's weight less its buoyancy, positive towards the wall",
         unit="by 6 pi mu V0 a^2 / x0",
     )
+    friction_coefficient: float = setting(
+        0.0,
+        help="Coulomb friction coefficient of the solid (asperity) contact, tangential over "
+        "normal load (0: none)",
+        lower=0.0,
+    )
 
     def __post_init__(self):
         validate(self)
@@ -220,7 +228,8 @@ class PhysicalCollision:
     gravity g [m/s^2] >= 0, towards the wall (default 0: none). Gravity acts through the
     buoyant weight (m - rho_f V_s) g (:attr:`scaled_buoyant_weight`), with rho_f the liquid's
     density when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
-    buoyancy is neglected (rho_f = 0).
+    buoyancy is neglected (rho_f = 0). The friction coefficient of the solid contact is
+    dimensionless (as in :class:`CollisionParameters`).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float = setting(help="sphere radius a", unit="m", checked=False)
@@ -260,6 +269,7 @@ class PhysicalCollision:
         unit="m/s^2",
         checked=False,
     )
+    friction_coefficient: float = 0.0
 
     def __post_init__(self):
         for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):
@@ -366,6 +376,7 @@ class PhysicalCollision:
             gap=self.gap,
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,
+            friction_coefficient=self.friction_coefficient,
         )
 
     def scales(self) -> Scales:

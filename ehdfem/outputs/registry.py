@@ -19,6 +19,7 @@ the summary's "not_applicable".
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -95,6 +96,45 @@ def _superposition(name):
     return lambda r: None if r.superposition is None else getattr(r.superposition, name)
 
 
+def _oblique(read):
+    """``read(result, tan(angle))`` for an oblique impact (None for a head-on one, where the
+    tangential motion is not solved)."""
+    return lambda r: None if r.tangential is None else read(r, r.params.tangential_speed)
+
+
+def _rebound_angle(r, tangent) -> float:
+    """The rebound angle from the wall normal [deg]: atan(e_t U0 / (e_n V0)) =
+    atan(e_t tan(angle) / e_n)."""
+    return math.degrees(math.atan2(r.tangential.e_t * tangent, r.normal.e_n))
+
+
+def _effective_friction(r, tangent) -> float:
+    """Tangential over normal impulse of the whole collision, m U0 (1 - e_t) / (m V0 (1 + e_n))
+    = tan(angle) (1 - e_t) / (1 + e_n) (positive when the tangential motion is slowed)."""
+    return tangent * (1.0 - r.tangential.e_t) / (1.0 + r.normal.e_n)
+
+
+def _psi_out(r, tangent) -> float:
+    """The contact point's slip at exit or stop over V0: tan(angle) (e_t - a Omega_end / U0)."""
+    t = r.tangential
+    return tangent * (t.e_t - t.spin[0] - t.spin_change)
+
+
+def _friction(read):
+    """``read(friction)`` of the solid contact's Coulomb friction (None without one)."""
+
+    def value(r):
+        friction = None if r.tangential is None else r.tangential.friction
+        return None if friction is None else read(friction)
+
+    return value
+
+
+def _impact_psi(which):
+    """psi_in (0) or psi_out (1) at the solid impact (None without a frictional impact)."""
+    return _friction(lambda f: None if f.impact_psi is None else f.impact_psi[which])
+
+
 def _halfspace_range(name):
     """The HalfSpaceRange's attribute ``name`` (None for the other models)."""
     return lambda r: None if r.halfspace_range is None else getattr(r.halfspace_range, name)
@@ -146,6 +186,23 @@ OUTPUTS: tuple[Output, ...] = (
     Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop", "U0/a",
            "rad/s", _tangential("spin_change"), "spin_change_rad_s",
            lambda p: p.tangential_speed / p.radius),
+    Output("rebound_angle", "rebound angle of the centre from the wall normal, atan(U/V) at exit",
+           "deg", "deg", _oblique(_rebound_angle), applies=lambda r: r.normal.rebound,
+           reason="the sphere sticks: it does not leave the layer"),
+    Output("effective_friction", "tangential over normal impulse of the whole collision",
+           "-", None, _oblique(_effective_friction)),
+    Output("psi_in", "contact point's slip over the normal speed at first touch, (U0-a Omega0)/V0",
+           "-", None, _oblique(lambda r, tangent: tangent * float(r.tangential.slip[0]))),
+    Output("psi_out", "contact point's slip at exit or stop over the normal speed at first touch",
+           "-", None, _oblique(_psi_out)),
+    Output("contact_stuck", "the solid contact's friction stopped the slip (Coulomb stick)",
+           "-", None, _friction(lambda f: f.any_stuck), optional=True),
+    Output("friction_dissipated", "Coulomb friction's dissipation in the solid contact",
+           TANGENTIAL_ENERGY, "J", _friction(lambda f: float(f.dissipated[-1])), optional=True),
+    Output("impact_psi_in", "contact point's slip over the approach speed before the solid impact",
+           "-", None, _impact_psi(0), optional=True),
+    Output("impact_psi_out", "contact point's slip after the solid impact over its approach speed",
+           "-", None, _impact_psi(1), optional=True),
     Output("tangential_balance_error", "sliding film's energy balance error over its loss",
            "-", None, _tangential_energy(lambda e: e.balance_error), optional=True),
     Output("tangential_work_exchanged", "work the normal motion gave the sliding film",

@@ -19,7 +19,7 @@ cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
               python3-scipy python3-matplotlib python3-h5py python3-tqdm python3-venv python3-pip
-              openmpi-bin)
+              openmpi-bin yade liggghts)
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1

@@ -41,7 +41,9 @@ def full_model_collision(engine: str, collision: PhysicalCollision) -> PhysicalC
     if engine == "yade":
         return collision
     liggghts.check_equal_spheres(collision)
-    return dataclasses.replace(collision, radius=collision.radius / 2, sphere_mass=collision.mass / 2)
+    return dataclasses.replace(
+        collision, radius=collision.radius / 2, sphere_mass=collision.mass / 2
+    )
 
 
 def compare(

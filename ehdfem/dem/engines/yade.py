@@ -35,7 +35,7 @@ from .rebound import EngineRebound, read_rebound, run_binary
 
 SCRIPT = "collision.py"
 LOG = "yade.log"
-LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 in the layer: the sphere is then stuck
+LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 in the layer (or at |V| < 1e-2 V0): stuck
 
 
 @dataclass(frozen=True)
@@ -104,7 +104,7 @@ def script_inputs(collision: PhysicalCollision, law: YadeLaw) -> dict:
     }
 
 
-BODY = '''
+BODY = """
 from yade import *  # the engines, functors and O, as in Yade's own scripts
 from yade.utils import box, sphere
 
@@ -136,13 +136,14 @@ O.engines = [
 ]
 O.dt = p["time_step"]
 rows = [(0.0, x0, -v0, u0, p["spin"], 0.0)]
+STUCK = 1e-2  # the sphere is stuck when its normal speed falls below 1e-2 V0 in the layer
 while O.time < p["time_limit"]:
     for _ in range(20):
         O.step()
     gap, velocity = ball.state.pos[2] - a, ball.state.vel
     rows.append((O.time, gap, velocity[2], velocity[0], ball.state.angVel[1],
                  O.forces.f(ball.id)[2]))
-    if gap > x0 and velocity[2] > 0:
+    if (gap > x0 and velocity[2] > 0) or abs(velocity[2]) < STUCK * v0:
         break
 with open("history.csv", "w") as out:
     out.write("time_s,gap_m,normal_velocity_m_s,tangential_velocity_m_s,spin_rad_s,"
@@ -161,12 +162,13 @@ rebound = {
 }
 with open("rebound.json", "w") as out:
     json.dump(rebound, out, indent=2)
-'''
+"""
 
 
-def script(collision: PhysicalCollision, law: YadeLaw) -> str:
-    """The Yade script of ``collision`` with ``law``: its inputs as JSON, then the scene."""
-    inputs = json.dumps(script_inputs(collision, law), indent=2)
+def script(inputs: dict) -> str:
+    """The Yade script of ``inputs`` (:func:`script_inputs`): its inputs as JSON, then the
+    scene."""
+    inputs = json.dumps(inputs, indent=2)
     head = (
         '"""A sphere on a wall through a liquid layer with Yade\'s implicit lubrication law, '
         "written by ehdfem\n(ehdfem.dem.engines.yade). Rerun: yade -n -x collision.py; "
@@ -180,6 +182,6 @@ def run(collision: PhysicalCollision, law: YadeLaw, folder: Path) -> EngineRebou
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "rebound.json").unlink(missing_ok=True)
-    (folder / SCRIPT).write_text(script(collision, law))
+    (folder / SCRIPT).write_text(script(script_inputs(collision, law)))
     run_binary(["yade", "-n", "-x", SCRIPT], folder, LOG)
     return read_rebound("yade", folder, SCRIPT, LOG)

@@ -5,6 +5,7 @@ read back beside the full model within the error the study states (docs/validati
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -103,3 +104,33 @@ def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):
             "--radius", "2e-3", "--speed", "1", "--layer-thickness", "1e-4", *extra]  # fmt: skip
     assert main(args) == 2
     assert f"error: {flag}:" in capsys.readouterr().err
+
+
+STUDY = Path(__file__).resolve().parents[1] / "studies/results/dem_engines.json"
+CASE = "steel/glass, 100 cSt oil, 0.1 mm"
+SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s, those of studies/dem_engines.py
+
+
+def stated_error(engine, setting):
+    """The largest |e_n(engine) - e_n(full model)| that the study (docs/validation.md, "DEM
+    engines") states for ``setting`` on CASE over its speeds."""
+    table = json.loads(STUDY.read_text())
+    rows = [(table[f"{engine}|{CASE}|{setting}|{v}"], table[f"{engine}|{CASE}|full model|{v}"])
+            for v in SPEEDS]  # fmt: skip
+    return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)
+
+
+@pytest.mark.parametrize(
+    "engine, setting, law, wall",
+    [
+        ("yade", "eta = 4 mu, eps = 1e-3", yade.YadeLaw(yade_roughness=1e-3), "glass"),
+        ("liggghts", "min 0.01, cut-off at 1 x0", liggghts.LiggghtsLaw(0.01), "steel"),
+    ],
+)
+def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wall):
+    """The engine's rebound, read back, is within the error the study states for the setting
+    (its largest over St = 5-90) of the full model at the same physical inputs (1.2 m/s)."""
+    collision = small(wall=wall, speed=1.2)
+    result = compare(engine, collision, law, tmp_path)
+    assert result["engine"]["rebounded"]
+    assert abs(result["e_n_difference"]) <= stated_error(engine, setting) + 1e-3

@@ -14,6 +14,8 @@
 #   closed-forms  the closed forms for DEM: the table on 2 ranks, then ehdfem fit (JSON and a
 #            Python module to copy, studies/results/dem_closed_forms*.{json,py})
 #   validate the validation report docs/validation.md (both models against published results)
+#   dem-engines  Yade and LIGGGHTS against the full model (studies/dem_engines.py: its table,
+#            figures and the section "DEM engines" of docs/validation.md)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -116,5 +118,6 @@ case "$job" in
         "$VENV/bin/ehdfem" fit studies/results/dem_closed_forms.csv \
             --json studies/results/dem_closed_forms_fit.json --python studies/results/dem_closed_forms.py ;;
     validate) setup; "$PY" studies/validation.py ;;
-    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate [args]" >&2; exit 2 ;;
+    dem-engines) setup; nice -n 10 "$PY" studies/dem_engines.py ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate|dem-engines [args]" >&2; exit 2 ;;
 esac

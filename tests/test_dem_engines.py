@@ -107,7 +107,7 @@ def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):
 
 
 STUDY = Path(__file__).resolve().parents[1] / "studies/results/dem_engines.json"
-CASE = "steel/glass, 100 cSt oil, 0.1 mm"
+CASE = "steel, 100 cSt oil, 0.1 mm"
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s, those of studies/dem_engines.py
 
 
@@ -124,12 +124,13 @@ def stated_error(engine, setting):
     "engine, setting, law, wall",
     [
         ("yade", "eta = 4 mu, eps = 1e-3", yade.YadeLaw(yade_roughness=1e-3), "glass"),
-        ("liggghts", "min 0.01, cut-off at 1 x0", liggghts.LiggghtsLaw(0.01), "steel"),
+        ("liggghts", "min 0.001, cut-off at 1 x0", liggghts.LiggghtsLaw(1e-3), "steel"),
     ],
 )
 def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wall):
-    """The engine's rebound, read back, is within the error the study states for the setting
-    (its largest over St = 5-90) of the full model at the same physical inputs (1.2 m/s)."""
+    """The engine's rebound with its best setting, read back, is within the error the study
+    states for it (its largest over the case's St) of the full model at the same physical
+    inputs (1.2 m/s); 1e-3 more for the run's own spread (time steps move e_n by < 1e-4)."""
     collision = small(wall=wall, speed=1.2)
     result = compare(engine, collision, law, tmp_path)
     assert result["engine"]["rebounded"]

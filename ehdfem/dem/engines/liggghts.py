@@ -50,8 +50,8 @@ class LiggghtsLaw:
     docstring); the viscosity, moduli and radius come from the collision."""
 
     liggghts_min_separation: float = setting(
-        0.01, help="minSeparationDistanceRatio: the smallest gap in the viscous force",
-        unit="by R*", lower=0.0, upper=1.0, lower_open=True,
+        0.01, help="minSeparationDistanceRatio: the smallest gap in the viscous force (1.01 "
+        "is LIGGGHTS's recommended value)", unit="by R*", lower=0.0, upper=2.0, lower_open=True,
     )  # fmt: skip
     liggghts_max_separation: float | None = setting(
         None, help="maxSeparationDistanceRatio: the bridge breaks at the gap (ratio - 1) 2 R",

@@ -35,7 +35,7 @@ from .rebound import EngineRebound, read_rebound, run_binary
 
 SCRIPT = "collision.py"
 LOG = "yade.log"
-LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 in the layer (or at |V| < 1e-2 V0): stuck
+LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 in the layer (or |V| < 1e-2 V0 for x0/V0): stuck
 
 
 @dataclass(frozen=True)
@@ -136,14 +136,18 @@ O.engines = [
 ]
 O.dt = p["time_step"]
 rows = [(0.0, x0, -v0, u0, p["spin"], 0.0)]
-STUCK = 1e-2  # the sphere is stuck when its normal speed falls below 1e-2 V0 in the layer
+STUCK = 1e-2  # stuck: the normal speed below 1e-2 V0 for x0 / V0 (not a reversal's instant)
+slow_since = 0.0
 while O.time < p["time_limit"]:
     for _ in range(20):
         O.step()
     gap, velocity = ball.state.pos[2] - a, ball.state.vel
     rows.append((O.time, gap, velocity[2], velocity[0], ball.state.angVel[1],
                  O.forces.f(ball.id)[2]))
-    if (gap > x0 and velocity[2] > 0) or abs(velocity[2]) < STUCK * v0:
+    if gap > x0 and velocity[2] > 0:
+        break
+    slow_since = slow_since if abs(velocity[2]) < STUCK * v0 else O.time
+    if O.time - slow_since > x0 / v0:  # slow for the time of crossing the layer: stuck
         break
 with open("history.csv", "w") as out:
     out.write("time_s,gap_m,normal_velocity_m_s,tangential_velocity_m_s,spin_rad_s,"

@@ -38,6 +38,22 @@ quietly() {
     fi
 }
 
+# Yade needs OpenBLAS, whose package takes over the libblas.so.3 and liblapack.so.3 alternatives
+# that Debian's numpy, SciPy and PETSc load: the set-up puts back the ones chosen before it
+# installed anything, so that installing the DEM engines does not change ehdfem's arithmetic
+# (tests/test_regression.py compares to 1e-10).
+blas_selections() { update-alternatives --get-selections 2>/dev/null | grep -E '^lib(blas|lapack)\.so\.3' || true; }
+keep_blas() {
+    local name mode path
+    while read -r name mode path; do
+        [ -n "$path" ] || continue
+        if [ "$(update-alternatives --query "$name" | sed -n 's/^Value: //p')" != "$path" ]; then
+            echo "setup: keeping $path for $name (installing OpenBLAS switched it)"
+            quietly $sudo update-alternatives --set "$name" "$path"
+        fi
+    done <<< "$1"
+}
+
 setup() {
     local missing=() sudo=""
     for package in "${APT_PACKAGES[@]}"; do
@@ -49,8 +65,10 @@ setup() {
         echo "setup: updating the Debian package lists (apt-get update)"
         quietly $sudo apt-get update
         echo "setup: installing Debian packages: ${missing[*]} (log: $SETUP_LOG)"
+        local blas; blas=$(blas_selections)
         quietly $sudo env DEBIAN_FRONTEND=noninteractive \
             apt-get install -y --no-install-recommends "${missing[@]}"
+        keep_blas "$blas"
     fi
     if [ ! -x "$PY" ]; then
         echo "setup: creating the venv $VENV on Debian's python (system site packages)"

@@ -16,6 +16,7 @@ from ehdfem.dem.engines import liggghts, yade
 from ehdfem.dem.engines.compare import compare
 from ehdfem.dem.engines.rebound import read_rebound, run_binary
 
+pytestmark = pytest.mark.serial  # the engines are serial binaries: nothing to check on 2 ranks
 MU = 96.5e-3  # Pa s, silicone_oil_100cst
 
 
@@ -135,3 +136,9 @@ def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wa
     result = compare(engine, collision, law, tmp_path)
     assert result["engine"]["rebounded"]
     assert abs(result["e_n_difference"]) <= stated_error(engine, setting) + 1e-3
+
+
+def test_a_missing_engine_is_named_with_the_set_up(tmp_path, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))
+    with pytest.raises(OSError, match="yade is not installed.*make.sh setup"):
+        run_binary(["yade", "-n", "-x", "collision.py"], tmp_path, "yade.log")

@@ -98,6 +98,8 @@ def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
         (["--engine", "liggghts", "--wall", "glass"], "--wall"),  # two equal spheres only
         (["--engine", "liggghts", "--wall", "steel", "--yade-keps", "2"], "--yade-keps"),
         (["--engine", "yade", "--wall", "steel", "--yade-roughness", "0.5"], "--yade-roughness"),
+        (["--engine", "yade", "--wall", "steel", "--e-dry", "0.9"], "--e-dry"),
+        (["--engine", "liggghts", "--wall", "steel", "--gravity", "9.81"], "--gravity"),
     ],
 )
 def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):

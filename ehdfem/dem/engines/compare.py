@@ -34,10 +34,25 @@ ENGINES: dict[str, tuple[type, EngineRun]] = {  # name: (its law's settings, its
 }
 
 
+def check_engine_inputs(engine: str, collision: PhysicalCollision) -> None:
+    """Refuse inputs that the engine's scene leaves out, so that both sides collide alike: the
+    engines run a thin layer without gravity, and Yade's contact spring is undamped (e_dry 1;
+    LIGGGHTS's Hertz contact takes e_dry as its coefficientRestitution)."""
+    checks.choice("engine", engine, tuple(ENGINES))
+    if collision.layer != "thin":
+        raise checks.InputError("the engines' scenes are a thin layer: layer must be thin", "layer")
+    if collision.gravity != 0.0:
+        raise checks.InputError("the engines' scenes have no gravity: gravity must be 0", "gravity")
+    if engine == "yade" and collision.e_dry != 1.0:
+        raise checks.InputError(
+            "Yade's contact spring is undamped: e_dry must be 1 with --engine yade", "e_dry"
+        )
+
+
 def full_model_collision(engine: str, collision: PhysicalCollision) -> PhysicalCollision:
     """The full model's collision beside ``engine``'s: the same (Yade), or the reduced radius
     R/2 and mass m/2 of two equal spheres (LIGGGHTS; see the module docstring)."""
-    checks.choice("engine", engine, tuple(ENGINES))
+    check_engine_inputs(engine, collision)
     if engine == "yade":
         return collision
     liggghts.check_equal_spheres(collision)

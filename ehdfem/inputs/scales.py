@@ -222,7 +222,8 @@ class PhysicalCollision:
     """Physical inputs (SI): sphere radius [m], materials, liquid, impact speed |v| [m/s], angle
     from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
-    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
+    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the added mass [kg]
+    of liquid moving with it (in St, not in the weight; default 0), the cavitation model,
     the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
     preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`), the
     gravity g [m/s^2] >= 0, towards the wall (default 0: none). Gravity acts through the
@@ -253,6 +254,12 @@ class PhysicalCollision:
     inertia_factor: float = 0.4
     sphere_mass: float | None = setting(
         None, help="sphere mass", unit="kg", default_text="4/3 pi a^3 rho", checked=False
+    )
+    added_mass: float = setting(
+        0.0,
+        help="mass of liquid moving with the sphere, added to its inertia but not to its weight",
+        unit="kg",
+        checked=False,
     )
     cavitation: str = "truncate"
     viscosity: str = "constant"
@@ -300,6 +307,7 @@ class PhysicalCollision:
             check_vapour_pressure(self.liquid, self.ambient_pressure)
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
+        checks.number("added_mass", self.added_mass, lower=0.0)
         if self.pressure_viscosity is not None:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
         checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
@@ -357,7 +365,7 @@ class PhysicalCollision:
         pressure_scale = mu * v0 * a / x0**2
         roelands = self.viscosity == "roelands"
         return CollisionParameters(
-            St=stokes_number(self.mass, v0, mu, a),
+            St=stokes_number(self.mass + self.added_mass, v0, mu, a),
             eps=elasticity_parameter(self.theta, mu, v0, a, x0),
             delta=x0 / a,
             p_cav=(p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a),
@@ -389,7 +397,7 @@ class PhysicalCollision:
             velocity=v0,
             pressure=mu * v0 * a / x0**2,
             force=6.0 * math.pi * mu * v0 * a**2 / x0,
-            energy=self.mass * v0**2,
+            energy=(self.mass + self.added_mass) * v0**2,
             sphere_radius=a,
         )
 

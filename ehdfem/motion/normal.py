@@ -23,7 +23,8 @@ its error control on X (relative to the thinnest film) and V (:mod:`ehdfem.motio
 This module runs them in time, detects the events and collects the result; the histories are
 :class:`ehdfem.motion.history.NormalHistory`.
 
-Events: the sphere leaves the layer when X returns to 1 with V > 0 (exit); it sticks when its
+Events: the sphere leaves the layer when X returns to 1 (or to the options' larger ``exit_gap``,
+immersed films only) with V > 0 (exit); it sticks when its
 velocity returns to <= 0 after it had started to rebound, or when it comes to rest (|V| below
 1e-10 or the time limit); e_n = e_dry * V_exit (e_dry = 1 is pure EHD; docs/model.md).
 """
@@ -35,6 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import checks
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
 from .history import NormalHistory
@@ -166,6 +168,11 @@ class _NormalIntegration:
     """The time loop of :func:`solve_normal`: steps, events and the result."""
 
     def __init__(self, params, compliance, options):
+        if options.exit_gap > LAYER_SURFACE and params.layer != "immersed":
+            raise checks.InputError(
+                f"exit_gap = {options.exit_gap!r} needs an immersed layer: a sphere leaves a "
+                f"{params.layer} layer at its surface (the allowed value is 1)"
+            )
         self.params, self.options = params, options
         self.radii = np.asarray(compliance.radii, dtype=float)
         gap = params.gap or default_gap(compliance.model, params.layer)
@@ -351,9 +358,10 @@ class _NormalIntegration:
         self.thinnest = min(self.thinnest, float(np.min(thickness[0])))
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         self.rebounding = self.rebounding or self.velocity > 0
-        if self.sphere.left_layer(self.gap, self.velocity):  # exit, on the dense output
+        exit_gap = self.options.exit_gap
+        if self.sphere.left_layer(self.gap, self.velocity, exit_gap):  # exit, on the dense output
             times = latest(self.hist.time, 3)
-            self.end_time = crossing(times, latest(self.hist.gap, 3), LAYER_SURFACE)
+            self.end_time = crossing(times, latest(self.hist.gap, 3), exit_gap)
             self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.end_time)
             return "rebound"
         if self.rebounding and self.velocity <= 0:  # the stop: V back to 0, on the dense output

@@ -32,6 +32,10 @@ class IntegratorOptions:
     where the film's stiff modes lie). ``max_growth``: the largest step growth per step.
     ``newton_tol``: Newton increments relative to the solution size. ``first_step``: initial
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
+    ``exit_gap``: the gap X (by x0) at which a rebounding sphere leaves the film model (V > 0);
+    1, the layer surface, by default; above 1 only for an immersed film, which then follows the
+    sphere further out (a bounce hands back to its flight where cavitation no longer acts,
+    docs/bounce.md).
     """
 
     rtol: float = setting(
@@ -66,6 +70,13 @@ class IntegratorOptions:
         unit="by x0/V0",
         lower=0.0,
         lower_open=True,
+    )
+    exit_gap: float = setting(
+        1.0,
+        help="gap at which a rebounding sphere leaves the film model (above 1: immersed only)",
+        unit="by x0",
+        lower=1.0,
+        upper=1e3,
     )
 
     def __post_init__(self):

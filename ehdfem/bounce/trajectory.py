@@ -73,6 +73,7 @@ MEMORY_RTOL = 1e-7  # its relative tolerance on the history force's memory z_i
 FLIGHT_SAMPLES = 200  # trajectory samples per flight leg (besides the integrator's steps)
 SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry force jump)
 LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
+ENDINGS = {"stick": "sticks", "stalled": "stalled (settling through the film)"}
 HISTORY_MEMORIES = ("keep", "reset")  # the history force's memory across a contact
 
 
@@ -729,7 +730,7 @@ class _Bounce:
                 return "rest: the apex is inside the hand-over region"
             contact, exit_state = self._collide(leg)
             if contact.status != "rebound":
-                return f"rest: the contact {contact.status}s"
+                return f"rest: the contact {ENDINGS[contact.status]}"
             rise = self._fly(exit_state, rising=True)
             contact.apex_gap, contact.apex_time = float(rise.gap[-1]), float(rise.time[-1])
             if rise.gap[-1] < self.rest_apex:

@@ -26,17 +26,18 @@ which is Basset's a / sqrt(pi nu t) at short times and for Re -> 0 (c = 0), and 
 (c s)^(-2) beyond s ~ (pi^(1/4)/c)^(4/3) (0.05 a^2/nu at Re = 150). c is taken at the
 Reynolds number of the acceleration's time tau (the vorticity then shed decays at the rate of
 its own wake). The kernel is approximated by a sum of exponentials with fixed relaxation times
-sigma_i (:data:`RELAXATION_TIMES`, 4 per decade from 1e-6 to 1e4 a^2/nu),
+sigma_i (:data:`RELAXATION_TIMES`, 4 per decade from 1e-8 to 1e4 a^2/nu),
 
     K(s) ~ sum_i w_i(c) exp(-s / sigma_i),     F_H = -6 pi mu a sum_i z_i,
     dz_i/dt = -z_i / tau_i + w_i(c(t)) dv/dt,  tau_i = sigma_i a^2 / nu,
 
 so that the whole trajectory's memory is carried by the z_i [m/s]. The weights are a fixed
 linear map of the kernel's values (least squares with a Tikhonov term on the samples
-s = 1e-5..1e3, relative to Basset's kernel): :func:`history_weights`. Their error
-(:func:`fitted_kernel`): below 3e-7 K_B(s) for 1e-5 <= s <= 1e3 and any Re, below 3e-5 of
+s = 1e-7..1e3, relative to Basset's kernel): :func:`history_weights`. Their error
+(:func:`fitted_kernel`): below 2e-6 K_B(s) for 1e-7 <= s <= 1e3 and any Re, below 5e-5 of
 K itself for s <= 100; the sum is finite at s = 0 (a velocity jump's force is cut below
-about 1e-5 a^2/nu) and decays exponentially beyond s = 1e4.
+about 1e-7 a^2/nu, 0.02-0.1 us here; a contact lasts 1e-4 to 1e-3 a^2/nu) and decays
+exponentially beyond s = 1e4 (2e3 to 1e4 s here, far beyond any bounce).
 """
 
 from __future__ import annotations
@@ -49,8 +50,8 @@ import numpy as np
 from .. import checks
 
 HISTORY_KERNELS = ("mei-adrian", "basset", "none")
-RELAXATION_TIMES = np.logspace(-6.0, 4.0, 41)  # sigma_i by a^2 / nu
-FIT_TIMES = np.logspace(-5.0, 3.0, 400)  # s where the sum of exponentials is fitted
+RELAXATION_TIMES = np.logspace(-8.0, 4.0, 49)  # sigma_i by a^2 / nu
+FIT_TIMES = np.logspace(-7.0, 3.0, 500)  # s where the sum of exponentials is fitted
 FIT_REGULARISATION = 1e-8  # Tikhonov parameter of the fit (relative to the samples' scale)
 CONTACT_ALPHA = 1e-3  # alpha below which C_M takes its value at alpha = 1e-3 (h/a < 5e-7)
 ZETA3 = 1.2020569031595942  # Riemann zeta(3)

@@ -39,9 +39,10 @@ import numpy as np
 from .. import checks
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
+from .forces import LAYER_SURFACE
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed, SurfaceMotion
-from .sphere import IMPACT_VELOCITY, LAYER_SURFACE, Sphere
+from .sphere import IMPACT_VELOCITY, Sphere
 from .timestepping import (
     BDFStepper,
     IntegratorOptions,

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import checks
-from .forces import LAYER_SURFACE, BuoyantWeight, ConstantForce, SphereForce, SphereState
+from .forces import BuoyantWeight, ConstantForce, SphereForce, SphereState
 
 if TYPE_CHECKING:
     from ..inputs.scales import CollisionParameters

@@ -7,7 +7,8 @@ force [N], energy [J]. The motion is normal to the wall.
 
 **Flight** (far from contact):
 
-    (m + C_M m_f) dv/dt = -(m - m_f) g - 6 pi mu a v [phi(Re) + lambda(h/a) - 1 - (1 - s) a/h],
+    M(h) dv/dt = -(m - m_f) g - 6 pi mu a v [phi(Re) + lambda(h/a) - 1 - (1 - s) a/h]
+                 + F_H - (1/2) M'(h) v^2,     M(h) = m + C_M(h) m_f,
 
 m = 4/3 pi a^3 rho_p, m_f = 4/3 pi a^3 rho_f, Re = rho_f |v| 2a / mu. phi = C_D Re / 24 is the
 steady drag law's factor over Stokes drag (:func:`drag_factor`), lambda Brenner's (1961) exact
@@ -15,8 +16,11 @@ Stokes-flow resistance factor of a sphere moving normal to a plane wall (:func:`
 1 far away, a/h near contact). The wall's increment lambda - 1 is added to the unbounded drag
 (it is a viscous effect of the narrowing gap; the wake's inertia, phi - 1, is not multiplied by
 it). Moving away from the wall, the lubrication part a/h of lambda is capped by cavitation as
-in the film model: s in (0, 1] (:func:`cavity_edge_ratio`; 1 when approaching). C_M = 1/2
-(the added mass far from walls); the history force is not modelled.
+in the film model: s in (0, 1] (:func:`cavity_edge_ratio`; 1 when approaching). C_M(h): the
+input C_M (1/2 far away) raised near the wall by the sphere's images (``wall_added_mass``;
+:func:`ehdfem.bounce.unsteady.wall_added_mass`), the term in M' making the equation Lagrange's.
+F_H: the history force with Mei & Adrian's finite-Re kernel (or Basset's, or none), a sum of
+exponentials whose memory z_i is part of the flight's state (:mod:`ehdfem.bounce.unsteady`).
 
 **Contact**: while falling, the sphere hands over to the immersed EHD film model
 (:func:`ehdfem.collision.collide`, Davis, Serayssol & Hinch 1986) at the first gap h_c where the
@@ -24,14 +28,17 @@ film's force there, the rigid lubrication force 6 pi mu a^2 |v| / h, differs fro
 hydrodynamic force by at most ``handover_jump`` (relative), or where h_c = ``ehd_multiple``
 h_EHD, h_EHD = (4 theta mu |v| a^(3/2))^(2/5) the gap at which the elasticity parameter is 1,
 whichever comes first. The film model starts at X = 1 (x0 = h_c) with V0 = |v(h_c)|, the
-effective mass m + C_M m_f, e_dry and the cavitation limit of the inputs; it ends at exit
-(X = 1 again, speed e_dry V_exit V0) or sticks. Gravity, buoyancy and the flight's remainder
-(phi - 1 + lambda - a/h) are not applied during the contact; their impulses are measured
-(:class:`Contact`). Flight resumes at h_c.
+inertia M(h_c) (the sphere's mass, and the added mass not in the weight), gravity and buoyancy
+(``contact_gravity``), e_dry and the cavitation limit of the inputs; it ends at exit (X =
+h_exit / h_c, speed e_dry V_exit V0; :meth:`FarField.exit_gap`) or sticks. The flight's
+remainder (phi - 1 + lambda - a/h) and the history force are not applied during the contact;
+their impulses are measured (:class:`Contact`), and the contact's velocity change is carried
+into the history force's memory (``history_memory`` "keep") or the memory is emptied
+("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
 
-**Rest**: the sphere rests when a contact sticks, or when an apex is below ``rest_apex`` D or
-already inside the hand-over region; the computation also stops at the apex after
-``max_bounces`` contacts.
+**Rest**: the sphere rests when a contact sticks or stalls, or when an apex is below
+``rest_apex`` D or already inside the hand-over region; the computation also stops at the apex
+after ``max_bounces`` contacts.
 """
 
 from __future__ import annotations

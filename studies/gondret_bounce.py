@@ -13,11 +13,12 @@ The modelling choices are varied one at a time on St 27 and St 152, the two runs
 trajectories have been digitised from the paper's figures: the four choices of the flight and
 the contacts (history force, the wall's added mass, gravity in the contacts, the exit above
 the cavity), each switched on alone on the steady flight without them, and from the base
-(all four on) the history kernel and its memory, drag law, added mass, e_dry, cavitation and
-hand-over tolerance. Nothing is fitted to the trajectories. The digitised points are not
-shipped (third-party data, see docs/bounce.md); given as a CSV file (comment lines starting
-with #, columns case, time_s [s, 0 at the first impact], gap_m [m]) they are compared with the
-model and drawn in the figures.
+(all four on) the history kernel and its memory, e_dry, cavitation and hand-over tolerance
+(the drag law and the added mass were varied on the steady flight before, docs/bounce.md).
+Nothing is fitted to the trajectories. The digitised points are not shipped (third-party data,
+see docs/bounce.md); given as a CSV file (comment lines starting with #, columns case, time_s
+[s, 0 at the first impact], gap_m [m]) they are compared with the model and drawn in the
+figures.
 
 Every finished run is written at once: a row of studies/results/gondret_bounce/runs.csv and its
 trajectory CSV; a run that is stopped and started again computes only what is missing, and a
@@ -72,8 +73,6 @@ CHOICES = {  # name: (BounceInputs changes, bounce() options); each choice alone
 }
 VARIANTS = {  # the choices, then the other modelling variations from the base
     **CHOICES,
-    "Abraham drag": ({"drag": "abraham"}, {}),
-    "no added mass": ({"added_mass": 0.0}, {}),
     "e_dry = 1": ({"e_dry": 1.0}, {}),
     "no cavitation": ({"cavitation": "none"}, {}),
     "hand-over 0.5 %": ({}, {"handover_jump": 0.005}),

@@ -181,9 +181,10 @@ class BounceInputs:
     the start: ``release_height`` [m], the gap from which the sphere is released at rest, or
     ``start_gap`` [m] with ``start_speed`` [m/s] towards the wall; e_dry in (0, 1], applied at
     each exit as in the collision model (e_n = e_dry V_exit); the drag law (:data:`DRAG_LAWS`);
-    the added-mass coefficient C_M in [0, 1]; gravity g [m/s^2]; the film's cavitation model
-    (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa] (the cavitation
-    pressure is the liquid's vapour pressure, as in :class:`ehdfem.PhysicalCollision`). The
+    the added-mass coefficient C_M in [0, 1] (far from the wall); gravity g [m/s^2]; the film's
+    cavitation model (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa]
+    (the cavitation pressure is the liquid's vapour pressure, as in
+    :class:`ehdfem.PhysicalCollision`). The
     modelling choices of docs/bounce.md, each switchable: the history force's kernel
     (:data:`ehdfem.bounce.unsteady.HISTORY_KERNELS`) and its memory across a contact
     (:data:`HISTORY_MEMORIES`: "keep" carries the contact's velocity change into it, "reset"

@@ -41,7 +41,10 @@ def add_bounce(b) -> None:
     )
     model.add_argument("--drag", choices=DRAG_LAWS, default=DRAG_LAWS[0], help="steady drag law")
     model.add_argument(
-        "--added-mass", type=float, default=0.5, help="added-mass coefficient C_M, [0, 1]"
+        "--added-mass",
+        type=float,
+        default=0.5,
+        help="added-mass coefficient C_M far from the wall, [0, 1]",
     )
     model.add_argument("--gravity", type=float, default=GRAVITY, help="g [m/s^2]")
     model.add_argument(

@@ -26,12 +26,8 @@ VISCOUS_TIME = RADIUS**2 / NU
 
 
 def history_force(memory):
-    """F_H = -6 pi mu a sum_i z_i [N] for memories z [m/s] (rows)."""
-    return -6 * math.pi * VISCOSITY * RADIUS * np.sum(memory, axis=-1)
-
-
-def basset_weights(_velocity):
-    return history_weights("basset", 0.0)
+    """F_H = -6 pi mu a sum_i w_i z_i [N] with Basset's weights, for memories z [m/s] (rows)."""
+    return -6 * math.pi * VISCOSITY * RADIUS * memory @ history_weights("basset", 0.0)
 
 
 def test_impulsively_started_sphere_feels_bassets_force():
@@ -45,7 +41,7 @@ def test_impulsively_started_sphere_feels_bassets_force():
     times = np.concatenate([[0.0, 0.0], np.geomspace(1e-7, 100, 60) * VISCOUS_TIME])
     velocities = np.concatenate([[0.0], np.full(len(times) - 1, speed)])
     taus = RELAXATION_TIMES * VISCOUS_TIME
-    memory = carry_memory(np.zeros(len(taus)), times, velocities, basset_weights, taus)
+    memory = carry_memory(np.zeros(len(taus)), times, velocities, taus)
     force = history_force(memory[2:])
     basset = -6 * RADIUS**2 * speed * np.sqrt(math.pi * DENSITY * VISCOSITY / times[2:])
     assert np.max(np.abs(force / basset - 1)) < 1e-4
@@ -67,7 +63,7 @@ def test_oscillating_sphere_has_stokes_history_drag(frequency):
     times = np.linspace(0.0, periods * 2 * math.pi / omega, periods * per + 1)
     velocities = speed * np.sin(omega * times)
     taus = RELAXATION_TIMES * VISCOUS_TIME
-    memory = carry_memory(np.zeros(len(taus)), times, velocities, basset_weights, taus)
+    memory = carry_memory(np.zeros(len(taus)), times, velocities, taus)
     last = slice(-per, None)
     delta = math.sqrt(2 * NU / omega)
     phase = omega * times[last]

@@ -435,20 +435,25 @@ class FarField:
 
     def rates(self, y) -> np.ndarray:
         """d/dt of (h, v, drag work, history work, z_1..z_n) for y = those (SI): the Lagrangian
-        M(h) dv/dt = F_drag - (m - m_f) g - 6 pi mu a sum_i z_i - (1/2) dM/dh v^2 (the image's
-        added mass conserves the kinetic energy M v^2 / 2 with the forces' work),
-        dz_i/dt = -z_i / tau_i + w_i(Re) dv/dt."""
+        M(h) dv/dt = F_drag - (m - m_f) g + F_H - (1/2) dM/dh v^2 (the image's added mass
+        conserves the kinetic energy M v^2 / 2 with the forces' work), the history force
+        F_H = -6 pi mu a sum_i w_i(Re) z_i (:meth:`history_force`), dz_i/dt = -z_i/tau_i + dv/dt."""
         gap, velocity, memory = max(y[0], 1e-300), y[1], y[4:]
         drag = self.drag(gap, velocity)
-        history = -self.stokes * float(np.sum(memory))
+        history = self.history_force(velocity, memory)
         mass, slope = self.inertia(gap)
         acceleration = (drag - self.net_weight + history - 0.5 * slope * velocity**2) / mass
         rates = np.empty(len(y))
         rates[:4] = velocity, acceleration, -drag * velocity, -history * velocity
-        if len(memory):
-            weights = self.history_weights(velocity)
-            rates[4:] = -memory / self.relaxation_times + weights * acceleration
+        rates[4:] = -memory / self.relaxation_times + acceleration
         return rates
+
+    def history_force(self, velocity: float, memory) -> float:
+        """F_H = -6 pi mu a sum_i w_i(Re) z_i [N]: the memory z_i [m/s] weighted by the kernel
+        at the current Reynolds number (0 without a history force)."""
+        if not len(memory):
+            return 0.0
+        return -self.stokes * float(self.history_weights(velocity) @ memory)
 
     def fly(self, start: FlightState, rising: bool, duration: float | None = None) -> Flight:
         """Integrate a flight leg from ``start`` until the apex (``rising``) or the hand-over
@@ -845,10 +850,9 @@ class _Bounce:
         far = self.far
         if not len(memory):
             return memory, 0.0
-        carried = unsteady.carry_memory(
-            memory, times, velocities, far.history_weights, far.relaxation_times
-        )
-        impulse = float(trapezoid(-far.stokes * carried.sum(axis=1), times))
+        carried = unsteady.carry_memory(memory, times, velocities, far.relaxation_times)
+        force = [far.history_force(v, z) for v, z in zip(velocities, carried, strict=True)]
+        impulse = float(trapezoid(force, times))
         if far.inputs.history_memory == "reset":
             return np.zeros_like(memory), impulse
         return carried[-1], impulse

@@ -23,13 +23,13 @@ Chara & Vlasak 2007)
          = [ (pi s)^(1/4) + c(Re) s ]^(-2),     c(Re) = (sqrt(pi)/4) (Re / f_H)^(3/2),
 
 which is Basset's a / sqrt(pi nu t) at short times and for Re -> 0 (c = 0), and decays as
-(c s)^(-2) beyond s ~ (pi^(1/4)/c)^(4/3) (0.05 a^2/nu at Re = 150). c is taken at the
-Reynolds number of the acceleration's time tau (the vorticity then shed decays at the rate of
-its own wake). The kernel is approximated by a sum of exponentials with fixed relaxation times
+(c s)^(-2) beyond s ~ (pi^(1/4)/c)^(4/3) (0.05 a^2/nu at Re = 150). c is taken at the current
+Reynolds number Re(t): the vorticity shed earlier is carried away by the flow of the present
+speed. The kernel is approximated by a sum of exponentials with fixed relaxation times
 sigma_i (:data:`RELAXATION_TIMES`, 4 per decade from 1e-8 to 1e4 a^2/nu),
 
-    K(s) ~ sum_i w_i(c) exp(-s / sigma_i),     F_H = -6 pi mu a sum_i z_i,
-    dz_i/dt = -z_i / tau_i + w_i(c(t)) dv/dt,  tau_i = sigma_i a^2 / nu,
+    K(s) ~ sum_i w_i(c) exp(-s / sigma_i),     F_H = -6 pi mu a sum_i w_i(c(t)) z_i,
+    dz_i/dt = -z_i / tau_i + dv/dt,            tau_i = sigma_i a^2 / nu,
 
 so that the whole trajectory's memory is carried by the z_i [m/s]. The weights are a fixed
 linear map of the kernel's values (least squares with a Tikhonov term on the samples
@@ -126,15 +126,15 @@ def fitted_kernel(scaled_time, kernel: str, reynolds: float):
     return np.exp(-s[:, None] / RELAXATION_TIMES[None, : len(weights)]) @ weights
 
 
-def carry_memory(memory, times, velocities, weights_of, relaxation_times) -> np.ndarray:
+def carry_memory(memory, times, velocities, relaxation_times) -> np.ndarray:
     """The memory z_i [m/s] at each of ``times`` [s] of a motion known by samples: from
-    ``memory`` at times[0], dz_i/dt = -z_i / tau_i + w_i dv/dt integrated exactly for v linear
-    between samples and w_i = ``weights_of``(v) at each interval's mean velocity,
+    ``memory`` at times[0], dz_i/dt = -z_i / tau_i + dv/dt integrated exactly for v linear
+    between samples,
 
-        z_i(t_k+1) = z_i(t_k) e^(-dt/tau_i) + w_i (v_k+1 - v_k) (tau_i / dt)(1 - e^(-dt/tau_i)),
+        z_i(t_k+1) = z_i(t_k) e^(-dt/tau_i) + (v_k+1 - v_k) (tau_i / dt)(1 - e^(-dt/tau_i)),
 
-    a jump (dt = 0) adding w_i (v_k+1 - v_k). ``relaxation_times``: tau_i [s]. Returns an
-    array (len(times), len(memory))."""
+    a jump (dt = 0) adding v_k+1 - v_k. ``relaxation_times``: tau_i [s]. Returns an array
+    (len(times), len(memory)); the history force is -6 pi mu a sum_i w_i z_i."""
     z = np.array(memory, dtype=float)
     tau = np.asarray(relaxation_times, dtype=float)
     out = [z.copy()]
@@ -142,7 +142,6 @@ def carry_memory(memory, times, velocities, weights_of, relaxation_times) -> np.
         step = times[k + 1] - times[k]
         decay = np.exp(-step / tau)
         gain = np.where(step > 0, -np.expm1(-step / tau) * tau / max(step, 1e-300), 1.0)
-        weights = weights_of(0.5 * (velocities[k] + velocities[k + 1]))
-        z = z * decay + weights * (velocities[k + 1] - velocities[k]) * gain
+        z = z * decay + (velocities[k + 1] - velocities[k]) * gain
         out.append(z.copy())
     return np.array(out)

@@ -296,7 +296,7 @@ def plot_choices(run, rows, data, variants, name):
     ax.set_ylabel("gap / D")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    ax.set_title(f"{shown(run, data)}: one modelling choice changed at a time", fontsize=10)
+    ax.set_title(f"{shown(run, data)}:\none modelling choice changed at a time", fontsize=10)
     fig.tight_layout()
     path = FIGURES / f"bounce_{name}_{run.label}.png"
     fig.savefig(path, dpi=110)

@@ -32,11 +32,11 @@ sigma_i (:data:`RELAXATION_TIMES`, 4 per decade from 1e-8 to 1e4 a^2/nu),
     dz_i/dt = -z_i / tau_i + dv/dt,            tau_i = sigma_i a^2 / nu,
 
 so that the whole trajectory's memory is carried by the z_i [m/s]. The weights are a fixed
-linear map of the kernel's values (least squares with a Tikhonov term on the samples
-s = 1e-7..1e3, relative to Basset's kernel): :func:`history_weights`. Their error
-(:func:`fitted_kernel`): below 2e-6 K_B(s) for 1e-7 <= s <= 1e3 and any Re, below 5e-5 of
-K itself for s <= 100; the sum is finite at s = 0 (a velocity jump's force is cut below
-about 1e-7 a^2/nu, 0.02-0.1 us here; a contact lasts 1e-4 to 1e-3 a^2/nu) and decays
+linear map of the kernel's values (least squares with a Tikhonov term on the samples s = 1e-7..1e3,
+relative to Basset's kernel): :func:`history_weights`. Their error (:func:`fitted_kernel`): below
+2e-6 K_B(s) for 1e-7 <= s <= 1e3 and any Re, below 1e-5 of K itself for s <= 10 and 2e-4 for s <=
+100 (where K falls to 1e-5 K_B at Re = 800); the sum is finite at s = 0 (a velocity jump's force is
+cut below about 1e-7 a^2/nu, 0.02-0.1 us here; a contact lasts 1e-4 to 1e-3 a^2/nu) and decays
 exponentially beyond s = 1e4 (2e3 to 1e4 s here, far beyond any bounce).
 """
 

@@ -8,8 +8,8 @@ number Re = 2 a |v| / nu.
 
 **Added mass near a wall.** In potential flow a sphere moving normal to a plane wall carries
 the added mass C_M(h) m_f, m_f = rho_f 4/3 pi a^3, with (the sphere and its images in the wall,
-Hicks 1880; Milne-Thomson, Theoretical Hydrodynamics, 5th ed. 1968, sec. 16.61; Kharlamov,
-Chara & Vlasak 2007)
+Hicks 1880; Milne-Thomson, Theoretical Hydrodynamics, two spheres on their line of centres;
+Kharlamov, Chara & Vlasak 2007)
 
     C_M(h) = 1/2 + (3/2) sum_{n>=2} (sinh alpha / sinh n alpha)^3,    cosh alpha = 1 + h/a,
 

@@ -121,7 +121,8 @@ LOWER_SPHERE_SLIDING = (
 class RunConfig:
     """How one collision is computed: the elasticity model, the FE model's lower body, the
     tangential film model (solved for oblique impacts) with the mode-1 deformation of its
-    solids, the asperity model of rough surfaces, and the numerics. See the module docstring for the flat settings."""
+    solids, the asperity model of rough surfaces, and the numerics. See the module docstring
+    for the flat settings."""
 
     model: str = setting(
         "halfspace",

@@ -16,7 +16,8 @@ the mixed-lubrication literature, e.g. Gelinck & Schipper 2000) and the Gaussian
 F_n(t) = (1/sqrt(2 pi)) int_t^inf (s - t)^n exp(-s^2/2) ds. Its closed form is
 F_n(t) = Gamma(n + 1) exp(-t^2/4) D_{-n-1}(t) / sqrt(2 pi), D the parabolic cylinder function
 (:func:`gaussian_integral`; the fit 4.4086e-5 (4 - t)^6.804 often used instead is 10 % low at
-contact). With eps = 4 theta mu V0 a^(3/2) / x0^(5/2) the scaled pressure is P_a = K F_{5/2}(H/sigma),
+contact). With eps = 4 theta mu V0 a^(3/2) / x0^(5/2) the scaled pressure is
+P_a = K F_{5/2}(H/sigma),
 
     K = (128 sqrt(2) / 15) (eta beta sigma)^2 sqrt(sigma / beta) / (eps sqrt(delta)),
 
@@ -48,6 +49,7 @@ if TYPE_CHECKING:
 MODELS = ("impact", "greenwood-tripp")
 REACH = 6.0  # H/sigma beyond which P_a is taken as 0 (F_{5/2}(6) = 3e-11, 5e-11 of F_{5/2}(0))
 NEWTON_TOL = 1e-13  # the loaded thickness's Newton tolerance, relative to H
+STIFF = 1e-6  # a node is in the Newton matrices where |dP_a/dH| times its compliance exceeds this
 # Greenwood & Williamson 1966 measured eta beta sigma of 0.03 to 0.05 on many surfaces; sigma/beta
 # 1e-3 is the mixed-lubrication literature's value for ground steel (Gelinck & Schipper 2000)
 ASPERITY_DENSITY = 0.04
@@ -124,22 +126,27 @@ class GreenwoodTripp:
         sigma (P_a is 0 beyond). Raises FilmError if it does not converge (the time step is
         then retried shorter)."""
         h = np.array(base, dtype=float)
+        reach = np.abs(compliance).max(axis=0)
         for _ in range(50):
-            load = self.pressure(h)
-            active = np.flatnonzero(h < REACH * self.roughness)
-            if active.size == 0:
+            loaded = np.flatnonzero(h < REACH * self.roughness)
+            if loaded.size == 0:
                 return h
-            residual = h - base - compliance[:, active] @ load[active]
-            step = self._correction(residual, active, h, compliance)
+            residual = h - base - compliance[:, loaded] @ self.pressure(h[loaded])
+            d = self.slope(h)
+            step = self._correction(residual, _stiff(d, reach), d, compliance)
             h = h - step
             if np.abs(step).max() <= NEWTON_TOL * max(np.abs(h).max(), 1.0):
                 return h
         raise FilmError("the asperities' load on the solids did not converge")
 
-    def _correction(self, residual, active, h, compliance):
-        """Newton's step (I - C D)^-1 r with D = diag(dP_a/dH) on the ``active`` nodes:
-        (I - C_AA D_A) d_A = r_A, then d = r + C_{:,A} D_A d_A."""
-        d = self.slope(h[active])
+    @staticmethod
+    def _correction(residual, active, d, compliance):
+        """Newton's step (I - C D)^-1 r with D = diag(dP_a/dH) on the ``active`` nodes (its
+        entries elsewhere, below STIFF, left out): (I - C_AA D_A) d_A = r_A, then
+        d = r + C_{:,A} D_A d_A."""
+        if active.size == 0:
+            return residual
+        d = d[active]
         local = np.eye(active.size) - compliance[np.ix_(active, active)] * d
         step_active = np.linalg.solve(local, residual[active])
         return residual + compliance[:, active] @ (d * step_active)
@@ -148,9 +155,9 @@ class GreenwoodTripp:
         """The loaded thickness ``h`` (from :meth:`thickness`) with its sensitivities:
         dH/dP = (I - C D)^-1 C = C + C_{:,A} D_A (I - C_AA D_A)^-1 C_{A,:} and
         dH/dX = 1 + C_{:,A} D_A (I - C_AA D_A)^-1 1 (Woodbury, D = diag(dP_a/dH) on the nodes A
-        within REACH sigma)."""
+        whose stiffness exceeds STIFF)."""
         load, d = self.pressure(h), self.slope(h)
-        active = np.flatnonzero(d != 0.0)
+        active = _stiff(d, np.abs(compliance).max(axis=0))
         by_pressure, by_gap = compliance, np.ones(len(h))
         if active.size:
             local = np.eye(active.size) - compliance[np.ix_(active, active)] * d[active]
@@ -160,3 +167,9 @@ class GreenwoodTripp:
             by_pressure = compliance + spread @ solved[:, :-1]
             by_gap = by_gap + spread @ solved[:, -1]
         return LoadedThickness(h, load, d, by_pressure, by_gap)
+
+
+def _stiff(slope, reach) -> np.ndarray:
+    """The nodes whose asperity stiffness |dP_a/dH| times their largest compliance ``reach``
+    exceeds STIFF: those whose load moves the film by a part of its change."""
+    return np.flatnonzero(np.abs(slope) * reach > STIFF)

@@ -146,11 +146,19 @@ class ImplicitStep:
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
         return self.thickness_parts(pressure, gap)[0]
 
-    def thickness_parts(self, pressure, gap):
+    def _open(self, pressure, gap) -> bool:
+        """The film thickness is positive at every node. The asperities' load (P_a >= 0 on
+        the compliance) opens the film: it is solved for only when the film without it
+        closes somewhere (where the residual checks it again)."""
+        if self.thickness_parts(pressure, gap, loaded=False)[0].min() > 0:
+            return True
+        return self.asperities is not None and self.thickness(pressure, gap).min() > 0
+
+    def thickness_parts(self, pressure, gap, loaded=True):
         """(H, W_shear, U): the film thickness, its shear opening C_T T(H0, P) and the faces'
         mean radial displacement C_r P (by x0; None without the shear traction, without the
         surface motion), T formed with H0 = X + S(R) + C P; with asperities H also carries
-        their load, H = H0 + W_shear + C P_a(H)."""
+        their load, H = H0 + W_shear + C P_a(H) (unless ``loaded`` is False)."""
         h0 = gap + self.undeformed + self.compliance @ pressure
         motion = self.surface_motion
         radial = None if motion is None else motion.displacement(pressure)
@@ -158,7 +166,7 @@ class ImplicitStep:
         if self.shear is not None:
             opening = self.shear @ self.film.squeeze_shear(h0, pressure)
             h0 = h0 + opening
-        if self.asperities is not None:
+        if self.asperities is not None and loaded:
             h0 = self.asperities.thickness(h0, self.compliance)
         return h0, opening, radial
 
@@ -282,7 +290,7 @@ class ImplicitStep:
         """The largest of 1, 1/2, 1/4, ... that keeps the film thickness positive."""
         d_pressure, _, d_gap, _ = update
         damping = 1.0
-        while self.thickness(pressure + damping * d_pressure, gap + damping * d_gap).min() <= 0:
+        while not self._open(pressure + damping * d_pressure, gap + damping * d_gap):
             damping *= 0.5
             if damping < 1e-3:
                 raise StepFailed("Newton update closes the film", np.abs(rhs).max())

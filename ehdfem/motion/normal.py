@@ -118,8 +118,8 @@ class NormalResult:
     KE0 at the end, with the applied forces' work, E_el counted from first touch (the
     asperities' stored energy in it, a solid impact's loss in the dissipation; meaningful
     without cavitation). The extremes of a collision with a solid impact are taken on each side
-    of the impact's record (the velocity and, for nearly rigid solids, the force jump there). ``status``:
-    "rebound", "stick" or "stalled".
+    of the impact's record (the velocity and, for nearly rigid solids, the force jump there).
+    ``status``: "rebound", "stick" or "stalled".
     Exit, the stop and the extremes are located on the dense output between accepted steps
     (the interpolating polynomials of the BDF history; :func:`ehdfem.motion.timestepping.peak`).
     ``rtol``, ``film_control`` and ``order`` (the highest BDF order): the time-step control

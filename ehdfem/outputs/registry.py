@@ -107,6 +107,17 @@ def _rough(compute):
     return lambda r: None if r.params.roughness == 0.0 else compute(r.normal, r.params.roughness)
 
 
+def _mixed(compute):
+    """``compute(normal, sigma)`` for rough surfaces with Greenwood & Tripp's asperity pressure
+    (run setting asperities = "greenwood-tripp"), else None."""
+
+    def value(r):
+        mixed = r.config is not None and r.config.asperities == "greenwood-tripp"
+        return compute(r.normal, r.params.roughness) if mixed and r.params.roughness else None
+
+    return value
+
+
 def _impact(name, then=float):
     """``then`` of the solid impact's attribute ``name`` (None without one)."""
     return lambda r: (
@@ -220,9 +231,9 @@ OUTPUTS: tuple[Output, ...] = (
            "x0/V0", "s", _impact("time"), "solid_impact_time_s", lambda p: p.scales().time,
            optional=True),
     Output("max_asperity_share", "the asperities' largest load over the largest total load",
-           "-", None, _rough(_largest_asperity_share), optional=True),
+           "-", None, _mixed(_largest_asperity_share), optional=True),
     Output("max_asperity_force", "largest asperity load on the sphere (greenwood-tripp)", FORCE,
-           "N", _rough(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
+           "N", _mixed(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
            lambda p: p.scales().force, optional=True),
     Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
            "x0/V0", "s", _rough(_contact_end), optional=True),

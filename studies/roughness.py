@@ -3,18 +3,20 @@ roughness against the EHD film, and the two asperity models compared.
 
 1. St_c against sigma/x0 (0: smooth; 1e-3 to 3e-2) and eps (1e-6, 1e-4, 1e-2), the impact model
    with e_dry = 0.97 (Gondret et al. 2002's steel), half-space solids, delta = 0.01, 120 film
-   nodes, by bisection to 2 %: thin layer with P_cav = -10 (as docs/validation.md's thin
-   layers) and immersed without a suction limit. Beside them the rigid sphere's closed form
-   St_c = (1 + 1/e_dry) L(sigma) without a suction limit, L = ln(1/sigma) immersed and
-   ln(1/sigma) - (1 - sigma)(3 - sigma)/2 thin (tests/test_roughness.py derives it).
+   nodes, by bisection to 2 % (in St 1.5-40 thin, 4-100 immersed): thin layer with
+   P_cav = -10 (as docs/validation.md's thin layers) and immersed without a suction limit.
+   Beside them the rigid sphere's closed form St_c = (1 + 1/e_dry) L(sigma) without a
+   suction limit, L = ln(1/sigma) immersed and ln(1/sigma) - (1 - sigma)(3 - sigma)/2 thin
+   (tests/test_roughness.py derives it).
 2. The regime map: a steel ball (a = 6.35 mm) on glass through 0.5 mm of 80 % glycerol, thin
-   layer, no cavitation limit, smooth surfaces, impact speeds 0.03-3 m/s: the model's thinnest
-   film against Nijssen, Ottens & Padding 2022's h_eps = 0.37 ((mu v / E*)^2 R*^3)^(1/5)
-   (1/E* = sum (1 - nu^2)/E, R* = a), beside roughness heights (Gondret's 1e-4 a; ground steel
-   0.1 um). The roughness ends the approach wherever it lies above the thinnest film.
-3. e_n against St for the two asperity models and smooth surfaces: thin, eps = 1e-4,
-   sigma = 0.01, e_dry = 0.97, no suction limit, 120 nodes (for smooth surfaces
-   e_n = e_dry V_exit).
+   layer, cavitation at the liquid's vapour pressure (about 1 atm of suction), smooth
+   surfaces, impact speeds 0.03-3 m/s: the model's thinnest film against Nijssen, Ottens &
+   Padding 2022's h_eps = 0.37 ((mu v / E*)^2 R*^3)^(1/5) (1/E* = sum (1 - nu^2)/E, R* = a),
+   beside roughness heights (Gondret's 1e-4 a; ground steel 0.1 um). The roughness ends the
+   approach wherever it lies above the thinnest film.
+3. e_n against St for the two asperity models and smooth surfaces: thin, eps = 1e-6 (the
+   smooth film's thinnest, about 0.008 at St = 10, lies below sigma), sigma = 0.01,
+   e_dry = 0.97, no suction limit, 120 nodes (for smooth surfaces e_n = e_dry V_exit).
 
 Writes studies/results/roughness.csv and docs/figures/roughness.png; prints the St_c table of
 docs/validation.md. Resumable: finished points are kept in the CSV.
@@ -44,11 +46,13 @@ E_DRY, NODES = 0.97, 120
 SIGMAS = (0.0, 1e-3, 3e-3, 1e-2, 3e-2)
 EPSILONS = (1e-6, 1e-4, 1e-2)
 LAYERS = {"thin": {"p_cav": -10.0}, "immersed": {}}
+BRACKETS = {"thin": (1.5, 40.0), "immersed": (4.0, 100.0)}  # St_c lies inside (checked)
 SPEEDS = (0.03, 0.1, 0.3, 1.0, 3.0)
 BALL = dict(radius=6.35e-3, sphere="steel", wall="glass", liquid="glycerol_80")
 LAYER_THICKNESS = 5e-4
 ROUGHNESS_LINES = {"Gondret 1e-4 a": 1e-4 * 6.35e-3, "ground steel 0.1 um": 1e-7}
 COMPARED = (("smooth", 0.0), ("impact", 0.01), ("greenwood-tripp", 0.01))
+COMPARED_EPS = 1e-6
 STOKES = (4.0, 6.0, 9.0, 14.0, 25.0, 50.0, 100.0)
 
 
@@ -70,7 +74,7 @@ def critical_points(table):
                 params = CollisionParameters(
                     St=10.0, eps=eps, layer=layer, roughness=sigma, e_dry=E_DRY, **extra
                 )
-                found = critical_stokes(params, (1.0, 300.0), 0.02, config)
+                found = critical_stokes(params, BRACKETS[layer], 0.02, config)
                 table.add({**key, "speed": "", "value": found["St_c"], "h_eps": ""})
                 print(f"{layer} eps {eps:g} sigma {sigma:g}: St_c = {found['St_c']:.3f}")
 
@@ -101,10 +105,11 @@ def compared_points(table):
     """Part 3: e_n against St, smooth and both asperity models."""
     for model, sigma in COMPARED:
         for St in STOKES:
-            key = dict(part="models", layer="thin", eps=1e-4, roughness=sigma, St=St, model=model)
+            key = dict(part="models", layer="thin", eps=COMPARED_EPS, roughness=sigma, St=St,
+                       model=model)  # fmt: skip
             if table.get(**key, speed="") is not None:
                 continue
-            params = CollisionParameters(St=St, eps=1e-4, roughness=sigma, e_dry=E_DRY)
+            params = CollisionParameters(St=St, eps=COMPARED_EPS, roughness=sigma, e_dry=E_DRY)
             asperities = "impact" if model == "smooth" else model
             normal = collide(params, nodes=NODES, asperities=asperities).normal
             table.add({**key, "speed": "", "value": normal.e_n, "h_eps": ""})
@@ -135,8 +140,8 @@ def plot(rows):
     speeds = [s for s, _ in regime]
     ax_r.plot(speeds, [float(r["value"]) for _, r in regime], "o-", label="model, thinnest film")
     ax_r.plot(speeds, [float(r["h_eps"]) for _, r in regime], "s--", label="Nijssen h_eps")
-    for label, height in ROUGHNESS_LINES.items():
-        ax_r.axhline(height, color="0.5", ls=":", label=label)
+    for (label, height), style in zip(ROUGHNESS_LINES.items(), (":", "-."), strict=True):
+        ax_r.axhline(height, color="0.5", ls=style, label=f"sigma: {label}")
     ax_r.set(xscale="log", yscale="log", xlabel="impact speed [m/s]", ylabel="film [m]",
              title="steel on glass, 0.5 mm of 80 % glycerol")  # fmt: skip
     ax_r.legend(fontsize=7)
@@ -144,11 +149,11 @@ def plot(rows):
         points = sorted(
             (float(r["St"]), float(r["value"]))
             for r in rows
-            if r["part"] == "models" and r["model"] == model
+            if r["part"] == "models" and r["model"] == model and float(r["eps"]) == COMPARED_EPS
         )
         if points:
             ax_m.plot(*zip(*points, strict=True), "o-", label=model)
-    ax_m.set(xscale="log", xlabel="St", ylabel="e_n", title="thin, eps 1e-4, sigma 0.01")
+    ax_m.set(xscale="log", xlabel="St", ylabel="e_n", title="thin, eps 1e-6, sigma 0.01")
     ax_m.legend(fontsize=7)
     fig.tight_layout()
     FIGURE.parent.mkdir(parents=True, exist_ok=True)

@@ -130,6 +130,21 @@ def _touched(normal, sigma) -> bool:
     return normal.solid_impact is not None or normal.min_film_thickness <= sigma
 
 
+def _touch_radius(normal, sigma) -> float | None:
+    """The radius of the thinnest film at the step where it first reaches sigma (the impact's
+    for a solid impact), by sqrt(a x0); None if it never does (0: on the axis, > 0: at the rim
+    of a flattened contact)."""
+    hist = normal.history
+    if normal.solid_impact is not None:
+        step = normal.solid_impact.index
+    else:
+        reached = np.flatnonzero(hist.min_film <= sigma)
+        if reached.size == 0:
+            return None
+        step = int(reached[0])
+    return float(normal.radii[int(np.argmin(hist.film_thickness[step]))])
+
+
 def _largest_asperity_share(normal, sigma) -> float:
     """The asperities' largest load over the largest total load on the sphere,
     max F_a / max (F_film + F_a) (0 if they never carry load; the ratio at one instant is
@@ -224,6 +239,9 @@ OUTPUTS: tuple[Output, ...] = (
            "-", None, _superposition("suction_overlap"), optional=True),
     Output("asperity_contact", "the thinnest film reached the roughness sigma (rough surfaces)",
            "-", None, _rough(_touched), optional=True),
+    Output("asperity_touch_radius", "where the thinnest film first reached sigma (0: the axis)",
+           "sqrt(a x0)", "m", _rough(_touch_radius), "asperity_touch_radius_m",
+           lambda p: p.scales().radius, optional=True),
     Output("solid_impact_velocity", "approach speed |V_c| at the asperities' solid impact",
            "V0", "m/s", _impact("approach_velocity", abs), "solid_impact_speed_m_s",
            lambda p: p.scales().velocity, optional=True),

@@ -31,7 +31,7 @@ from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
-from ehdfem.outputs import registry
+from ehdfem.outputs import histories, registry
 from ehdfem.solids.compliance import RigidSolids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
 
@@ -182,13 +182,15 @@ def test_energy_balance_of_the_greenwood_tripp_model():
     population five times denser than the default (eta beta sigma = 0.2) so that their share of
     the largest load is visible (2.5 %; 0.1 % at the default): their stored energy is in the
     elastic energy, the motion stays continuous and the balance closes below 3e-4 at rtol 2e-6
-    (9e-4 at the default rtol, as for smooth surfaces)."""
+    (9e-4 at the default rtol, as for smooth surfaces); the histories file carries the
+    asperities' load."""
     params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2)
     result = collide(params, asperities="greenwood-tripp", rtol=2e-6, nodes=120)
     normal, summary = result.normal, result.summary()
     assert normal.solid_impact is None and normal.asperity_force.max() > 0
     assert summary["asperity_contact"] and summary["max_asperity_share"] > 0.01
     assert normal.energy_error < 3e-4
+    assert np.array_equal(histories.arrays(result)["asperity_force"], normal.asperity_force)
 
 
 def test_greenwood_tripp_with_fe_solids_on_every_rank():

@@ -199,10 +199,10 @@ def test_greenwood_tripp_with_fe_solids_on_every_rank():
     """The mixed model on the FE solids (delta = 0.01, 80 nodes, thin, St = 10, eps = 1e-3,
     sigma = 0.03): the FE compliance carries the asperities' load as the half-space's does, so
     e_n agrees with the half-space model within 2 % (as smooth FE and half-space collisions do
-    at small delta, tests/test_fem.py) and the energy balance closes below 2e-3 (measured 7e-4); the impact
-    model on the FE solids (eps = 1e-6, sigma = 0.01) closes its balance below 6e-3 at the
-    default rtol (measured 5.3e-3, the stiff approach's time-step error, as on half-spaces);
-    under mpirun -n 2 every rank gets the same results bit for bit."""
+    at small delta, tests/test_fem.py) and the energy balance closes below 2e-3 (measured
+    7e-4); the impact model on the FE solids (eps = 1e-6, sigma = 0.01) closes its balance
+    below 6e-3 at the default rtol (measured 5.3e-3, the stiff approach's time-step error, as
+    on half-spaces); under mpirun -n 2 every rank gets the same results bit for bit."""
     params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, cavitation="none")
     fem = collide(params, model="fem", asperities="greenwood-tripp", nodes=80).normal
     half_space = collide(params, asperities="greenwood-tripp", nodes=80).normal

@@ -24,6 +24,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from ..film import cavitation
 
 if TYPE_CHECKING:
@@ -140,6 +142,74 @@ def _halfspace_range(name):
     return lambda r: None if r.halfspace_range is None else getattr(r.halfspace_range, name)
 
 
+def _rough(compute):
+    """``compute(normal, sigma)`` for rough surfaces (roughness sigma > 0, by x0), else None."""
+    return lambda r: None if r.params.roughness == 0.0 else compute(r.normal, r.params.roughness)
+
+
+def _mixed(compute):
+    """``compute(normal, sigma)`` for rough surfaces with Greenwood & Tripp's asperity pressure
+    (run setting asperities = "greenwood-tripp"), else None."""
+
+    def value(r):
+        mixed = r.config is not None and r.config.asperities == "greenwood-tripp"
+        return compute(r.normal, r.params.roughness) if mixed and r.params.roughness else None
+
+    return value
+
+
+def _impact(name, then=float):
+    """``then`` of the solid impact's attribute ``name`` (None without one)."""
+    return lambda r: (
+        None if r.normal.solid_impact is None else then(getattr(r.normal.solid_impact, name))
+    )
+
+
+def _touched(normal, sigma) -> bool:
+    """The thinnest film reached the roughness sigma (an impact ends there)."""
+    return normal.solid_impact is not None or normal.min_film_thickness <= sigma
+
+
+def _touch_radius(normal, sigma) -> float | None:
+    """The radius of the thinnest film at the step where it first reaches sigma (the impact's
+    for a solid impact), by sqrt(a x0); None if it never does (0: on the axis, > 0: at the rim
+    of a flattened contact)."""
+    hist = normal.history
+    if normal.solid_impact is not None:
+        step = normal.solid_impact.index
+    else:
+        reached = np.flatnonzero(hist.min_film <= sigma)
+        if reached.size == 0:
+            return None
+        step = int(reached[0])
+    return float(normal.radii[int(np.argmin(hist.film_thickness[step]))])
+
+
+def _largest_asperity_share(normal, sigma) -> float:
+    """The asperities' largest load over the largest total load on the sphere,
+    max F_a / max (F_film + F_a) (0 if they never carry load; the ratio at one instant is
+    ill-defined where the film's force changes sign)."""
+    asperity = normal.asperity_force
+    largest = float(np.max(asperity))
+    return largest / float(np.max(normal.history.force + asperity)) if largest > 0 else 0.0
+
+
+def _contact_end(normal, sigma) -> float | None:
+    """The time the thinnest film last rises back above sigma (the impact's time for a solid
+    impact; None if it never reached sigma), by linear interpolation between the steps."""
+    if normal.solid_impact is not None:
+        return normal.solid_impact.time
+    hist = normal.history
+    below = np.flatnonzero(hist.min_film <= sigma)
+    if below.size == 0:
+        return None
+    i = int(below[-1])
+    if i == len(hist.time) - 1:
+        return float(hist.time[i])
+    (t0, t1), (h0, h1) = hist.time[i : i + 2], hist.min_film[i : i + 2]
+    return float(t0 + (sigma - h0) / (h1 - h0) * (t1 - t0))
+
+
 FORCE = "6 pi mu V0 a^2 / x0"
 TANGENTIAL_ENERGY = "m U0^2 / St"
 NO_BALANCE = (
@@ -153,7 +223,7 @@ OUTPUTS: tuple[Output, ...] = (
            lambda r: r.normal.rebound),
     Output("status", "how the normal motion ended: rebound, stick or stalled", "-", None,
            lambda r: r.normal.status),
-    Output("e_n", "normal restitution e_dry V_exit (0 if the sphere sticks)", "V0", "m/s",
+    Output("e_n", "normal restitution e_dry V_exit, rough: V_exit (0 if it sticks)", "V0", "m/s",
            lambda r: r.normal.e_n, "rebound_normal_speed_m_s", lambda p: p.scales().velocity),
     Output("exit_velocity", "normal velocity V_exit when the gap is back to x0, before e_dry",
            "V0", "m/s", lambda r: r.normal.exit_velocity),
@@ -224,6 +294,24 @@ OUTPUTS: tuple[Output, ...] = (
            None, _superposition("largest_viscosity_tilt"), optional=True),
     Output("superposition_overlap", "largest overlap of the mode-1 suction with the cavity",
            "-", None, _superposition("suction_overlap"), optional=True),
+    Output("asperity_contact", "the thinnest film reached the roughness sigma (rough surfaces)",
+           "-", None, _rough(_touched), optional=True),
+    Output("asperity_touch_radius", "where the thinnest film first reached sigma (0: the axis)",
+           "sqrt(a x0)", "m", _rough(_touch_radius), "asperity_touch_radius_m",
+           lambda p: p.scales().radius, optional=True),
+    Output("solid_impact_velocity", "approach speed |V_c| at the asperities' solid impact",
+           "V0", "m/s", _impact("approach_velocity", abs), "solid_impact_speed_m_s",
+           lambda p: p.scales().velocity, optional=True),
+    Output("solid_impact_time", "time of the asperities' solid impact from first touch",
+           "x0/V0", "s", _impact("time"), "solid_impact_time_s", lambda p: p.scales().time,
+           optional=True),
+    Output("max_asperity_share", "the asperities' largest load over the largest total load",
+           "-", None, _mixed(_largest_asperity_share), optional=True),
+    Output("max_asperity_force", "largest asperity load on the sphere (greenwood-tripp)", FORCE,
+           "N", _mixed(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
+           lambda p: p.scales().force, optional=True),
+    Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
+           "x0/V0", "s", _rough(_contact_end), optional=True),
 )
 # fmt: on
 

@@ -222,3 +222,26 @@ def test_impact_with_the_full_sliding_deformation(smooth):
     assert tangential.energy.balance_error < 0.1
     energy = tangential_energy(tangential, params.St, params.inertia_factor)
     assert energy.max() <= energy[0] * (1 + 1e-12)
+
+
+@pytest.mark.parametrize("model", ["couette", "lubrication"])
+def test_a_rough_collision_applies_the_impact_friction_at_its_own_step(model):
+    """A real rough collision (the impact model: sigma = 0.03 x0 ends the approach of a nearly
+    rigid sphere) with mu = 0.05 at 30 deg: the normal result's velocity jumps at the impact's
+    step to -e_dry V_c; the asperity load history has the history's length; the tangential
+    jump there follows the rigid-body closed form; mu = 0 gives the smooth tangential model of
+    the same rough normal motion, which differs from it."""
+    params = CollisionParameters(St=10.0, eps=1e-6, angle=30.0, roughness=0.03, e_dry=0.8, **THIN)
+    rough = collide(replace(params, friction_coefficient=0.05), nodes=60, tangential=model)
+    normal, impact = rough.normal, rough.normal.solid_impact
+    assert impact is not None and len(normal.asperity_force) == len(normal.history.time)
+    assert normal.history.velocity[impact.index] == pytest.approx(
+        -0.8 * impact.approach_velocity, rel=ROUNDING
+    )
+    psi_in, psi_out = rough.tangential.friction.impact_psi
+    assert psi_out == pytest.approx(rigid_impact(psi_in, 0.05, 0.8, 0.4)[0], abs=ROUNDING)
+    summary = rough.summary()
+    assert summary["impact_psi_out"] == psi_out and summary["friction_dissipated"] > 0
+    frictionless = collide(params, nodes=60, tangential=model)
+    assert frictionless.normal.e_n == normal.e_n  # the normal motion does not feel friction
+    assert frictionless.tangential.e_t > rough.tangential.e_t

@@ -11,15 +11,16 @@
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
 #   claims   the source's tangential claims along physical sweeps (studies/source_claims.py,
 #            2 ranks; its verdicts go into docs/validation.md with `validate`)
-#   closed-forms  the closed forms for DEM: the table on 2 ranks, then ehdfem fit (JSON and a
-#            Python module to copy, studies/results/dem_closed_forms*.{json,py})
+#   closed-forms  the closed forms for DEM: the fit and held-back tables on 2 ranks (resumable),
+#            then ehdfem fit: JSON, a Python module, a C header and the fitted table
+#            (studies/results/dem_closed_forms*; studies/dem_closed_forms.py)
 #   validate the validation report docs/validation.md (both models against published results)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
               python3-scipy python3-matplotlib python3-h5py python3-tqdm python3-venv python3-pip
-              openmpi-bin)
+              openmpi-bin gcc)
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -112,9 +113,7 @@ case "$job" in
     study) setup; run_study ;;
     claims) setup; mpirun -n 2 "$PY" studies/source_claims.py ;;
     closed-forms) setup
-        mpirun -n 2 "$VENV/bin/ehdfem" sweep studies/dem_closed_forms.toml
-        "$VENV/bin/ehdfem" fit studies/results/dem_closed_forms.csv \
-            --json studies/results/dem_closed_forms_fit.json --python studies/results/dem_closed_forms.py ;;
+        "$PY" studies/dem_closed_forms.py "$@" ;;
     validate) setup; "$PY" studies/validation.py ;;
     *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate [args]" >&2; exit 2 ;;
 esac

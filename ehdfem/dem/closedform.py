@@ -29,6 +29,7 @@ from .. import checks
 from . import fitting
 from .table import GROUPED, table_rows
 
+
 def davis_rager_good(St, St_c, e_dry=1.0):
     """e = e_dry (1 - St_c/St) above St_c, 0 below."""
     St = np.asarray(St, dtype=float)

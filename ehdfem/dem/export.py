@@ -7,19 +7,16 @@ naming the parameter and the box; the C functions return NaN and a flag naming i
 
 from __future__ import annotations
 
-import csv
-import io
-
-import numpy as np
-
 from . import forms as shape
 from .box import LAYERS, describe
+from .fitting import CLEAR_REBOUND
 
 FEATURE_ORDER = ("x", "L", "v", "w", "h")  # the feature vector of the C header
 
-_PY = '''"""Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or immersed),
-fitted by ehdfem {version} (`ehdfem fit`) to {table} ({points} collisions; half-spaces, Couette
-tangential model, e_dry = 1). Docs: docs/studies.md of ehdfem, "Closed forms for DEM".
+_PY = '''"""Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or
+immersed), fitted by ehdfem {version} (`ehdfem fit`) to {table} ({points} collisions;
+half-spaces, Couette tangential model, e_dry = 1). Docs: docs/studies.md of ehdfem, "Closed
+forms for DEM".
 
 Dimensionless inputs (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu a^2), eps = 4 theta
 mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a) < 0 (None: no
@@ -86,13 +83,13 @@ def normal_restitution(St, eps, p_cav, layer="thin"):
 
 
 def tangential_restitution(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
-    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), I = A (thin), A + B ln(1/delta)
-    (immersed), A, B = exp(Q(x, v, h)); for rebounds (e_n >= {clear})."""
+    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), I = A (thin), A + B D, D =
+    ln((1 + delta)/(2 delta)) (immersed), A, B = exp(Q(x, v, h)); for rebounds (e_n >= {clear})."""
     _check(St, eps, delta, p_cav, layer, inertia_factor)
     f = _features(St, eps, p_cav)
     integral = math.exp(_q(FORMS[layer]["A"], f))
     if layer == "immersed":
-        integral += math.exp(_q(FORMS[layer]["B"], f)) * math.log(1.0 / delta)
+        integral += math.exp(_q(FORMS[layer]["B"], f)) * math.log((1.0 + delta) / (2.0 * delta))
     k = inertia_factor
     return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * integral)
 
@@ -144,11 +141,13 @@ def describe_errors(held_back: dict | None) -> str:
     """One sentence per layer of the held-back errors (or a note that none were measured)."""
     if not held_back:
         return "none measured (no held-back table)."
-    return "; ".join(
-        f"{layer}: e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t {e['tangential_loss_relative']:.0%}"
-        f", {e['near_threshold_relative']:.0%} just above St_c), spin change {e['spin_change']:.2g}"
+    parts = [
+        f"{layer}: e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t "
+        f"{e['tangential_loss_relative']:.0%}, {e['near_threshold_relative']:.0%} just above "
+        f"St_c), spin change {e['spin_change']:.2g}"
         for layer, e in held_back.items()
-    ) + "."
+    ]
+    return "; ".join(parts) + "."
 
 
 def python_source(fits: dict, table: str, version: str, held_back: dict | None = None) -> str:
@@ -164,13 +163,14 @@ def python_source(fits: dict, table: str, version: str, held_back: dict | None =
         errors=describe_errors(held_back),
         gap=shape.SUCTION_GAP,
         slope=shape.CRITICAL_SLOPE,
-        clear=0.3,
+        clear=CLEAR_REBOUND,
     )
 
 
-_C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or immersed),
- * fitted by ehdfem {version} (`ehdfem fit --c`) to {table} ({points} collisions; half-spaces,
- * Couette tangential model, e_dry = 1). C99, no dependency but <math.h> (link with -lm).
+_C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or
+ * immersed), fitted by ehdfem {version} (`ehdfem fit --c`) to {table} ({points}
+ * collisions; half-spaces, Couette tangential model, e_dry = 1). C99, no dependency but
+ * <math.h> (link with -lm).
  * Docs: docs/studies.md of ehdfem, "Closed forms for DEM".
  *
  * Dimensionless inputs (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu a^2),
@@ -261,7 +261,8 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     double ratio = St_c / St;
     ratio = ratio < 0.0 ? 0.0 : (ratio > 1.0 ? 1.0 : ratio);
     double integral = exp(ehd_q_(&forms[2], f));
-    if (layer == EHD_IMMERSED) integral += exp(ehd_q_(&forms[3], f)) * log(1.0 / delta);
+    if (layer == EHD_IMMERSED)
+        integral += exp(ehd_q_(&forms[3], f)) * log((1.0 + delta) / (2.0 * delta));
     out->St_c = St_c;
     out->e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
     out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * integral);
@@ -317,7 +318,7 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
         points=fits["points"],
         box=describe(box),
         errors=describe_errors(held_back),
-        clear=0.3,
+        clear=CLEAR_REBOUND,
     )
     forms = "static const ehd_form_t ehd_forms_[2][4] = {\n    " + ",\n    ".join(tables) + "};\n"
     tail = _C_TAIL.format(

@@ -24,7 +24,7 @@ from scipy.optimize import least_squares
 
 from .. import checks
 from . import forms as shape
-from .box import LAYERS
+from .box import LAYERS, check_inside
 
 CLEAR_REBOUND = 0.3
 """The smallest e_n of the rebounds the tangential forms are fitted to: just above St_c the
@@ -168,14 +168,15 @@ def _fit_tangential(data: dict, select, layer: str) -> dict:
 
 
 def _fit_immersed(data: dict, clear, integral, values: dict) -> dict:
-    """A and B of I = A + B ln(1/delta), immersed, first per (St, eps, P_cav) point."""
+    """A and B of I = A + B D(delta), immersed (:func:`ehdfem.dem.forms.far_field`), first
+    per (St, eps, P_cav) point."""
     index = np.flatnonzero(clear)
     points = defaultdict(list)
     for j, i in enumerate(index):
         points[(data["St"][i], data["eps"][i], data["p_cav"][i])].append(j)
     A, B = np.full(len(index), np.nan), np.full(len(index), np.nan)
     for members in points.values():
-        logs = np.log(1.0 / data["delta"][index[members]])
+        logs = shape.far_field(data["delta"][index[members]])
         if len(np.unique(logs)) < 2:
             continue
         design = np.column_stack([np.ones(len(members)), logs])
@@ -184,13 +185,13 @@ def _fit_immersed(data: dict, clear, integral, values: dict) -> dict:
     if not usable.any():
         raise checks.InputError(
             "the immersed tangential forms need each rebound (St, eps, P_cav) at two values "
-            "of delta (I = A + B ln(1/delta))"
+            "of delta (I = A + B D(delta))"
         )
     forms = {
         name: _linear_form(shape.FEATURES[name], values, np.log(np.where(usable, c, 1.0)), usable)
         for name, c in (("A", A), ("B", B))
     }
-    logs = np.log(1.0 / data["delta"][index])
+    logs = shape.far_field(data["delta"][index])
 
     def residual(trial):
         fitted = np.exp(shape.polynomial(trial["A"], values))
@@ -204,8 +205,15 @@ def errors(forms: dict, rows: list[dict]) -> dict:
     """Per layer, the largest errors of the forms on ``rows``: e_n (absolute, every point),
     e_t and the spin change (absolute) and 1 - e_t (relative) over the rebounds with e_n >=
     CLEAR_REBOUND, and 1 - e_t (relative) over the rebounds below it; with the numbers of
-    points."""
+    points. A row outside the forms' box is refused (InputError naming the input and the
+    line)."""
     data = columns(rows)
+    for line, i in enumerate(range(len(rows)), 2):
+        try:
+            check_inside(forms["box"], data["St"][i], data["eps"][i], data["delta"][i],
+                         data["p_cav"][i], data["layer"][i], data["k"][i])  # fmt: skip
+        except checks.InputError as err:
+            raise checks.InputError(f"point {line - 1}: {err}", err.name) from None
     out = {}
     for layer in LAYERS:
         select = np.flatnonzero([value == layer for value in data["layer"]])
@@ -235,5 +243,7 @@ def _value(forms: dict, data: dict, i: int, name: str) -> float:
     if name == "e_n":
         return float(shape.normal_restitution(forms, St, eps, p_cav, layer)[0])
     return float(
-        shape.tangential_restitution(forms, St, eps, data["delta"][i], p_cav, layer, data["k"][i])[0]
+        shape.tangential_restitution(forms, St, eps, data["delta"][i], p_cav, layer, data["k"][i])[
+            0
+        ]
     )

@@ -2,14 +2,14 @@
 
 One row per (layer, eps, P_cav, St) of a study table (dimensionless, DSH scales; P_cav empty:
 no cavitation limit), with the group's St_c and m (the e_n form 1 - (St_c/St)^m fitted to the
-group's points of equal eps and P_cav) and the point's A and B of I = A + B ln(1/delta) (B = 0
-in a thin layer; immersed, A and B solved from the points at two or more delta). The recipe
-(:func:`interpolate`):
+group's points of equal eps and P_cav) and the point's A and B of I = A + B D,
+D = ln((1 + delta)/(2 delta)) (B = 0 in a thin layer; immersed, A and B solved from the points
+at two or more delta). The recipe (:func:`interpolate`):
 
 - St_c and m: bilinear in (ln eps, ln |P_cav|) between the four nearest groups of the layer
   (P_cav none: linear in ln eps on the groups without a limit);
 - A and B: trilinear in (ln St, ln eps, ln |P_cav|) (none: bilinear in ln St, ln eps);
-- e_n = 1 - (St_c/St)^m above St_c, else 0; I = A + B ln(1/delta);
+- e_n = 1 - (St_c/St)^m above St_c, else 0; I = A + B D;
   1 - e_t = k/(1 + k) (1 - exp(-(1 + 1/k) delta I)); spin change = (1 - e_t)/k.
 
 Outside the table's box it refuses like the forms (:func:`ehdfem.dem.box.check_inside`).
@@ -66,10 +66,10 @@ def _group(data, points, key, St) -> tuple:
 
 
 def _coefficients(integral, delta, layer) -> tuple:
-    """(A, B) of I = A + B ln(1/delta) (thin: the mean I, B = 0)."""
+    """(A, B) of I = A + B D(delta) (thin: the mean I, B = 0)."""
     if layer == "thin":
         return float(np.mean(integral)), 0.0
-    logs = np.log(1.0 / delta)
+    logs = shape.far_field(delta)
     if len(np.unique(logs)) < 2:
         raise checks.InputError("the immersed table needs each point at two values of delta")
     (A, B), *_ = np.linalg.lstsq(np.column_stack([np.ones(len(logs)), logs]), integral, None)
@@ -113,7 +113,7 @@ def interpolate(table: list[dict], box: dict, St, eps, delta, p_cav, layer, iner
             grid[tuple(a.index(k) for a, k in zip(axes, keys, strict=True))] = r[name]
         values[name] = float(RegularGridInterpolator(axes, grid)(at)[0])
     k = inertia_factor
-    integral = values["A"] + values["B"] * np.log(1.0 / delta)
+    integral = values["A"] + values["B"] * shape.far_field(delta)
     e_t = 1.0 - k / (1.0 + k) * -np.expm1(-(1.0 + 1.0 / k) * delta * integral)
     ratio = min(max(values["St_c"] / St, 0.0), 1.0)
     return {

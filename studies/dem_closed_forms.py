@@ -14,7 +14,7 @@
    (dem_closed_forms_recipe.json), and the cost: collisions, CPU seconds, wall time.
 
 Run: python studies/dem_closed_forms.py [--reduced] [--ranks N]   (or bash make.sh closed-forms)
---reduced fits the 900-point grid of dem_closed_forms_reduced.toml instead of the full one.
+--reduced fits the 1080-point grid of dem_closed_forms_reduced.toml instead of the full one.
 """
 
 import argparse
@@ -80,7 +80,7 @@ def recipe_errors(fit_rows: list[dict], held_rows: list[dict], box: dict) -> dic
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--reduced", action="store_true", help="the 900-point grid")
+    parser.add_argument("--reduced", action="store_true", help="the 1080-point grid")
     parser.add_argument("--ranks", type=int, default=2)
     args = parser.parse_args()
     name = "dem_closed_forms_reduced" if args.reduced else "dem_closed_forms"

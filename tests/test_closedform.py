@@ -20,6 +20,7 @@ from ehdfem.config import RunConfig
 from ehdfem.dem import closedform as cf
 from ehdfem.dem import fitting, lookup
 from ehdfem.dem import forms as shape
+from ehdfem.dem.box import wetted_reach
 from ehdfem.dem.table import table_rows
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import CollisionParameters, elastic_theta, from_presets
@@ -115,6 +116,8 @@ def _known_table(known, deltas=(1e-3, 0.5)) -> list[dict]:
         ("thin", "immersed"), (1e-12, 1e-8, 1e-4, 0.1), (-1.0, -100.0, -1e5, None),
         np.geomspace(1, 1e4, 9), deltas,
     ):  # fmt: skip
+        if layer == "thin" and wetted_reach(St, eps, delta) > 1:
+            continue
         e_n = shape.normal_restitution(known, St, eps, p_cav, layer)[0]
         e_t = shape.tangential_restitution(known, St, eps, delta, p_cav, layer)[0]
         rows.append(dict(status="ok:rebound", St=St, eps=eps, p_cav="" if p_cav is None else p_cav,

@@ -5,6 +5,11 @@ eps = 4 theta mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) 
 (None or -inf: no cavitation limit), the layer ("thin" or "immersed") and the sphere's inertia
 factor k = I/(m a^2). BOX is the regime real collisions cover (docs/studies.md); a fitted form
 carries the box of its own table, which may be smaller.
+
+A thin layer is also refused where its wetted film would reach past the sphere's radius r = a,
+2 delta (1 + C) > 1 (R_edge^2 = 2 (1 + C) against 1/delta, by a x0), C the dry Hertz
+compression (13.88 eps St)^(2/5) by x0, an upper bound of the compression: there the model's
+film is cut at r = a and its e_t is no longer that of a thin layer.
 """
 
 from __future__ import annotations
@@ -12,6 +17,7 @@ from __future__ import annotations
 import math
 
 from .. import checks
+from ..inputs.scales import hertz_max_compression
 
 BOX = {
     "St": (1.0, 1e4),
@@ -55,6 +61,21 @@ def check_inside(box: dict, St, eps, delta, p_cav, layer, inertia_factor) -> Non
                 f"(fitted over {describe(box)}): they refuse to extrapolate",
                 name,
             )
+    reach = wetted_reach(St, eps, delta)
+    if layer == "thin" and reach > 1.0:
+        raise checks.InputError(
+            f"delta = {delta!r} is outside the box of the closed forms for a thin layer at "
+            f"St = {St:g}, eps = {eps:g}: the wetted film would reach past the sphere's radius, "
+            f"2 delta (1 + (13.88 eps St)^(2/5)) = {reach:.3g} > 1",
+            "delta",
+        )
+
+
+def wetted_reach(St, eps, delta) -> float:
+    """2 delta (1 + C): a thin layer's wetted radius squared by a^2 at the dry Hertz
+    compression C = (13.88 eps St)^(2/5) (by x0), an upper bound; above 1 the film reaches past
+    the sphere's radius r = a."""
+    return 2.0 * float(delta) * (1.0 + hertz_max_compression(float(eps), float(St)))
 
 
 def describe(box: dict) -> str:

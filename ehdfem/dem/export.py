@@ -1,17 +1,21 @@
 """The closed forms for DEM written out for particle codes: a Python module (standard library
 only), a C99 header (no dependency but <math.h>) and the fitted table (CSV) with its
-interpolation recipe. The formulas are those of :mod:`ehdfem.dem.forms`; inputs and outputs
-are dimensionless (DSH scales). Outside the fitted box the Python module raises ValueError
-naming the parameter and the box; the C functions return NaN and a flag naming it.
+interpolation recipe (:mod:`ehdfem.dem.lookup`). The formulas are those of
+:mod:`ehdfem.dem.forms`; inputs and outputs are dimensionless (DSH scales). Outside the fitted
+box the Python module raises ValueError naming the parameter and the box; the C functions return
+NaN and a flag naming it.
 """
 
 from __future__ import annotations
+
+import math
 
 from . import forms as shape
 from .box import LAYERS, describe
 from .fitting import CLEAR_REBOUND
 
 FEATURE_ORDER = ("x", "L", "v", "w", "h")  # the feature vector of the C header
+HERTZ = 90.0 * math.pi**2 / 64.0  # C = (HERTZ eps St)^(2/5): the dry Hertz compression by x0
 
 _PY = '''"""Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or
 immersed), fitted by ehdfem {version} (`ehdfem fit`) to {table} ({points} collisions;
@@ -22,7 +26,8 @@ Dimensionless inputs (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu a^2),
 mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a) < 0 (None: no
 cavitation limit), layer "thin" or "immersed", k = I/(m a^2) (2/5: solid sphere). e_n is the
 pure EHD value (multiply by the dry restitution); spin change = a DeltaOmega/U0.
-Box: {box}; outside it every function raises ValueError naming the parameter.
+Box: {box}; for a thin layer also 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film
+inside the sphere's radius). Outside it every function raises ValueError naming the parameter.
 Largest errors on points held back from the fit: {errors}
 """
 
@@ -46,6 +51,11 @@ def _check(St, eps, delta, p_cav, layer, k):
         low, high = BOX[name]
         if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
             raise ValueError(f"{{name}} = {{value!r}} is outside the box [{{low:g}}, {{high:g}}]")
+    if layer == "thin" and 2.0 * delta * (1.0 + ({hertz!r} * eps * St) ** 0.4) > 1.0:
+        raise ValueError(
+            f"delta = {{delta!r}} is outside the box for a thin layer: the wetted film would "
+            "reach past the sphere's radius, 2 delta (1 + (13.88 eps St)^(2/5)) > 1"
+        )
 
 
 def _features(St, eps, p_cav):
@@ -164,6 +174,7 @@ def python_source(fits: dict, table: str, version: str, held_back: dict | None =
         gap=shape.SUCTION_GAP,
         slope=shape.CRITICAL_SLOPE,
         clear=CLEAR_REBOUND,
+        hertz=HERTZ,
     )
 
 
@@ -178,7 +189,8 @@ _C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid
  * < 0 (-INFINITY: no cavitation limit), layer EHD_THIN or EHD_IMMERSED, k = I/(m a^2) (0.4: a
  * solid sphere). e_n is the pure EHD value (multiply by the dry restitution); spin change =
  * a DeltaOmega/U0 (no initial spin).
- * Box: {box}.
+ * Box: {box}; for a thin layer also
+ * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
  * Largest errors on points held back from the fit: {errors}
@@ -240,6 +252,9 @@ static inline int ehd_check(double St, double eps, double delta, double p_cav, i
     if ((layer != EHD_THIN || !{has_thin}) && (layer != EHD_IMMERSED || !{has_immersed}))
         flags |= EHD_OUT_LAYER;
     if (!(k > 0.0 && k <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
+    /* a thin layer's wetted film would reach past the sphere's radius */
+    if (layer == EHD_THIN && 2.0 * delta * (1.0 + pow({hertz!r} * eps * St, 0.4)) > 1.0)
+        flags |= EHD_OUT_DELTA;
     return flags;
 }}
 
@@ -326,6 +341,6 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
         delta_lo=box["delta"][0], delta_hi=box["delta"][1], p_lo=box["p_cav"][0],
         p_hi=box["p_cav"][1], no_limit=int(box["no_limit"]), has_thin=int("thin" in fits),
         has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP,
-        slope=shape.CRITICAL_SLOPE,
+        slope=shape.CRITICAL_SLOPE, hertz=HERTZ,
     )  # fmt: skip
     return head + "\n" + "".join(parts) + "\n" + forms + tail

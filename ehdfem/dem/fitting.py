@@ -3,13 +3,15 @@
 Rows are those of :func:`ehdfem.dem.table.table_rows` (dimensionless, DSH scales) of one model:
 half-spaces, the Couette tangential model, one inertia factor. For each layer in the table:
 
-- e_n: (St_c, m) per (eps, P_cav) group with 3 rebounds (least squares of e_n = 1 -
-  (St_c/St)^m on the group's points, sticking ones included), then Q_c and Q_m by linear
-  least squares on the groups, then every coefficient together on every point;
+- e_n: (St_c, m) per (eps, P_cav) group with 3 rebounds (least squares of e_n = 1 - (St_c/St)^m
+  on the group's points, sticking ones included), then Q_c and Q_m by linear least squares on
+  the groups, then every coefficient together on every point;
 - e_t: I = int J dT/(3 St) from each rebound with e_n >= CLEAR_REBOUND (exact inverse of the
-  Couette form); thin: ln I = Q_A by least squares; immersed: A and B from the points of equal
-  (St, eps, P_cav) at two or more delta, ln A and ln B by least squares, then both together
-  on the relative error of I.
+  Couette form); thin: ln I = Q_A by least squares at the table's smallest delta (I does not
+  depend on delta while the wetted edge lies inside the sphere's radius r = a, where the model's
+  J ends: R_edge ~ sqrt(2 (1 + compression)) < 1/sqrt(delta)); immersed: A and B from the points
+  of equal (St, eps, P_cav) at two or more delta, ln A and ln B by least squares, then both
+  together on the relative error of I.
 
 Errors (:func:`errors`) are absolute in e_n, e_t and the spin change, relative in 1 - e_t; the
 stated ones are measured on a table held back from the fit.
@@ -95,11 +97,12 @@ def _least_squares(form_names, forms, residual_of):
         form_names, np.split(flat, split), strict=True)}  # fmt: skip
 
 
-def _linear_form(names, values: dict, target, select=None) -> dict:
-    """A form over the features ``names`` fitted to ``target`` by linear least squares."""
+def _linear_form(name: str, values: dict, target, select=None) -> dict:
+    """The form ``name`` over its features fitted to ``target`` by linear least squares."""
+    names = shape.FEATURES[name]
     select = np.ones(len(target), dtype=bool) if select is None else select
     distinct = {n: len(np.unique(np.round(values[n][select], 12))) for n in names}
-    form = {"features": list(names), "powers": shape.powers(names, distinct=distinct)}
+    form = {"features": list(names), "powers": shape.powers(names, shape.DEGREE[name], distinct)}
     picked = {n: values[n][select] for n in names}
     coefficients, *_ = np.linalg.lstsq(shape.design(form, picked), target[select], rcond=None)
     return {**form, "coefficients": [float(c) for c in coefficients]}
@@ -137,8 +140,8 @@ def _fit_normal(data: dict, select) -> dict:
     St_c, m = (np.array([g[j] for g in fitted.values()]) for j in (0, 1))
     rigid = (shape.CRITICAL_SLOPE + values["h"]) * values["L"]
     forms = {
-        "St_c": _linear_form(shape.FEATURES["St_c"], values, St_c - rigid),
-        "m": _linear_form(shape.FEATURES["m"], values, np.log(m)),
+        "St_c": _linear_form("St_c", values, St_c - rigid),
+        "m": _linear_form("m", values, np.log(m)),
     }
     layer = data["layer"][np.flatnonzero(select)[0]]
     every = np.flatnonzero(select)
@@ -163,7 +166,8 @@ def _fit_tangential(data: dict, select, layer: str) -> dict:
     integral = shape.sliding_integral_of(data["e_t"], data["delta"], data["k"])
     values = feature_values(data, clear)
     if layer == "thin":
-        return {"A": _linear_form(shape.FEATURES["A"], values, np.log(integral[clear]))}
+        smallest = data["delta"][clear] == data["delta"][clear].min()
+        return {"A": _linear_form("A", values, np.log(integral[clear]), smallest)}
     return _fit_immersed(data, clear, integral, values)
 
 
@@ -188,7 +192,7 @@ def _fit_immersed(data: dict, clear, integral, values: dict) -> dict:
             "of delta (I = A + B D(delta))"
         )
     forms = {
-        name: _linear_form(shape.FEATURES[name], values, np.log(np.where(usable, c, 1.0)), usable)
+        name: _linear_form(name, values, np.log(np.where(usable, c, 1.0)), usable)
         for name, c in (("A", A), ("B", B))
     }
     logs = shape.far_field(data["delta"][index])

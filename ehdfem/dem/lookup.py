@@ -8,7 +8,8 @@ at two or more delta). The recipe (:func:`interpolate`):
 
 - St_c and m: bilinear in (ln eps, ln |P_cav|) between the four nearest groups of the layer
   (P_cav none: linear in ln eps on the groups without a limit);
-- A and B: trilinear in (ln St, ln eps, ln |P_cav|) (none: bilinear in ln St, ln eps);
+- St A and St B (int J dT / 3, which varies far more slowly than I): trilinear in (ln St,
+  ln eps, ln |P_cav|) (none: bilinear in ln St, ln eps), then divided by St;
 - e_n = 1 - (St_c/St)^m above St_c, else 0; I = A + B D;
   1 - e_t = k/(1 + k) (1 - exp(-(1 + 1/k) delta I)); spin change = (1 - e_t)/k.
 
@@ -66,9 +67,9 @@ def _group(data, points, key, St) -> tuple:
 
 
 def _coefficients(integral, delta, layer) -> tuple:
-    """(A, B) of I = A + B D(delta) (thin: the mean I, B = 0)."""
+    """(A, B) of I = A + B D(delta) (thin: I at the smallest delta, B = 0)."""
     if layer == "thin":
-        return float(np.mean(integral)), 0.0
+        return float(integral[np.argmin(delta)]), 0.0
     logs = shape.far_field(delta)
     if len(np.unique(logs)) < 2:
         raise checks.InputError("the immersed table needs each point at two values of delta")
@@ -110,8 +111,10 @@ def interpolate(table: list[dict], box: dict, St, eps, delta, p_cav, layer, iner
         grid = np.full([len(a) for a in axes], np.nan)
         for r in rows:
             keys = [np.log(r["St"]), np.log(r["eps"])] + ([np.log(-r["p_cav"])] if limited else [])
-            grid[tuple(a.index(k) for a, k in zip(axes, keys, strict=True))] = r[name]
+            scale = r["St"] if name in ("A", "B") else 1.0
+            grid[tuple(a.index(k) for a, k in zip(axes, keys, strict=True))] = r[name] * scale
         values[name] = float(RegularGridInterpolator(axes, grid)(at)[0])
+    values["A"], values["B"] = values["A"] / St, values["B"] / St
     k = inertia_factor
     integral = values["A"] + values["B"] * shape.far_field(delta)
     e_t = 1.0 - k / (1.0 + k) * -np.expm1(-(1.0 + 1.0 / k) * delta * integral)

@@ -1,56 +1,94 @@
-"""Closed forms for wet collisions of a sphere on a wall through a thin liquid
-layer, fitted by ehdfem 0.1.0 (`ehdfem fit`) to dem_closed_forms.csv: 252 collisions of the
-layer thin, cavitation truncate, viscosity constant, alpha 0.0, tangential lubrication model.
+"""Closed forms for DEM of a sphere hitting a wall through a liquid layer (thin or
+immersed), fitted by ehdfem 0.1.0 (`ehdfem fit`) to dem_closed_forms_reduced.csv (900 collisions;
+half-spaces, Couette tangential model, e_dry = 1). Docs: docs/studies.md of ehdfem, "Closed
+forms for DEM".
 
-All inputs and outputs are dimensionless (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu
-a^2), eps = 4 theta mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu
-V0 a) < 0, with V0 the normal impact speed and x0 the layer thickness (dimensionless_groups
-computes them from SI inputs). e_n is the pure EHD value: multiply by the dry restitution.
-The spin change is a DeltaOmega/U0 (U0 the tangential impact speed).
-
-Fitted over St in [3, 1e+03], eps in [1e-06, 0.1], p_cav in [-30, -3], delta in [0.01, 0.01].
-Errors against the table: e_n max 0.072 (rms 0.01) over every point,
-max 0.072 where e_n >= 0.3.
-For rebounds with e_n >= 0.3 (the range of e_t and the spin change): e_t max 0.00095
-(relative to 1 - e_t 0.11), spin change max 0.0016 (relative 0.11).
-Just above St_c (0 < e_n < 0.3) 1 - e_t and the spin change are off by up to
-86%. Outside these ranges the forms are extrapolations.
+Dimensionless inputs (Davis, Serayssol & Hinch scales): St = m V0/(6 pi mu a^2), eps = 4 theta
+mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a) < 0 (None: no
+cavitation limit), layer "thin" or "immersed", k = I/(m a^2) (2/5: solid sphere). e_n is the
+pure EHD value (multiply by the dry restitution); spin change = a DeltaOmega/U0.
+Box: St in [1, 10000], eps in [1e-12, 0.1], P_cav in [-100000, -1], delta in [0.001, 0.5] (P_cav also none); for a thin layer also 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film
+inside the sphere's radius). Outside it every function raises ValueError naming the parameter.
+Largest errors on points held back from the fit: thin: e_n 0.089, e_t 0.011 (1 - e_t 91%, 78% just above St_c), spin change 0.029; immersed: e_n 0.053, e_t 0.0092 (1 - e_t 57%, 87% just above St_c), spin change 0.023.
 """
 
 import math
 
-FORMS = {'St_c': {'inputs': ['eps', 'p_cav'], 'powers': [[0, 0], [0, 1], [0, 2], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [-2.729093822756706, 0.5833021887654186, -0.03436552005237075, -0.8808991664877934, 0.055412789726277466, -0.002972962638243839, -0.06930734169387767, 0.001239864067090663, -0.002087218163861616]}, 'm': {'inputs': ['eps', 'p_cav'], 'powers': [[0, 0], [0, 1], [0, 2], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [-0.8257322762938635, 0.05943692655879935, 0.020478021477773542, -0.11598416099659327, 0.01990964611877708, 0.0023683217478043077, -0.006320437247128251, 0.0015680470619355868, -4.3400720871331376e-05]}, 'tangential_loss': {'inputs': ['St', 'eps', 'p_cav'], 'powers': [[0, 0, 0], [0, 0, 1], [0, 0, 2], [0, 1, 0], [0, 1, 1], [0, 1, 2], [0, 2, 0], [0, 2, 1], [0, 3, 0], [1, 0, 0], [1, 0, 1], [1, 0, 2], [1, 1, 0], [1, 1, 1], [1, 2, 0], [2, 0, 0], [2, 0, 1], [2, 1, 0], [3, 0, 0]], 'coefficients': [1.5155502904053093, 0.06909581799092578, -0.0070740329137786336, 0.24045704752223712, -0.00567651862683803, -0.0005691721313974135, 0.009454567422620868, -0.00039926797701063735, -0.0004655052031150783, -0.18248201140019854, -0.018872453877740256, 0.0005857521264986719, 0.07101151241430875, 0.00037746054674944046, -0.0029829587633870003, 0.037082124252932384, 0.0014417723738472388, -0.009085505885424176, -0.004738596301925782]}, 'spin_change': {'inputs': ['St', 'eps', 'p_cav'], 'powers': [[0, 0, 0], [0, 0, 1], [0, 0, 2], [0, 1, 0], [0, 1, 1], [0, 1, 2], [0, 2, 0], [0, 2, 1], [0, 3, 0], [1, 0, 0], [1, 0, 1], [1, 0, 2], [1, 1, 0], [1, 1, 1], [1, 2, 0], [2, 0, 0], [2, 0, 1], [2, 1, 0], [3, 0, 0]], 'coefficients': [2.4322221153682837, 0.04596227273079687, -0.002379307762845964, 0.3085872745214678, 0.003671328110503866, -3.135246625274313e-05, 0.01855359096347252, 0.00014707347297383735, -0.0002354563886619726, -0.2621117535662236, -0.013582632507628211, 0.0003655900891360222, 0.07462179799383072, -6.849122000101605e-05, -0.003664897984526211, 0.06361248616175026, 0.001239836856032247, -0.010445472188724103, -0.0067677796586531926]}}
+BOX = {'St': [1.0, 10000.0], 'eps': [1e-12, 0.1], 'p_cav': [-100000.0, -1.0], 'delta': [0.001, 0.5], 'no_limit': True}
+FORMS = {'thin': {'St_c': {'features': ['v', 'h'], 'powers': [[0, 0], [0, 1], [0, 2], [0, 3], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [2.464937854563208, 7.3765115887608514, -6.8742113410587296, 4.988862958609785, -47.671451390993255, -42.2458741687462, 10.578948119426387, 281.9511084275598, 46.357393697347, -428.3567174275112]}, 'm': {'features': ['v', 'h'], 'powers': [[0, 0], [0, 1], [0, 2], [0, 3], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [0.006833383934738108, 1.2900220652715575, -6.773996887802023, 8.338143294936387, -4.73668796189965, -3.517711410394285, 11.17689790141679, 23.919622560156565, -3.440117658587113, -34.8720984367035]}, 'A': {'features': ['x', 'v', 'h'], 'powers': [[0, 0, 0], [0, 0, 1], [0, 0, 2], [0, 0, 3], [0, 0, 4], [0, 1, 0], [0, 1, 1], [0, 1, 2], [0, 1, 3], [0, 2, 0], [0, 2, 1], [0, 2, 2], [0, 3, 0], [0, 3, 1], [0, 4, 0], [1, 0, 0], [1, 0, 1], [1, 0, 2], [1, 0, 3], [1, 1, 0], [1, 1, 1], [1, 1, 2], [1, 2, 0], [1, 2, 1], [1, 3, 0], [2, 0, 0], [2, 0, 1], [2, 0, 2], [2, 1, 0], [2, 1, 1], [2, 2, 0], [3, 0, 0], [3, 0, 1], [3, 1, 0], [4, 0, 0]], 'coefficients': [13.60858211532286, 1.0645353201203638, 5.026157524425665, -0.8830367933503364, -5.169492586915971, -385.28963144560987, -17.71791642796284, -19.41177746959164, 3.6925047840066605, 4011.312456745362, 104.9886868670443, 20.91087878950365, -16670.112261489685, -159.14797317570162, 21466.121051864156, -4.620072657734703, -0.2946659604506162, -0.6308051819506635, 0.42308630643831796, 55.45949035933385, 1.3005894744401134, 1.203862307122471, -270.64850002723483, -1.968747046201291, 381.1836957955939, 0.3152090585450746, 0.025049217521964304, 0.004990354133194011, -1.121380742775174, -0.04763135001292919, 1.2632781628757765, -0.016766101450653853, -0.00011468341241661559, 0.019189230715080743, 0.0004250025613201647]}}, 'immersed': {'St_c': {'features': ['v', 'h'], 'powers': [[0, 0], [0, 1], [0, 2], [0, 3], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [3.0286273938891806, 8.815918903706605, -14.183839542740976, 21.823821952360714, 16.612175945436796, -19.53000163987961, 14.976685518339762, -100.26072224734976, -18.55502865477932, 156.20029711304878]}, 'm': {'features': ['v', 'h'], 'powers': [[0, 0], [0, 1], [0, 2], [0, 3], [1, 0], [1, 1], [1, 2], [2, 0], [2, 1], [3, 0]], 'coefficients': [-0.13166383397987827, 0.7496092063959542, -4.1144586717752585, 5.3666598220831405, 0.13639820550586357, -2.3455832276470225, 6.879415635889017, -5.961784838180113, -1.8029765976611412, 11.46996440645557]}, 'A': {'features': ['x', 'v', 'h'], 'powers': [[0, 0, 0], [0, 0, 1], [0, 0, 2], [0, 0, 3], [0, 0, 4], [0, 1, 0], [0, 1, 1], [0, 1, 2], [0, 1, 3], [0, 2, 0], [0, 2, 1], [0, 2, 2], [0, 3, 0], [0, 3, 1], [0, 4, 0], [1, 0, 0], [1, 0, 1], [1, 0, 2], [1, 0, 3], [1, 1, 0], [1, 1, 1], [1, 1, 2], [1, 2, 0], [1, 2, 1], [1, 3, 0], [2, 0, 0], [2, 0, 1], [2, 0, 2], [2, 1, 0], [2, 1, 1], [2, 2, 0], [3, 0, 0], [3, 0, 1], [3, 1, 0], [4, 0, 0]], 'coefficients': [15.12764078431644, 7.203060754436963, 0.11762253339529218, 1.487942017192443, -8.61472873129096, -431.99943060459265, -35.21019486448326, -7.9525120861408, 5.206681717439266, 4282.924567744816, 79.2353336532338, 15.41158779417701, -16563.472299350593, -80.60361391512407, 20369.000764909266, -5.038516187339921, -2.6656540305148138, 0.3197513348754318, 0.5292269692507134, 64.9131065211562, 7.579380823545185, 0.007461431852412081, -353.2817114002438, -6.137986101068033, 503.1281194527388, 0.3654713461181863, 0.31657061847524504, -0.0502413790798091, -0.4339372113290624, -0.4230574669202271, 1.7124887259999084, -0.02751437550301963, -0.011980928682421703, -0.05881097490167504, 0.001209765099003759]}, 'B': {'features': ['x', 'v', 'h'], 'powers': [[0, 0, 0], [0, 0, 1], [0, 0, 2], [0, 0, 3], [0, 0, 4], [0, 1, 0], [0, 1, 1], [0, 1, 2], [0, 1, 3], [0, 2, 0], [0, 2, 1], [0, 2, 2], [0, 3, 0], [0, 3, 1], [0, 4, 0], [1, 0, 0], [1, 0, 1], [1, 0, 2], [1, 0, 3], [1, 1, 0], [1, 1, 1], [1, 1, 2], [1, 2, 0], [1, 2, 1], [1, 3, 0], [2, 0, 0], [2, 0, 1], [2, 0, 2], [2, 1, 0], [2, 1, 1], [2, 2, 0], [3, 0, 0], [3, 0, 1], [3, 1, 0], [4, 0, 0]], 'coefficients': [-0.6177728890506375, 3.104984530077889, 0.3896162868245139, 2.223178429189392, -9.798950227852988, 61.65400860945608, -10.139038881642557, 2.7254669672295995, 0.7160689609645763, -382.7163969126979, -9.315979228890853, -4.043591601683753, 405.18199888923175, 40.04633164707416, 377.7324729888036, -0.5682269827626274, -0.988906563988352, -0.09202392938113674, 0.4143773657455511, -26.292363881597744, 2.305675387058332, 0.22863504490743894, 159.17081412952695, -1.8429841004261938, -228.2635444699169, -0.1034017357917217, 0.09829588276256099, -0.007788035149410445, 1.6017492155190867, -0.1031631632891886, -3.1156359628218824, 0.016857168415366643, -0.0030155749737215956, -0.008969156782044307, -0.0010213886463602505]}}}
 
 
-def _fitted(name, **inputs):
-    """exp of the polynomial in the logarithms of the form's inputs (|x| for P_cav)."""
-    form = FORMS[name]
-    logs = [math.log(abs(inputs[key])) for key in form["inputs"]]
-    terms = [math.prod(x**p for x, p in zip(logs, powers)) for powers in form["powers"]]
-    return math.exp(sum(c * t for c, t in zip(form["coefficients"], terms)))
+def _check(St, eps, delta, p_cav, layer, k):
+    if layer not in ("thin", "immersed") or layer not in FORMS:
+        raise ValueError(f"layer = {layer!r} is not one of {sorted(FORMS)}")
+    if not 0.0 < k <= 2.0 / 3.0:
+        raise ValueError(f"inertia_factor = {k!r} is outside (0, 2/3]")
+    if p_cav is None or p_cav == -math.inf:
+        if not BOX["no_limit"]:
+            raise ValueError("p_cav = None (no limit) is outside the box: " + 'St in [1, 10000], eps in [1e-12, 0.1], P_cav in [-100000, -1], delta in [0.001, 0.5] (P_cav also none)')
+    elif not BOX["p_cav"][0] * (1 + 1e-9) <= p_cav <= BOX["p_cav"][1] * (1 - 1e-9):
+        raise ValueError(f"p_cav = {p_cav!r} is outside the box {BOX['p_cav']}")
+    for name, value in (("St", St), ("eps", eps), ("delta", delta)):
+        low, high = BOX[name]
+        if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
+            raise ValueError(f"{name} = {value!r} is outside the box [{low:g}, {high:g}]")
+    if layer == "thin" and 2.0 * delta * (1.0 + (13.87913118903191 * eps * St) ** 0.4) > 1.0:
+        raise ValueError(
+            f"delta = {delta!r} is outside the box for a thin layer: the wetted film would "
+            "reach past the sphere's radius, 2 delta (1 + (13.88 eps St)^(2/5)) > 1"
+        )
 
 
-def critical_stokes(eps, p_cav):
-    """St_c: no rebound below it."""
-    return _fitted("St_c", eps=eps, p_cav=p_cav)
+def _features(St, eps, p_cav):
+    L = -math.log(eps)
+    suction = 0.0 if p_cav is None or p_cav == -math.inf else math.sqrt(3.0 / abs(p_cav))
+    w = -math.log(eps**0.4 + suction)
+    return {"x": math.log(St), "L": L, "v": 1.0 / L, "w": w, "h": w / L}
 
 
-def normal_restitution(St, eps, p_cav):
-    """e_n = 1 - (St_c/St)^m above St_c, else 0 (pure EHD)."""
-    St_c = critical_stokes(eps, p_cav)
+def _q(form, f):
+    total = 0.0
+    for c, powers in zip(form["coefficients"], form["powers"]):
+        term = c
+        for name, p in zip(form["features"], powers):
+            term *= f[name] ** p
+        total += term
+    return total
+
+
+def critical_stokes(eps, p_cav, layer="thin"):
+    """St_c = (2/5 + h) L + Q_c(v, h): no rebound below it."""
+    _check(1.0, eps, BOX["delta"][0], p_cav, layer, 0.4)
+    f = _features(1.0, eps, p_cav)
+    return (0.4 + f["h"]) * f["L"] + _q(FORMS[layer]["St_c"], f)
+
+
+def normal_restitution(St, eps, p_cav, layer="thin"):
+    """e_n = 1 - (St_c/St)^m above St_c, else 0; m = exp(Q_m(v, h))."""
+    _check(St, eps, BOX["delta"][0], p_cav, layer, 0.4)
+    f = _features(St, eps, p_cav)
+    St_c = (0.4 + f["h"]) * f["L"] + _q(FORMS[layer]["St_c"], f)
     if St <= St_c:
         return 0.0
-    return 1.0 - (St_c / St) ** _fitted("m", eps=eps, p_cav=p_cav)
+    return 1.0 - (St_c / St) ** math.exp(_q(FORMS[layer]["m"], f))
 
 
-def tangential_restitution(St, eps, delta, p_cav):
-    """e_t = 1 - delta exp(Q(ln St, ln eps, ln |P_cav|)), Q cubic, for a rebounding sphere."""
-    return 1.0 - delta * _fitted("tangential_loss", St=St, eps=eps, p_cav=p_cav)
+def tangential_restitution(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
+    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), I = A (thin), A + B D, D =
+    ln((1 + delta)/(2 delta)) (immersed), A, B = exp(Q(x, v, h)); for rebounds (e_n >= 0.3)."""
+    _check(St, eps, delta, p_cav, layer, inertia_factor)
+    f = _features(St, eps, p_cav)
+    integral = math.exp(_q(FORMS[layer]["A"], f))
+    if layer == "immersed":
+        integral += math.exp(_q(FORMS[layer]["B"], f)) * math.log((1.0 + delta) / (2.0 * delta))
+    k = inertia_factor
+    return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * integral)
 
 
-def spin_change(St, eps, delta, p_cav):
-    """a DeltaOmega/U0 = delta exp(Q(ln St, ln eps, ln |P_cav|)), Q cubic, for a rebound."""
-    return delta * _fitted("spin_change", St=St, eps=eps, p_cav=p_cav)
+def spin_change(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
+    """a DeltaOmega/U0 = (1 - e_t)/k (no initial spin)."""
+    e_t = tangential_restitution(St, eps, delta, p_cav, layer, inertia_factor)
+    return (1.0 - e_t) / inertia_factor
 
 
 def dimensionless_groups(

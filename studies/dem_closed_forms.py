@@ -1,7 +1,7 @@
 """The closed forms for DEM, end to end: the tables, the fit, the held-back errors, the exports.
 
 1. `ehdfem sweep` of studies/dem_closed_forms.toml (the fit table: St 1-1e4 x eps 1e-12-0.1
-   x P_cav -1 to -1e5 and none x delta 1e-3, 0.5 x both layers; 3808 collisions) and of
+   x P_cav -1 to -1e5 and none x delta 1e-3, 0.5 x both layers; 2912 collisions) and of
    studies/dem_closed_forms_heldback.toml (192 points between the fit table's nodes in every
    input), on RANKS MPI ranks under `nice -n 10`. Both are resumable: a killed run loses
    nothing, and a rerun computes only the missing points (delete the `.points` folders first

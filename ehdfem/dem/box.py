@@ -53,9 +53,8 @@ def check_inside(box: dict, St, eps, delta, p_cav, layer, inertia_factor) -> Non
         values = {"St": St, "eps": eps, "delta": delta, "p_cav": p_cav}
     for name, value in values.items():
         low, high = box[name]
-        slack = RELATIVE_SLACK * max(abs(low), abs(high))
         value = checks.number(name, value)
-        if not low - slack <= value <= high + slack:
+        if not low - RELATIVE_SLACK * abs(low) <= value <= high + RELATIVE_SLACK * abs(high):
             raise checks.InputError(
                 f"{name} = {value!r} is outside the box of the closed forms [{low:g}, {high:g}] "
                 f"(fitted over {describe(box)}): they refuse to extrapolate",

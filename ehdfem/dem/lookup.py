@@ -8,8 +8,9 @@ at two or more delta). The recipe (:func:`interpolate`):
 
 - St_c and m: bilinear in (ln eps, ln |P_cav|) between the four nearest groups of the layer
   (P_cav none: linear in ln eps on the groups without a limit);
-- St A and St B (int J dT / 3, which varies far more slowly than I): trilinear in (ln St,
-  ln eps, ln |P_cav|) (none: bilinear in ln St, ln eps), then divided by St;
+- ln(St A) and ln(St B) (St I = int J dT / 3 varies far more slowly than I): trilinear in
+  (ln St, ln eps, ln |P_cav|) (none: bilinear in ln St, ln eps); NaN where a corner has A or B
+  <= 0 (immersed at eps 0.1 and St >= 3000, where the half-space model is out of its range);
 - e_n = 1 - (St_c/St)^m above St_c, else 0; I = A + B D;
   1 - e_t = k/(1 + k) (1 - exp(-(1 + 1/k) delta I)); spin change = (1 - e_t)/k.
 
@@ -96,6 +97,14 @@ def read_csv(text: str) -> list[dict]:
     return rows
 
 
+def _node(row: dict, name: str) -> float:
+    """The value the recipe interpolates: St_c and m, ln(St A) and ln(St B) (NaN if <= 0)."""
+    if name in ("St_c", "m"):
+        return row[name]
+    value = row[name] * row["St"]
+    return float(np.log(value)) if value > 0 else np.nan
+
+
 def interpolate(table: list[dict], box: dict, St, eps, delta, p_cav, layer, inertia_factor=0.4):
     """{"St_c", "e_n", "e_t", "spin_change"} by the recipe of the module docstring."""
     check_inside(box, St, eps, delta, p_cav, layer, inertia_factor)
@@ -111,10 +120,10 @@ def interpolate(table: list[dict], box: dict, St, eps, delta, p_cav, layer, iner
         grid = np.full([len(a) for a in axes], np.nan)
         for r in rows:
             keys = [np.log(r["St"]), np.log(r["eps"])] + ([np.log(-r["p_cav"])] if limited else [])
-            scale = r["St"] if name in ("A", "B") else 1.0
-            grid[tuple(a.index(k) for a, k in zip(axes, keys, strict=True))] = r[name] * scale
+            grid[tuple(a.index(k) for a, k in zip(axes, keys, strict=True))] = _node(r, name)
         values[name] = float(RegularGridInterpolator(axes, grid)(at)[0])
-    values["A"], values["B"] = values["A"] / St, values["B"] / St
+    values["A"] = np.exp(values["A"]) / St
+    values["B"] = 0.0 if layer == "thin" else np.exp(values["B"]) / St
     k = inertia_factor
     integral = values["A"] + values["B"] * shape.far_field(delta)
     e_t = 1.0 - k / (1.0 + k) * -np.expm1(-(1.0 + 1.0 / k) * delta * integral)

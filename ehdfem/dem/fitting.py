@@ -69,14 +69,14 @@ def fit_forms(rows: list[dict]) -> dict:
 
 
 def _box(data: dict) -> dict:
-    """The ranges of the table: the box the forms hold in."""
+    """The ranges of the table: the box the forms hold in (P_cav [0, 0] when the table has no
+    finite P_cav, so that every finite limit is refused)."""
     limits = [p for p in data["p_cav"] if p is not None]
     ranges = {k: [float(data[k].min()), float(data[k].max())] for k in ("St", "eps", "delta")}
     return {
         **ranges,
-        "p_cav": [min(limits), max(limits)] if limits else [-1.0, -1.0],
+        "p_cav": [min(limits), max(limits)] if limits else [0.0, 0.0],
         "no_limit": any(p is None for p in data["p_cav"]),
-        "limited": bool(limits),
     }
 
 

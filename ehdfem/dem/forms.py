@@ -78,7 +78,7 @@ def powers(names, degree: int, distinct=None) -> list[tuple]:
 
 def design(form: dict, values: dict) -> np.ndarray:
     """Columns prod_i f_i^p_i of the form's monomials at ``values`` (features by name)."""
-    columns = [np.atleast_1d(values[n]) for n in form["features"]]
+    columns = np.broadcast_arrays(*(np.atleast_1d(values[n]) for n in form["features"]))
     return np.column_stack(
         [np.prod([c**k for c, k in zip(columns, p, strict=True)], axis=0) for p in form["powers"]]
     )

@@ -11,8 +11,9 @@
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
 #   claims   the source's tangential claims along physical sweeps (studies/source_claims.py,
 #            2 ranks; its verdicts go into docs/validation.md with `validate`)
-#   closed-forms  the closed forms for DEM: the table on 2 ranks, then ehdfem fit (JSON and a
-#            Python module to copy, studies/results/dem_closed_forms*.{json,py})
+#   closed-forms  the closed forms for DEM: the fit and held-back tables on 2 ranks (resumable),
+#            then ehdfem fit: JSON, a Python module, a C header and the fitted table
+#            (studies/results/dem_closed_forms*; studies/dem_closed_forms.py)
 #   validate the validation report docs/validation.md (both models against published results)
 #   dem-engines  Yade and LIGGGHTS against the full model (studies/dem_engines.py: its table,
 #            figures and the section "DEM engines" of docs/validation.md)
@@ -21,7 +22,7 @@ cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
               python3-scipy python3-matplotlib python3-h5py python3-tqdm python3-venv python3-pip
-              openmpi-bin libblas3 liblapack3 libopenblas0-pthread yade liggghts)
+              openmpi-bin libblas3 liblapack3 libopenblas0-pthread yade liggghts gcc)
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -134,9 +135,7 @@ case "$job" in
     study) setup; run_study ;;
     claims) setup; mpirun -n 2 "$PY" studies/source_claims.py ;;
     closed-forms) setup
-        mpirun -n 2 "$VENV/bin/ehdfem" sweep studies/dem_closed_forms.toml
-        "$VENV/bin/ehdfem" fit studies/results/dem_closed_forms.csv \
-            --json studies/results/dem_closed_forms_fit.json --python studies/results/dem_closed_forms.py ;;
+        "$PY" studies/dem_closed_forms.py "$@" ;;
     validate) setup; "$PY" studies/validation.py ;;
     dem-engines) setup; nice -n 10 "$PY" studies/dem_engines.py ;;
     *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate|dem-engines [args]" >&2; exit 2 ;;

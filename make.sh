@@ -11,18 +11,18 @@
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
 #   claims   the source's tangential claims along physical sweeps (studies/source_claims.py,
 #            2 ranks; its verdicts go into docs/validation.md with `validate`)
-#   closed-forms  the closed forms for DEM: the table on 2 ranks, then ehdfem fit (JSON and a
-#            Python module to copy, studies/results/dem_closed_forms*.{json,py})
+#   closed-forms  the closed forms for DEM: the fit and held-back tables on 2 ranks (resumable),
+#            then ehdfem fit: JSON, a Python module, a C header and the fitted table
+#            (studies/results/dem_closed_forms*; studies/dem_closed_forms.py)
 #   validate the validation report docs/validation.md (both models against published results)
+#   dem-engines  Yade and LIGGGHTS against the full model (studies/dem_engines.py: its table,
+#            figures and the section "DEM engines" of docs/validation.md)
 set -euo pipefail
 cd "$(dirname "$0")"
 
 APT_PACKAGES=(python3-dolfinx python3-petsc4py python3-mpi4py python3-gmsh gmsh python3-meshio
               python3-scipy python3-matplotlib python3-h5py python3-tqdm python3-venv python3-pip
-              openmpi-bin libopenblas0-pthread)
-# libopenblas0-pthread: Debian's threaded BLAS (it becomes the system's BLAS), which most
-# machines have; ehdfem pins it to one thread in its computations (ehdfem/threads.py) and
-# tests/test_threads.py shows the results do not depend on its thread count.
+              openmpi-bin libblas3 liblapack3 libopenblas0-pthread yade liggghts gcc)
 VENV=.venv
 PY=$VENV/bin/python
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -39,20 +39,40 @@ quietly() {
     fi
 }
 
+# The system's BLAS and LAPACK are Debian alternatives, and installing OpenBLAS (Yade needs it)
+# makes it the default: the set-up selects the reference libraries (libblas3, liblapack3) on
+# every machine, fresh or not, so that ehdfem's arithmetic, which the regression table
+# (tests/test_regression.py) compares to 1e-10, is the same everywhere. OpenBLAS stays
+# installed for Yade, and tests/test_threads.py loads it to show that results do not depend
+# on its thread count.
+REFERENCE_BLAS=(libblas.so.3-x86_64-linux-gnu=/usr/lib/x86_64-linux-gnu/blas/libblas.so.3
+                liblapack.so.3-x86_64-linux-gnu=/usr/lib/x86_64-linux-gnu/lapack/liblapack.so.3)
+reference_blas() {
+    local sudo="$1" entry name path
+    for entry in "${REFERENCE_BLAS[@]}"; do
+        name=${entry%%=*} path=${entry#*=}
+        if [ "$(update-alternatives --query "$name" | sed -n 's/^Value: //p')" != "$path" ]; then
+            echo "setup: selecting the reference $path for $name"
+            quietly $sudo update-alternatives --set "$name" "$path"
+        fi
+    done
+}
+
 setup() {
     local missing=() sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo=sudo
     for package in "${APT_PACKAGES[@]}"; do
         dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \
             || missing+=("$package")
     done
     if ((${#missing[@]})); then
-        [ "$(id -u)" -eq 0 ] || sudo=sudo
         echo "setup: updating the Debian package lists (apt-get update)"
         quietly $sudo apt-get update
         echo "setup: installing Debian packages: ${missing[*]} (log: $SETUP_LOG)"
         quietly $sudo env DEBIAN_FRONTEND=noninteractive \
             apt-get install -y --no-install-recommends "${missing[@]}"
     fi
+    reference_blas "$sudo"
     if [ ! -x "$PY" ]; then
         echo "setup: creating the venv $VENV on Debian's python (system site packages)"
         quietly /usr/bin/python3 -m venv --system-site-packages "$VENV"
@@ -115,9 +135,8 @@ case "$job" in
     study) setup; run_study ;;
     claims) setup; mpirun -n 2 "$PY" studies/source_claims.py ;;
     closed-forms) setup
-        mpirun -n 2 "$VENV/bin/ehdfem" sweep studies/dem_closed_forms.toml
-        "$VENV/bin/ehdfem" fit studies/results/dem_closed_forms.csv \
-            --json studies/results/dem_closed_forms_fit.json --python studies/results/dem_closed_forms.py ;;
+        "$PY" studies/dem_closed_forms.py "$@" ;;
     validate) setup; "$PY" studies/validation.py ;;
-    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate [args]" >&2; exit 2 ;;
+    dem-engines) setup; nice -n 10 "$PY" studies/dem_engines.py ;;
+    *) echo "usage: bash make.sh setup|example|test|lint|bench|study|claims|closed-forms|validate|dem-engines [args]" >&2; exit 2 ;;
 esac

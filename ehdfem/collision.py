@@ -316,7 +316,7 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None):
     tangential model, mode-1 deformation and time integration of ``config``;
     ``given_mode_one``: a mode-1 compliance at params.eps that is not closed here (None: built
     here when needed, and closed)."""
-    normal = solve_normal(params, compliance, config.options)
+    normal = solve_normal(params, compliance, config.options, config.asperities)
     result = CollisionResult(
         params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )

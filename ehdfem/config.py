@@ -21,6 +21,7 @@ from typing import ClassVar
 
 from . import checks
 from .film import cavitation
+from .film.asperities import MODELS as ASPERITY_MODELS
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .inputs.settings import described, setting, validate
@@ -120,7 +121,8 @@ LOWER_SPHERE_SLIDING = (
 class RunConfig:
     """How one collision is computed: the elasticity model, the FE model's lower body, the
     tangential film model (solved for oblique impacts) with the mode-1 deformation of its
-    solids, and the numerics. See the module docstring for the flat settings."""
+    solids, the asperity model of rough surfaces, and the numerics. See the module docstring
+    for the flat settings."""
 
     model: str = setting(
         "halfspace",
@@ -142,6 +144,13 @@ class RunConfig:
         "exact for rigid solids only)",
         choices=DEFORMATIONS,
         flag="sliding-deformation",
+    )
+    asperities: str = setting(
+        "impact",
+        help="asperity contact of rough surfaces (roughness > 0): 'impact' (a solid collision "
+        "with e_dry when the thinnest film reaches the roughness) or 'greenwood-tripp' (mixed "
+        "lubrication: the asperities' pressure shares the load with the film; docs/model.md)",
+        choices=ASPERITY_MODELS,
     )
     numerics: Numerics = field(default_factory=Numerics)
 

@@ -10,10 +10,15 @@ have: the spheres' elastic constants (the steel preset), a glass plate, e_dry = 
 Biegert, Vowinckel & Meiburg 2017 use for these runs) and a vapour pressure of 0.
 
 The modelling choices are varied one at a time on St 27 and St 152, the two runs whose
-trajectories have been digitised from the paper's figures: drag law, added mass, e_dry,
-cavitation, hand-over tolerance. The digitised points are not shipped (third-party data, see
-docs/bounce.md); given as a CSV file (comment lines starting with #, columns case, time_s [s, 0
-at the first impact], gap_m [m]) they are compared with the model and drawn in the figures.
+trajectories have been digitised from the paper's figures: the four choices of the flight and
+the contacts (history force, the wall's added mass, gravity in the contacts, the exit above
+the cavity), each switched on alone on the steady flight without them, and from the base
+(all four on) the history kernel and its memory, e_dry, cavitation and hand-over tolerance
+(the drag law and the added mass were varied on the steady flight before, docs/bounce.md).
+Nothing is fitted to the trajectories. The digitised points are not shipped (third-party data,
+see docs/bounce.md); given as a CSV file (comment lines starting with #, columns case, time_s
+[s, 0 at the first impact], gap_m [m]) they are compared with the model and drawn in the
+figures.
 
 Every finished run is written at once: a row of studies/results/gondret_bounce/runs.csv and its
 trajectory CSV; a run that is stopped and started again computes only what is missing, and a
@@ -50,13 +55,26 @@ FIGURES = ROOT / "docs/figures"
 E_DRY = 0.97
 RELEASE_FAR = 60.0  # diameters: release height when the published speed is not reachable
 MAX_BOUNCES = 30
-VARIANTS = {  # name: (BounceInputs changes, bounce() options)
+STEADY = {  # the flight and contacts before the four choices
+    "history": "none",
+    "wall_added_mass": False,
+    "contact_gravity": False,
+    "clear_exit": False,
+}
+CHOICES = {  # name: (BounceInputs changes, bounce() options); each choice alone, then all
+    "steady flight": (STEADY, {}),
+    "+ history force": ({**STEADY, "history": "mei-adrian"}, {}),
+    "+ wall added mass": ({**STEADY, "wall_added_mass": True}, {}),
+    "+ gravity in contact": ({**STEADY, "contact_gravity": True}, {}),
+    "+ exit above cavity": ({**STEADY, "clear_exit": True}, {}),
     "base": ({}, {}),
-    "Abraham drag": ({"drag": "abraham"}, {}),
-    "no added mass": ({"added_mass": 0.0}, {}),
+    "Basset kernel": ({"history": "basset"}, {}),
+    "memory reset at exit": ({"history_memory": "reset"}, {}),
+}
+VARIANTS = {  # the choices, then the other modelling variations from the base
+    **CHOICES,
     "e_dry = 1": ({"e_dry": 1.0}, {}),
     "no cavitation": ({"cavitation": "none"}, {}),
-    "JFO cavitation": ({"cavitation": "mass-conserving"}, {}),
     "hand-over 0.5 %": ({}, {"handover_jump": 0.005}),
     "hand-over 5 %": ({}, {"handover_jump": 0.05}),
 }
@@ -75,9 +93,18 @@ def case_inputs(run) -> BounceInputs:
     )
 
 
+FALL = ("drag", "added_mass", "history", "wall_added_mass")  # the inputs the first fall has
+HEIGHTS = {}  # release heights [m] found, by (radius, the values of FALL, speed)
+
+
 def released(inputs: BounceInputs, speed: float) -> BounceInputs:
-    """``inputs`` released from the height that gives the published impact speed, if any."""
-    height = release_height_for_speed(inputs, speed, top=RELEASE_FAR * inputs.diameter)
+    """``inputs`` released from the height that gives the published impact speed, if any; found
+    once per sphere and per choices of the first fall (FALL), which the other variants share."""
+    key = (inputs.radius, *(getattr(inputs, name) for name in FALL), speed)
+    if key not in HEIGHTS:
+        top = RELEASE_FAR * inputs.diameter
+        HEIGHTS[key] = release_height_for_speed(inputs, speed, top=top)
+    height = HEIGHTS[key]
     return inputs if height is None else replace(inputs, release_height=height)
 
 
@@ -121,6 +148,8 @@ def run_case(table, run, variant):
         ),
         "first_gravity_impulse": first.gravity_impulse,
         "first_remainder_impulse": first.remainder_impulse,
+        "first_history_impulse": first.history_impulse,
+        "exit_gap_over_a": first.exit_gap / inputs.radius,
         "seconds": round(seconds, 1),
     }
     print(
@@ -244,18 +273,20 @@ def plot_case(run, row, data):
     return path
 
 
-def plot_choices(run, rows, data):
+def plot_choices(run, rows, data, variants, name):
+    """The trajectories of ``run`` for ``variants`` (names of VARIANTS) in
+    docs/figures/bounce_{name}_{label}.png."""
     inputs = case_inputs(run)
     unit, diameter = inputs.time_scale(), inputs.diameter
     fig, ax = plt.subplots(figsize=(9, 4.5))
-    for variant in VARIANTS:
+    for variant in variants:
         row = next(r for r in rows if r["case"] == run.label and r["variant"] == variant)
         traj = trajectory(run.label, variant)
         origin = model_time_origin(traj)
         ax.plot(
             (traj["time"] - origin) / unit,
             traj["gap"] / diameter,
-            lw=1.1,
+            lw=2.0 if variant == "base" else 1.1,
             label=f"{variant}: e = {float(row['e']):.3f}",
         )
     plot_digitised(ax, data.get(run.label), unit, diameter)
@@ -265,9 +296,9 @@ def plot_choices(run, rows, data):
     ax.set_ylabel("gap / D")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    ax.set_title(f"{shown(run, data)}: one modelling choice changed at a time", fontsize=10)
+    ax.set_title(f"{shown(run, data)}:\none modelling choice changed at a time", fontsize=10)
     fig.tight_layout()
-    path = FIGURES / f"bounce_choices_{run.label}.png"
+    path = FIGURES / f"bounce_{name}_{run.label}.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
@@ -336,10 +367,11 @@ def main():
     for run in GONDRET_RUNS:
         row = next(r for r in rows if r["case"] == run.label and r["variant"] == "base")
         print(f"wrote {plot_case(run, row, data)}")
+    others = ["base", *(v for v in VARIANTS if v not in CHOICES)]
     for label in VARIED:
-        print(
-            f"wrote {plot_choices(next(r for r in GONDRET_RUNS if r.label == label), rows, data)}"
-        )
+        run = next(r for r in GONDRET_RUNS if r.label == label)
+        print(f"wrote {plot_choices(run, rows, data, CHOICES, 'choices')}")
+        print(f"wrote {plot_choices(run, rows, data, others, 'variations')}")
     print(f"wrote {plot_restitution(rows)}")
     far = {run.label: FarField(case_inputs(run)).terminal_velocity() for run in GONDRET_RUNS}
     print("terminal velocities [m/s]:", {k: round(v, 4) for k, v in far.items()})

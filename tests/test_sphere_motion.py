@@ -58,6 +58,25 @@ def test_rigid_sphere_under_a_constant_force_keeps_its_momentum_balance(layer, f
         assert result.status == "stalled" and hist.gap[-1] < 0.01
 
 
+def test_exit_gap_above_the_layer_surface():
+    """An immersed film may hand the sphere back above X = 1 (``exit_gap``, as a bounce does
+    above the gap where a cavity can form): pulled out by F = 1, the rigid sphere leaves at
+    X = 2 with the first integral St (V + 1) = ln(1/X) + F T there, to the 5e-3 of the test
+    above (300 nodes, rtol 1e-5); a thin layer's sphere leaves at its surface, so a larger
+    exit gap is refused by name."""
+    St, force = 3.0, 1.0
+    params = CollisionParameters(St=St, eps=1.0, layer="immersed", external_force=force)
+    options = IntegratorOptions(rtol=1e-5, exit_gap=2.0)
+    radii = radial_grid(300, 0.05, OUTER["immersed"])
+    result = solve_normal(params, RigidSolids(radii), options)
+    assert result.status == "rebound" and result.history.gap.max() >= 2.0
+    exit_momentum = St * (result.exit_velocity + 1) - np.log(0.5) - force * result.contact_time
+    assert abs(exit_momentum) < 5e-3
+    thin = CollisionParameters(St=St, eps=1.0, layer="thin")
+    with pytest.raises(InputError, match="exit_gap"):
+        solve_normal(thin, RigidSolids(radial_grid(100, 0.05, OUTER["thin"])), options)
+
+
 @pytest.mark.parametrize("force", [2.0, -2.0])
 def test_energy_balance_with_the_work_of_a_constant_force(force):
     """Kinetic + elastic + dissipated - F (X - 1) = St/2 without cavitation, to discretisation

@@ -3,8 +3,8 @@
 A threaded BLAS changes the rounding of the dense products with the thread count; unpinned,
 the 24 collisions of benchmarks/sweep.py all differed between 1 and 2 OpenBLAS threads (by 1e-12
 to 1e-9 in e_n, and a soft case's step sequence diverged). The set-up installs Debian's threaded
-OpenBLAS (make.sh), so these tests can see the difference; each run is a fresh process, since a
-BLAS reads its thread count when it loads.
+OpenBLAS (make.sh; the system keeps the reference BLAS), and these tests load it in a fresh
+process (a BLAS reads its thread count when it loads) from its own folder.
 """
 
 import json
@@ -30,18 +30,26 @@ print(json.dumps({"threads": threads, "values": [repr(v) for v in values]}))
 """
 
 
+OPENBLAS = "/usr/lib/x86_64-linux-gnu/openblas-pthread"  # Debian's libopenblas0-pthread
+
+
 def run_with_blas_threads(threads: int) -> dict:
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": str(threads), "OMP_NUM_THREADS": str(threads)}
+    """The collision's outputs in a fresh process on OpenBLAS with ``threads`` threads."""
+    env = {
+        **os.environ,
+        "LD_LIBRARY_PATH": os.pathsep.join([OPENBLAS, os.environ.get("LD_LIBRARY_PATH", "")]),
+        "OPENBLAS_NUM_THREADS": str(threads),
+        "OMP_NUM_THREADS": str(threads),
+    }
     out = subprocess.run(
         [sys.executable, "-c", COLLISION], env=env, capture_output=True, text=True, check=True
     )
     return json.loads(out.stdout.splitlines()[-1])
 
 
-def test_the_machine_has_a_threaded_blas():
+def test_the_collision_runs_on_a_threaded_blas():
     """Outside a computation the BLAS keeps the thread count it was given, so the next test
-    compares two different thread counts (fails on a machine without a threaded BLAS: run the
-    set-up)."""
+    compares two different thread counts (fails without Debian's OpenBLAS: run the set-up)."""
     assert run_with_blas_threads(2)["threads"] == 2
 
 

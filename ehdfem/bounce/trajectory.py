@@ -7,7 +7,8 @@ force [N], energy [J]. The motion is normal to the wall.
 
 **Flight** (far from contact):
 
-    (m + C_M m_f) dv/dt = -(m - m_f) g - 6 pi mu a v [phi(Re) + lambda(h/a) - 1 - (1 - s) a/h],
+    M(h) dv/dt = -(m - m_f) g - 6 pi mu a v [phi(Re) + lambda(h/a) - 1 - (1 - s) a/h]
+                 + F_H - (1/2) M'(h) v^2,     M(h) = m + C_M(h) m_f,
 
 m = 4/3 pi a^3 rho_p, m_f = 4/3 pi a^3 rho_f, Re = rho_f |v| 2a / mu. phi = C_D Re / 24 is the
 steady drag law's factor over Stokes drag (:func:`drag_factor`), lambda Brenner's (1961) exact
@@ -15,8 +16,11 @@ Stokes-flow resistance factor of a sphere moving normal to a plane wall (:func:`
 1 far away, a/h near contact). The wall's increment lambda - 1 is added to the unbounded drag
 (it is a viscous effect of the narrowing gap; the wake's inertia, phi - 1, is not multiplied by
 it). Moving away from the wall, the lubrication part a/h of lambda is capped by cavitation as
-in the film model: s in (0, 1] (:func:`cavity_edge_ratio`; 1 when approaching). C_M = 1/2
-(the added mass far from walls); the history force is not modelled.
+in the film model: s in (0, 1] (:func:`cavity_edge_ratio`; 1 when approaching). C_M(h): the
+input C_M (1/2 far away) raised near the wall by the sphere's images (``wall_added_mass``;
+:func:`ehdfem.bounce.unsteady.wall_added_mass`), the term in M' making the equation Lagrange's.
+F_H: the history force with Mei & Adrian's finite-Re kernel (or Basset's, or none), a sum of
+exponentials whose memory z_i is part of the flight's state (:mod:`ehdfem.bounce.unsteady`).
 
 **Contact**: while falling, the sphere hands over to the immersed EHD film model
 (:func:`ehdfem.collision.collide`, Davis, Serayssol & Hinch 1986) at the first gap h_c where the
@@ -24,20 +28,23 @@ film's force there, the rigid lubrication force 6 pi mu a^2 |v| / h, differs fro
 hydrodynamic force by at most ``handover_jump`` (relative), or where h_c = ``ehd_multiple``
 h_EHD, h_EHD = (4 theta mu |v| a^(3/2))^(2/5) the gap at which the elasticity parameter is 1,
 whichever comes first. The film model starts at X = 1 (x0 = h_c) with V0 = |v(h_c)|, the
-effective mass m + C_M m_f, e_dry and the cavitation limit of the inputs; it ends at exit
-(X = 1 again, speed e_dry V_exit V0) or sticks. Gravity, buoyancy and the flight's remainder
-(phi - 1 + lambda - a/h) are not applied during the contact; their impulses are measured
-(:class:`Contact`). Flight resumes at h_c.
+inertia M(h_c) (the sphere's mass, and the added mass not in the weight), gravity and buoyancy
+(``contact_gravity``), e_dry and the cavitation limit of the inputs; it ends at exit (X =
+h_exit / h_c, speed e_dry V_exit V0; :meth:`FarField.exit_gap`) or sticks. The flight's
+remainder (phi - 1 + lambda - a/h) and the history force are not applied during the contact;
+their impulses are measured (:class:`Contact`), and the contact's velocity change is carried
+into the history force's memory (``history_memory`` "keep") or the memory is emptied
+("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
 
-**Rest**: the sphere rests when a contact sticks, or when an apex is below ``rest_apex`` D or
-already inside the hand-over region; the computation also stops at the apex after
-``max_bounces`` contacts.
+**Rest**: the sphere rests when a contact sticks or stalls, or when an apex is below
+``rest_apex`` D or already inside the hand-over region; the computation also stops at the apex
+after ``max_bounces`` contacts.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp, trapezoid
@@ -60,6 +67,8 @@ from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
 from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
+from . import unsteady
+from .unsteady import HISTORY_KERNELS
 
 GRAVITY = 9.81  # m/s^2
 DRAG_LAWS = ("schiller-naumann", "abraham", "stokes")
@@ -67,9 +76,12 @@ MODELS = ("halfspace", "rigid")
 HANDOVER_JUMP = 0.02  # largest relative force jump at the hand-over to the film model
 EHD_MULTIPLE = 10.0  # hand over at the latest at this multiple of the EHD gap h_EHD
 FLIGHT_RTOL = 1e-10  # relative tolerance of the flight's ODE integration
+MEMORY_RTOL = 1e-7  # its relative tolerance on the history force's memory z_i
 FLIGHT_SAMPLES = 200  # trajectory samples per flight leg (besides the integrator's steps)
 SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry force jump)
 LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
+ENDINGS = {"stick": "sticks", "stalled": "stalled (settling through the film)"}
+HISTORY_MEMORIES = ("keep", "reset")  # the history force's memory across a contact
 
 
 def drag_factor(law: str, reynolds):
@@ -169,9 +181,17 @@ class BounceInputs:
     the start: ``release_height`` [m], the gap from which the sphere is released at rest, or
     ``start_gap`` [m] with ``start_speed`` [m/s] towards the wall; e_dry in (0, 1], applied at
     each exit as in the collision model (e_n = e_dry V_exit); the drag law (:data:`DRAG_LAWS`);
-    the added-mass coefficient C_M in [0, 1]; gravity g [m/s^2]; the film's cavitation model
-    (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa] (the cavitation
-    pressure is the liquid's vapour pressure, as in :class:`ehdfem.PhysicalCollision`)."""
+    the added-mass coefficient C_M in [0, 1] (far from the wall); gravity g [m/s^2]; the film's
+    cavitation model (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa]
+    (the cavitation pressure is the liquid's vapour pressure, as in
+    :class:`ehdfem.PhysicalCollision`). The
+    modelling choices of docs/bounce.md, each switchable: the history force's kernel
+    (:data:`ehdfem.bounce.unsteady.HISTORY_KERNELS`) and its memory across a contact
+    (:data:`HISTORY_MEMORIES`: "keep" carries the contact's velocity change into it, "reset"
+    forgets everything at each exit); ``wall_added_mass``: C_M rises near the wall as the
+    sphere's image says (C_M above is then its value far away); ``contact_gravity``: gravity
+    and buoyancy act during the contacts; ``clear_exit``: the film model hands back above the
+    gap where a cavity can form (:meth:`FarField.exit_gap`)."""
 
     radius: float
     sphere: Material | str | dict
@@ -186,6 +206,11 @@ class BounceInputs:
     gravity: float = GRAVITY
     cavitation: str = "truncate"
     ambient_pressure: float = ATMOSPHERE
+    history: str = "mei-adrian"
+    history_memory: str = "keep"
+    wall_added_mass: bool = True
+    contact_gravity: bool = True
+    clear_exit: bool = True
 
     def __post_init__(self):
         for role in ("sphere", "wall", "liquid"):
@@ -219,6 +244,11 @@ class BounceInputs:
         checks.choice("cavitation", self.cavitation, cavitation.MODELS)
         checks.positive("ambient_pressure", self.ambient_pressure)
         check_vapour_pressure(self.liquid, self.ambient_pressure)
+        checks.choice("history", self.history, HISTORY_KERNELS)
+        checks.choice("history_memory", self.history_memory, HISTORY_MEMORIES)
+        for switch in ("wall_added_mass", "contact_gravity", "clear_exit"):
+            if not isinstance(getattr(self, switch), bool):
+                raise checks.InputError(f"{switch} must be True or False")
 
     @property
     def diameter(self) -> float:
@@ -246,26 +276,56 @@ class BounceInputs:
         return math.sqrt(self.diameter / self.gravity)
 
 
+@dataclass(frozen=True)
+class FlightState:
+    """The sphere at one instant (SI): time t [s], gap h [m], velocity v [m/s], the work done so
+    far on the liquid by the drag and by the history force [J] (from the start of the bounce),
+    and the history force's memory z_i [m/s] (one per exponential of
+    :data:`ehdfem.bounce.unsteady.RELAXATION_TIMES`; empty without a history force)."""
+
+    time: float
+    gap: float
+    velocity: float
+    drag_work: float = 0.0
+    history_work: float = 0.0
+    memory: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+
 @dataclass
 class Flight:
-    """One flight leg: samples of time [s], gap [m], velocity [m/s] and the drag's dissipated
-    work so far [J] (from the start of the bounce), and how it ended: "handover" (the film
-    model takes over), "apex" (v = 0 on the way up), "end" (the given duration ran out) or
-    "inside" (it started falling inside the hand-over region: no flight)."""
+    """One flight leg: samples of time [s], gap [m], velocity [m/s], the drag's and the history
+    force's work so far [J] (from the start of the bounce), the memory z_i [m/s] at its end,
+    and how it ended: "handover" (the film model takes over), "apex" (v = 0 on the way up),
+    "end" (the given duration ran out) or "inside" (it started falling inside the hand-over
+    region: no flight)."""
 
     time: np.ndarray
     gap: np.ndarray
     velocity: np.ndarray
     drag_dissipated: np.ndarray
+    history_dissipated: np.ndarray
+    memory: np.ndarray
     end: str
+
+    def last(self) -> FlightState:
+        """The state at the end of the leg."""
+        return FlightState(
+            float(self.time[-1]),
+            float(self.gap[-1]),
+            float(self.velocity[-1]),
+            float(self.drag_dissipated[-1]),
+            float(self.history_dissipated[-1]),
+            self.memory,
+        )
 
 
 class FarField:
     """The flight's force law and its integration (module docstring), for ``inputs``.
 
-    ``mass``, ``fluid_mass`` = rho_f times the sphere's volume, ``effective_mass`` =
-    mass + C_M fluid_mass [kg]; ``net_weight`` = (mass - fluid_mass) g [N]; ``stokes`` =
-    6 pi mu a [N s/m]."""
+    ``mass``, ``fluid_mass`` = rho_f times the sphere's volume [kg] (the inertia with the added
+    mass: :meth:`inertia`); ``net_weight`` = (mass - fluid_mass) g [N]; ``stokes`` =
+    6 pi mu a [N s/m]; ``relaxation_times`` tau_i = sigma_i a^2 / nu [s] of the history force's
+    exponentials (none without it)."""
 
     def __init__(
         self,
@@ -278,11 +338,32 @@ class FarField:
         a, liquid = inputs.radius, inputs.liquid
         self.mass = inputs.volume * inputs.sphere.density
         self.fluid_mass = inputs.volume * liquid.density
-        self.effective_mass = self.mass + inputs.added_mass * self.fluid_mass
         self.net_weight = (self.mass - self.fluid_mass) * inputs.gravity
         self.stokes = 6.0 * math.pi * liquid.viscosity * a
         capped = inputs.cavitation != "none"
         self.suction_limit = inputs.ambient_pressure - liquid.vapour_pressure if capped else None
+        modes = len(unsteady.history_weights(inputs.history, 0.0))
+        viscous_time = a * a * liquid.density / liquid.viscosity
+        self.relaxation_times = unsteady.RELAXATION_TIMES[:modes] * viscous_time
+
+    def inertia(self, gap: float) -> tuple[float, float]:
+        """(M, dM/dh): the sphere's mass with its added mass, M = m + C_M(h) m_f [kg], and its
+        slope [kg/m]; C_M(h) = C_M (C_M(h)/C_M(inf) of the sphere's image,
+        :func:`ehdfem.bounce.unsteady.wall_added_mass`) with ``wall_added_mass``, else C_M."""
+        added = self.inputs.added_mass * self.fluid_mass
+        if not self.inputs.wall_added_mass:
+            return self.mass + added, 0.0
+        factor, slope = unsteady.wall_added_mass(gap / self.inputs.radius)
+        return self.mass + added * factor, added * slope / self.inputs.radius
+
+    def far_inertia(self) -> float:
+        """m + C_M m_f [kg], the inertia far from the wall."""
+        return self.mass + self.inputs.added_mass * self.fluid_mass
+
+    def history_weights(self, velocity: float) -> np.ndarray:
+        """The weights w_i of the history kernel at the Reynolds number of ``velocity``
+        (:func:`ehdfem.bounce.unsteady.history_weights`)."""
+        return unsteady.history_weights(self.inputs.history, float(self.reynolds(velocity)))
 
     def reynolds(self, velocity):
         """Re = rho_f |v| 2a / mu."""
@@ -323,6 +404,18 @@ class FarField:
             rtol=1e-14,
         )
 
+    def exit_gap(self, handover_gap: float, speed: float) -> float:
+        """Where the film model hands back after a rebound [m]: the hand-over gap h_c, or, with
+        ``clear_exit`` and a suction limit Delta p, the larger h_cav = sqrt(3 mu a V0 / Delta p),
+        above which a rigid sphere leaving the wall at any speed up to the hand-over speed
+        ``speed`` V0 (the exit's is lower) forms no cavity (Pi >= 1/2 of
+        :func:`cavity_edge_ratio`): the film's cavitation no longer acts there, and its
+        elasticity already did not at h_c (the hand-over criterion)."""
+        if not self.inputs.clear_exit or self.suction_limit is None:
+            return handover_gap
+        viscous = 3.0 * self.inputs.liquid.viscosity * self.inputs.radius * speed
+        return max(handover_gap, math.sqrt(viscous / self.suction_limit))
+
     def ehd_gap(self, speed: float) -> float:
         """h_EHD = (4 theta mu |v| a^(3/2))^(2/5) [m], the gap x0 at which eps = 1 (eps at
         x0 = 1 m, to the power 2/5)."""
@@ -340,18 +433,39 @@ class FarField:
         ehd = self.ehd_multiple * self.ehd_gap(velocity)
         return min(jump - self.handover_jump, gap / ehd - 1.0 if ehd > 0 else math.inf)
 
-    def fly(self, start: tuple, rising: bool, duration: float | None = None) -> Flight:
-        """Integrate a flight leg from ``start`` = (t [s], h [m], v [m/s], drag work so far [J])
-        until the apex (``rising``) or the hand-over (falling), or at most for ``duration`` [s]
-        (None: until the event). LSODA, relative tolerance FLIGHT_RTOL."""
-        t0, gap, velocity, dissipated = start
-        if not rising and self.handover_margin(gap, velocity) <= 0.0:
-            return Flight(*(np.array([x]) for x in start), end="inside")
+    def rates(self, y) -> np.ndarray:
+        """d/dt of (h, v, drag work, history work, z_1..z_n) for y = those (SI): the Lagrangian
+        M(h) dv/dt = F_drag - (m - m_f) g + F_H - (1/2) dM/dh v^2 (the image's added mass
+        conserves the kinetic energy M v^2 / 2 with the forces' work), the history force
+        F_H = -6 pi mu a sum_i w_i(Re) z_i (:meth:`history_force`), dz_i/dt = -z_i/tau_i + dv/dt."""
+        gap, velocity, memory = max(y[0], 1e-300), y[1], y[4:]
+        drag = self.drag(gap, velocity)
+        history = self.history_force(velocity, memory)
+        mass, slope = self.inertia(gap)
+        acceleration = (drag - self.net_weight + history - 0.5 * slope * velocity**2) / mass
+        rates = np.empty(len(y))
+        rates[:4] = velocity, acceleration, -drag * velocity, -history * velocity
+        rates[4:] = -memory / self.relaxation_times + acceleration
+        return rates
 
-        def rates(_, y):
-            gap, velocity, _ = y
-            drag = self.drag(max(gap, 1e-300), velocity)
-            return [velocity, (drag - self.net_weight) / self.effective_mass, -drag * velocity]
+    def history_force(self, velocity: float, memory) -> float:
+        """F_H = -6 pi mu a sum_i w_i(Re) z_i [N]: the memory z_i [m/s] weighted by the kernel
+        at the current Reynolds number (0 without a history force)."""
+        if not len(memory):
+            return 0.0
+        return -self.stokes * float(self.history_weights(velocity) @ memory)
+
+    def fly(self, start: FlightState, rising: bool, duration: float | None = None) -> Flight:
+        """Integrate a flight leg from ``start`` until the apex (``rising``) or the hand-over
+        (falling), or at most for ``duration`` [s] (None: until the event). LSODA, relative
+        tolerance FLIGHT_RTOL."""
+        t0, gap, velocity = start.time, start.gap, start.velocity
+        memory = np.zeros(len(self.relaxation_times))  # at rest since ever, unless given
+        if len(start.memory):
+            memory = np.asarray(start.memory, dtype=float)
+        if not rising and self.handover_margin(gap, velocity) <= 0.0:
+            columns = (t0, gap, velocity, start.drag_work, start.history_work)
+            return Flight(*(np.array([x]) for x in columns), memory, end="inside")
 
         def apex(_, y):
             return y[1]
@@ -361,21 +475,16 @@ class FarField:
 
         for event in (apex, handover):
             event.terminal, event.direction = True, -1.0
-        events = apex if rising else handover
         span = duration if duration is not None else self._longest_leg(gap, velocity)
-        speed = max(abs(velocity), self.terminal_velocity())
+        y0 = [gap, velocity, start.drag_work, start.history_work, *memory]
         solution = solve_ivp(
-            rates,
+            lambda _, y: self.rates(y),
             (t0, t0 + span),
-            [gap, velocity, dissipated],
+            y0,
             method="LSODA",
-            rtol=FLIGHT_RTOL,
-            atol=[
-                1e-9 * FLIGHT_RTOL * self.inputs.radius,
-                1e-3 * FLIGHT_RTOL * speed,
-                1e-3 * FLIGHT_RTOL * self.effective_mass * speed**2,
-            ],
-            events=events,
+            rtol=[FLIGHT_RTOL] * 4 + [MEMORY_RTOL] * len(memory),
+            atol=self._tolerances(velocity, len(memory)),
+            events=apex if rising else handover,
             dense_output=True,
         )
         if solution.status == -1:
@@ -390,15 +499,24 @@ class FarField:
             )
         times = np.union1d(solution.t[solution.t <= t_end], np.linspace(t0, t_end, FLIGHT_SAMPLES))
         states = solution.sol(times)
-        return Flight(times, states[0], states[1], states[2], end)
+        return Flight(times, *states[:4], solution.sol(t_end)[4:], end)
+
+    def _tolerances(self, velocity: float, modes: int) -> list[float]:
+        """Absolute tolerances of (h, v, the two works, z_i)."""
+        speed = max(abs(velocity), self.terminal_velocity())
+        energy = 1e-3 * FLIGHT_RTOL * self.far_inertia() * speed**2
+        small = 1e-3 * FLIGHT_RTOL * speed
+        memory = [1e-3 * MEMORY_RTOL * speed] * modes
+        return [1e-9 * FLIGHT_RTOL * self.inputs.radius, small, energy, energy] + memory
 
     def _longest_leg(self, gap: float, velocity: float) -> float:
         """A time within which any flight leg from (gap, velocity) has its event [s]: free fall
         from the top of a rise, at a speed of at least a thousandth of the terminal one."""
-        top = gap + velocity**2 * self.effective_mass / (2.0 * self.net_weight)
-        relax = self.effective_mass / self.stokes
+        mass = self.far_inertia()
+        top = gap + velocity**2 * mass / (2.0 * self.net_weight)
+        relax = mass / self.stokes
         return (
-            10.0 * (relax + abs(velocity) * self.effective_mass / self.net_weight)
+            10.0 * (relax + abs(velocity) * mass / self.net_weight)
             + 1e3 * (top + self.inputs.radius) / self.terminal_velocity()
         )
 
@@ -409,9 +527,10 @@ class Contact:
 
     ``impact_speed``: the largest approach speed since the last apex (the release); the
     restitution ``e`` = rebound speed / ``impact_speed``, as measured in experiments (the
-    rebound speed e_dry V_exit V0 at the hand-over gap, the largest rising speed after it);
-    ``St``: rho_p D impact_speed / (9 mu). ``handover_gap`` h_c and ``handover_speed`` V0 =
-    |v(h_c)|; ``contact_St``, ``eps``, ``p_cav``: the film model's groups (effective mass).
+    rebound speed at the exit gap, the largest rising speed after it); ``St``: rho_p D
+    impact_speed / (9 mu). ``handover_gap`` h_c and ``handover_speed`` V0 = |v(h_c)|;
+    ``exit_gap`` [m]: where the film model hands back (:meth:`FarField.exit_gap`);
+    ``contact_St``, ``eps``, ``p_cav``: the film model's groups (with the added mass).
     ``film``: every output of the film model (:mod:`ehdfem.outputs.registry`,
     :func:`ehdfem.outputs.registry.in_si_where_possible`): in SI under its SI key where it has
     one (``min_film_thickness_m`` [m], ``max_force_N`` [N], ``contact_time_s`` [s],
@@ -421,9 +540,11 @@ class Contact:
     model's relative balance error, None with a cavitation limit). Force jumps (relative,
     flight to film, both at the same h and v): ``entry_jump`` once the film pressure has built
     up (the first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
-    Impulses not applied during the contact, relative to the hand-over momentum
-    (m + C_M m_f) V0: ``gravity_impulse`` ((m - m_f) g duration) and ``remainder_impulse``
-    (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest film). Energies [J]:
+    Impulses not applied during the contact, relative to the hand-over momentum M(h_c) V0:
+    ``gravity_impulse`` ((m - m_f) g duration; 0 when gravity acts in the contact),
+    ``remainder_impulse`` (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest
+    film) and ``history_impulse`` (int F_H dt from the memory carried through the contact,
+    signed, positive away from the wall; 0 without a history force). Energies [J]:
     ``film_dissipated`` (the film's viscous dissipation up to exit), ``exit_loss`` (the dry
     loss (1 - e_dry^2) times the exit's kinetic energy, plus the elastic energy left in the
     solids)."""
@@ -432,6 +553,7 @@ class Contact:
     St: float
     handover_gap: float
     handover_speed: float
+    exit_gap: float
     contact_St: float
     eps: float
     p_cav: float | None
@@ -440,6 +562,7 @@ class Contact:
     exit_jump: float
     gravity_impulse: float
     remainder_impulse: float
+    history_impulse: float
     film_dissipated: float
     exit_loss: float
     film: dict
@@ -468,6 +591,7 @@ TRAJECTORY_COLUMNS = (
     "potential",
     "elastic",
     "drag_dissipated",
+    "history_dissipated",
     "film_dissipated",
     "exit_loss",
 )
@@ -480,9 +604,10 @@ class BounceResult:
     ``trajectory``: arrays over the samples, as TRAJECTORY_COLUMNS: time [s] (0 at release or
     start), gap [m] (centre height - a; during a contact X x0, negative by the solids'
     compression), velocity [m/s], phase ("flight" or "contact"), contacts (how many began so
-    far), and the energies [J]: kinetic 1/2 (m + C_M m_f) v^2, potential (m - m_f) g h (held at
-    its hand-over value during a contact, where gravity is not applied), elastic (in the solids),
-    the cumulated drag work, film dissipation and exit losses. Their sum is the start's energy
+    far), and the energies [J]: kinetic 1/2 M(h) v^2 (M = m + C_M(h) m_f; M(h_c) in a contact),
+    potential (m - m_f) g h (held at its hand-over value during a contact where gravity is not
+    applied), elastic (in the solids), the cumulated work of the drag and of the history force
+    on the liquid, film dissipation and exit losses. Their sum is the start's energy
     up to the integration errors (:meth:`energy_error`). ``contacts``: one :class:`Contact`
     each. ``status``: why it stopped. ``terminal_velocity``: the drag law's settling speed
     [m/s]."""
@@ -585,7 +710,7 @@ def bounce(
             "start the sphere higher"
         )
     run = _Bounce(far, model, nodes, options or IntegratorOptions(), rest_apex)
-    status = run.go((0.0, gap, velocity, 0.0), max_bounces)
+    status = run.go(FlightState(0.0, gap, velocity), max_bounces)
     return BounceResult(
         inputs,
         model,
@@ -603,30 +728,29 @@ class _Bounce:
     """The loop of :func:`bounce`: flight legs and contacts, with the trajectory's samples."""
 
     def __init__(self, far: FarField, model, nodes, options, rest_apex):
-        self.far, self.model, self.nodes = far, model, nodes
-        self.config = RunConfig(numerics=Numerics(nodes=nodes, integrator=options))  # half-space
+        self.far, self.model, self.nodes, self.options = far, model, nodes, options
         self.rest_apex = rest_apex * far.inputs.diameter
         self.samples = {name: [] for name in TRAJECTORY_COLUMNS}
         self.contacts: list[Contact] = []
         self.film_dissipated = self.exit_loss = 0.0
 
-    def go(self, start, max_bounces) -> str:
-        """Fly and collide from ``start`` = (t, h, v, drag work) until the sphere rests;
-        returns the reason it stopped."""
+    def go(self, start: FlightState, max_bounces) -> str:
+        """Fly and collide from ``start`` until the sphere rests; returns the reason it
+        stopped."""
         leg = self._fly(start, rising=False)
         while True:
             if leg.end == "inside":
                 return "rest: the apex is inside the hand-over region"
             contact, exit_state = self._collide(leg)
             if contact.status != "rebound":
-                return f"rest: the contact {contact.status}s"
+                return f"rest: the contact {ENDINGS[contact.status]}"
             rise = self._fly(exit_state, rising=True)
             contact.apex_gap, contact.apex_time = float(rise.gap[-1]), float(rise.time[-1])
             if rise.gap[-1] < self.rest_apex:
                 return "rest: the apex is below rest_apex D"
             if len(self.contacts) >= max_bounces:
                 return "stopped at the apex after max_bounces contacts"
-            leg = self._fly(_last(rise), rising=False)
+            leg = self._fly(rise.last(), rising=False)
 
     def _fly(self, start, rising) -> Flight:
         leg = self.far.fly(start, rising)
@@ -636,16 +760,17 @@ class _Bounce:
 
     def _record_flight(self, leg: Flight):
         far = self.far
-        kinetic = 0.5 * far.effective_mass * leg.velocity**2
+        mass = np.array([far.inertia(gap)[0] for gap in leg.gap])
         self._append(
             time=leg.time,
             gap=leg.gap,
             velocity=leg.velocity,
             phase=["flight"] * len(leg.time),
-            kinetic=kinetic,
+            kinetic=0.5 * mass * leg.velocity**2,
             potential=far.net_weight * leg.gap,
             elastic=np.zeros(len(leg.time)),
             drag_dissipated=leg.drag_dissipated,
+            history_dissipated=leg.history_dissipated,
         )
 
     def _append(self, **columns):
@@ -657,58 +782,87 @@ class _Bounce:
             self.samples[name].extend(np.asarray(columns[name]).tolist())
 
     def _collide(self, leg: Flight):
-        """The contact after the falling ``leg``: the film model from the hand-over state, its
-        samples recorded; returns the Contact and the state (t, h, v, drag work) where flight
-        resumes after a rebound."""
+        """The contact after the falling ``leg``: the film model from the hand-over state (its
+        inertia M(h_c), handing back at :meth:`FarField.exit_gap`), its samples recorded;
+        returns the Contact and the FlightState where flight resumes after a rebound (the
+        speed e_dry V_exit V0 sqrt(M(h_c) / M(h_exit)), which keeps the kinetic energy across
+        the added mass's change, as the flight's own equation does)."""
         far, inputs = self.far, self.far.inputs
-        t0, gap, velocity, drag = _last(leg)
-        speed = -velocity
-        result, scales = self._film_collision(gap, speed)
+        start = leg.last()
+        speed = -start.velocity
+        mass, exit_gap = far.inertia(start.gap)[0], far.exit_gap(start.gap, speed)
+        result, scales = self._film_collision(start.gap, speed, mass, exit_gap)
         normal, params = result.normal, result.params
-        energy_unit = far.effective_mass * speed**2 / params.St
-        at_end = self._record_contact(normal, (t0, gap, speed, drag), scales, energy_unit)
+        energy_unit = mass * speed**2 / params.St
+        at_end, times, velocities = self._record_contact(normal, start, scales, energy_unit)
         exit_speed = normal.exit_velocity * speed
-        rebound_speed = inputs.e_dry * exit_speed
+        rebound_speed = inputs.e_dry * exit_speed * math.sqrt(mass / far.inertia(exit_gap)[0])
         film_dissipated = at_end["dissipated"] * energy_unit
-        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * far.effective_mass * exit_speed**2
+        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * mass * exit_speed**2
         exit_loss += at_end["elastic"] * energy_unit
         self.film_dissipated += film_dissipated
         self.exit_loss += exit_loss
+        if normal.rebound:
+            times, velocities = np.append(times, times[-1]), np.append(velocities, rebound_speed)
+        memory, history_impulse = self._carry_memory(start.memory, times, velocities)
         impact = float(np.max(np.abs(leg.velocity)))
         contact = Contact(
             impact_speed=impact,
             St=inputs.stokes_number(impact),
-            handover_gap=gap,
+            handover_gap=start.gap,
             handover_speed=speed,
+            exit_gap=exit_gap,
             contact_St=params.St,
             eps=params.eps,
             p_cav=cavitation.suction_limit_output(params.p_cav),
             e=rebound_speed / impact,
             **self._jumps(normal.history, normal, scales),
-            **self._omitted(normal.history, normal.contact_time, scales, speed),
+            **self._omitted(normal.history, normal.contact_time, scales, speed, mass),
+            history_impulse=history_impulse / (mass * speed),
             film_dissipated=film_dissipated,
             exit_loss=exit_loss,
             film=outputs.in_si_where_possible(result),
         )
         self.contacts.append(contact)
-        exit_state = (t0 + normal.contact_time * scales.time, gap, rebound_speed, drag)
+        exit_state = FlightState(
+            times[-1], exit_gap, rebound_speed, start.drag_work, start.history_work, memory
+        )
         if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
             self._append(
-                time=[exit_state[0]],
-                gap=[gap],
+                time=[exit_state.time],
+                gap=[exit_gap],
                 velocity=[rebound_speed],
                 phase=["flight"],
-                kinetic=[0.5 * far.effective_mass * rebound_speed**2],
-                potential=[far.net_weight * gap],
+                kinetic=[0.5 * far.inertia(exit_gap)[0] * rebound_speed**2],
+                potential=[far.net_weight * exit_gap],
                 elastic=[0.0],
-                drag_dissipated=[drag],
+                drag_dissipated=[start.drag_work],
+                history_dissipated=[start.history_work],
             )
         return contact, exit_state
 
-    def _film_collision(self, gap: float, speed: float):
+    def _carry_memory(self, memory, times, velocities) -> tuple[np.ndarray, float]:
+        """The history force's memory after the contact whose velocity ``velocities`` [m/s] at
+        ``times`` [s] it follows (the exit's jump included as the last sample), and the
+        impulse [N s] the history force would have had during it (not applied: the film model
+        has only the film's and gravity's forces). With ``history_memory`` "reset" the memory
+        is emptied at exit."""
+        far = self.far
+        if not len(memory):
+            return memory, 0.0
+        carried = unsteady.carry_memory(memory, times, velocities, far.relaxation_times)
+        force = [far.history_force(v, z) for v, z in zip(velocities, carried, strict=True)]
+        impulse = float(trapezoid(force, times))
+        if far.inputs.history_memory == "reset":
+            return np.zeros_like(memory), impulse
+        return carried[-1], impulse
+
+    def _film_collision(self, gap: float, speed: float, mass: float, exit_gap: float):
         """The immersed EHD collision from the hand-over at ``gap`` (m, the contact's layer
-        thickness x0) and approach ``speed`` (m/s, its V0), with the sphere's effective mass;
-        returns the collision result (scaled) and its SI scales."""
+        thickness x0) and approach ``speed`` (m/s, its V0), with the inertia ``mass`` [kg]
+        (the sphere's own mass plus its added mass there), gravity and buoyancy if
+        ``contact_gravity``, leaving at ``exit_gap`` [m]; returns the collision result
+        (scaled) and its SI scales."""
         far, inputs = self.far, self.far.inputs
         physical = PhysicalCollision(
             radius=inputs.radius,
@@ -720,24 +874,37 @@ class _Bounce:
             layer="immersed",
             e_dry=inputs.e_dry,
             ambient_pressure=inputs.ambient_pressure,
-            sphere_mass=far.effective_mass,
+            added_mass=mass - far.mass,
             cavitation=inputs.cavitation,
+            gravity=inputs.gravity if inputs.contact_gravity else 0.0,
+            **self._surface_roughness(gap),
         )
+        options = replace(self.options, exit_gap=exit_gap / gap)
+        config = RunConfig(numerics=Numerics(nodes=self.nodes, integrator=options))  # half-space
         if self.model == "rigid":
             params = physical.dimensionless()
             solids = RigidSolids(film_radii(params, self.nodes))
-            result = collide(physical, self.config, compliance=solids)
+            result = collide(physical, config, compliance=solids)
         else:
-            result = collide(physical, self.config)
+            result = collide(physical, config)
         return result, physical.scales()
 
-    def _record_contact(self, normal, start, scales, energy_unit) -> dict:
-        """Append the contact's samples (SI) to the trajectory, from the hand-over ``start`` =
-        (t0 [s], x0 [m], V0 [m/s], drag work so far [J]) to the exit or the stop, the exit
-        interpolated between the last two steps; returns the scaled gap, velocity, dissipated
-        and elastic energy there (energies by ``energy_unit`` = m V0^2 / St, in J)."""
+    def _surface_roughness(self, gap: float) -> dict:
+        """The surfaces' roughness of the contact handed over at ``gap`` [m], as inputs of its
+        collision: the place where each contact will pass the roughness sigma (SI), scaled by
+        its own x0 = ``gap`` (sigma / x0 differs from contact to contact). The collision has
+        no roughness input yet: smooth surfaces, no inputs."""
+        return {}
+
+    def _record_contact(self, normal, start: FlightState, scales, energy_unit) -> tuple:
+        """Append the contact's samples (SI) to the trajectory, from the hand-over ``start``
+        to the exit or the stop, the exit interpolated between the last two steps; returns the
+        scaled gap, velocity, dissipated and elastic energy there (energies by ``energy_unit``
+        = M V0^2 / St, in J), and the samples' times [s] and velocities [m/s]. The potential
+        energy follows the gap when gravity acts in the contact, else it is held at its
+        hand-over value."""
         far, hist, end = self.far, normal.history, normal.contact_time
-        t0, gap, speed, drag = start
+        gap, speed = start.gap, -start.velocity
         names = ("gap", "velocity", "dissipated", "elastic")
         at_end = {name: float(np.interp(end, hist.time, getattr(hist, name))) for name in names}
         shown = hist.time <= end
@@ -746,19 +913,23 @@ class _Bounce:
         if normal.rebound:
             times = np.append(times, end)
             samples = {name: np.append(samples[name], at_end[name]) for name in names}
+        times, velocities = start.time + times * scales.time, samples["velocity"] * speed
+        gaps = samples["gap"] * gap
+        height = gaps if far.inputs.contact_gravity else np.full(len(times), gap)
         self._append(
-            time=t0 + times * scales.time,
-            gap=samples["gap"] * gap,
-            velocity=samples["velocity"] * speed,
+            time=times,
+            gap=gaps,
+            velocity=velocities,
             phase=["contact"] * len(times),
             contacts=[len(self.contacts) + 1] * len(times),
-            kinetic=0.5 * far.effective_mass * (samples["velocity"] * speed) ** 2,
-            potential=np.full(len(times), far.net_weight * gap),
+            kinetic=0.5 * far.inertia(gap)[0] * velocities**2,
+            potential=far.net_weight * height,
             elastic=samples["elastic"] * energy_unit,
-            drag_dissipated=np.full(len(times), drag),
+            drag_dissipated=np.full(len(times), start.drag_work),
+            history_dissipated=np.full(len(times), start.history_work),
             film_dissipated=self.film_dissipated + samples["dissipated"] * energy_unit,
         )
-        return at_end
+        return at_end, times, velocities
 
     def _jumps(self, hist, normal, scales) -> dict:
         """Relative force jumps flight -> film at entry (X <= SETTLED_FILM) and before exit."""
@@ -776,9 +947,9 @@ class _Bounce:
         exit_jump = jump(int(leaving[-1])) if normal.rebound and leaving.size else math.nan
         return {"entry_jump": entry, "exit_jump": exit_jump}
 
-    def _omitted(self, hist, end, scales, speed) -> dict:
-        """Impulses of gravity-buoyancy and of the flight's remainder over the contact, relative
-        to the hand-over momentum."""
+    def _omitted(self, hist, end, scales, speed, mass) -> dict:
+        """Impulses of gravity-buoyancy (0 when it acts in the contact) and of the flight's
+        remainder over the contact, relative to the hand-over momentum M V0."""
         far = self.far
         shown = hist.time <= end
         time = hist.time[shown] * scales.time
@@ -787,25 +958,16 @@ class _Bounce:
         phi = drag_factor(far.inputs.drag, far.reynolds(velocity))
         lam = brenner_factor(gap / far.inputs.radius)
         remainder = far.stokes * np.abs(velocity * (phi - 1.0 + lam - far.inputs.radius / gap))
-        momentum = far.effective_mass * speed
+        momentum = mass * speed
+        weight = 0.0 if far.inputs.contact_gravity else far.net_weight
         return {
-            "gravity_impulse": far.net_weight * end * scales.time / momentum,
+            "gravity_impulse": weight * end * scales.time / momentum,
             "remainder_impulse": float(trapezoid(remainder, time)) / momentum,
         }
 
     def arrays(self) -> dict:
         """The trajectory samples as numpy arrays."""
         return {name: np.asarray(values) for name, values in self.samples.items()}
-
-
-def _last(leg: Flight) -> tuple:
-    """(t, h, v, drag work) at the end of a flight leg."""
-    return (
-        float(leg.time[-1]),
-        float(leg.gap[-1]),
-        float(leg.velocity[-1]),
-        float(leg.drag_dissipated[-1]),
-    )
 
 
 def release_height_for_speed(inputs: BounceInputs, speed: float, top: float = 1.0):
@@ -819,7 +981,7 @@ def release_height_for_speed(inputs: BounceInputs, speed: float, top: float = 1.
         return None
 
     def excess(height):
-        leg = far.fly((0.0, height, 0.0, 0.0), rising=False)
+        leg = far.fly(FlightState(0.0, height, 0.0), rising=False)
         return float(np.max(np.abs(leg.velocity))) - speed
 
     low = inputs.radius

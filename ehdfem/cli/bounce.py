@@ -3,11 +3,13 @@ rests; each contact is an immersed EHD collision (docs/bounce.md). Inputs in SI.
 
 from __future__ import annotations
 
+from argparse import BooleanOptionalAction
 from pathlib import Path
 
 from .. import BounceInputs, IntegratorOptions, bounce, checks
-from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP
+from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, HISTORY_MEMORIES
 from ..bounce.trajectory import MODELS as BOUNCE_MODELS
+from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation
 from ..inputs.scales import ATMOSPHERE
@@ -39,7 +41,10 @@ def add_bounce(b) -> None:
     )
     model.add_argument("--drag", choices=DRAG_LAWS, default=DRAG_LAWS[0], help="steady drag law")
     model.add_argument(
-        "--added-mass", type=float, default=0.5, help="added-mass coefficient C_M, [0, 1]"
+        "--added-mass",
+        type=float,
+        default=0.5,
+        help="added-mass coefficient C_M far from the wall, [0, 1]",
     )
     model.add_argument("--gravity", type=float, default=GRAVITY, help="g [m/s^2]")
     model.add_argument(
@@ -51,6 +56,7 @@ def add_bounce(b) -> None:
     model.add_argument(
         "--ambient-pressure", type=float, default=ATMOSPHERE, help="ambient pressure [Pa]"
     )
+    _add_flight_choices(model)
     model.add_argument(
         "--model",
         choices=BOUNCE_MODELS,
@@ -87,6 +93,32 @@ def add_bounce(b) -> None:
     num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
 
 
+def _add_flight_choices(model) -> None:
+    """The switchable choices of the flight and the contacts (docs/bounce.md), default on."""
+    model.add_argument(
+        "--history",
+        choices=HISTORY_KERNELS,
+        default=HISTORY_KERNELS[0],
+        help="history (Basset) force in flight: Mei & Adrian's finite-Re kernel, Basset's, none",
+    )
+    model.add_argument(
+        "--history-memory",
+        choices=HISTORY_MEMORIES,
+        default=HISTORY_MEMORIES[0],
+        help="the history force's memory across a contact: keep the contact's velocity change, "
+        "or reset it at each exit",
+    )
+    switches = {
+        "wall-added-mass": "the added mass rises near the wall (the sphere's image)",
+        "contact-gravity": "gravity and buoyancy act during the contacts",
+        "clear-exit": "the film model hands back above the gap where a cavity can form",
+    }
+    for name, text in switches.items():
+        model.add_argument(
+            f"--{name}", action=BooleanOptionalAction, default=True, help=f"{text} (default on)"
+        )
+
+
 def _bounce_inputs(args) -> BounceInputs:
     """The bounce's inputs from the arguments; a missing material or liquid is named."""
     bodies = {name: body_of(args, name, getattr(args, name)) for name in BODIES}
@@ -107,6 +139,11 @@ def _bounce_inputs(args) -> BounceInputs:
         gravity=args.gravity,
         cavitation=args.cavitation,
         ambient_pressure=args.ambient_pressure,
+        history=args.history,
+        history_memory=args.history_memory,
+        wall_added_mass=args.wall_added_mass,
+        contact_gravity=args.contact_gravity,
+        clear_exit=args.clear_exit,
     )
 
 

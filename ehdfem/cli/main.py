@@ -1,7 +1,8 @@
 """Command line: ``ehdfem collide`` (one collision), ``ehdfem render`` (pictures of the FE
 solids), ``ehdfem sweep`` (a study file over MPI ranks), ``ehdfem critical`` (the critical
 Stokes number), ``ehdfem fit`` (closed-form fits), ``ehdfem presets`` (materials and liquids),
-``ehdfem bounce`` (a sphere settling and bouncing in a liquid, its contacts EHD collisions).
+``ehdfem bounce`` (a sphere settling and bouncing in a liquid, its contacts EHD collisions),
+``ehdfem dem`` (a real DEM engine, Yade or LIGGGHTS, on one collision beside the full model).
 
 Each command is a module of :mod:`ehdfem.cli`; their options are generated from the inputs'
 and the run configuration's field metadata (:mod:`ehdfem.cli.arguments`). Inputs are either
@@ -34,7 +35,7 @@ from ..console.progress import rank
 from ..console.quiet import is_quiet, set_quiet
 from ..motion.normal import NormalSolverError
 from ..version import __version__
-from . import bounce, collide, critical, fit, presets, sweep
+from . import bounce, collide, critical, dem, fit, presets, sweep
 
 DESCRIPTION = (
     "Elastohydrodynamic wet collisions: a sphere hits a wall through a liquid layer; ehdfem "
@@ -50,6 +51,7 @@ COMMANDS = {  # name: (help, add its arguments, run it)
     "fit": (fit.HELP, fit.add_fit, fit.fit_command),
     "presets": (presets.HELP, presets.add_presets, presets.presets_command),
     "bounce": (bounce.HELP, bounce.add_bounce, bounce.bounce_command),
+    "dem": (dem.HELP, dem.add_dem, dem.dem_command),
 }
 
 

@@ -23,6 +23,7 @@ from scipy.optimize import brentq
 
 from .. import checks
 from ..film import cavitation
+from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
 from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
@@ -119,7 +120,13 @@ class CollisionParameters:
     external_force: a constant force on the sphere, scaled by 6 pi mu V0 a^2 / x0, positive
     away from the wall (finite; 0: none);
     buoyant_weight: the sphere's weight less the displaced fluid's, (m - rho_f V_s) g, scaled
-    likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`).
+    likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`);
+    friction_coefficient: Coulomb's mu >= 0 of the solid contact, which acts where the normal
+    motion has one (a solid impact, an asperity load; :mod:`ehdfem.tangential.friction`).
+    roughness: the combined rms roughness sigma = sqrt(sigma_1^2 + sigma_2^2) of the two
+    surfaces by x0, in [0, 1) (0: smooth); asperity_density eta beta sigma > 0 and asperity_slope
+    sigma/beta in (0, 1): the asperities of Greenwood & Tripp's pressure (run setting asperities
+    = "greenwood-tripp"; :mod:`ehdfem.film.asperities`, defaults and sources there).
     """
 
     St: float = setting(help="Stokes number m V0 / (6 pi mu a^2)", lower=0.0, lower_open=True)
@@ -189,6 +196,34 @@ class CollisionParameters:
         help="the sphere's weight less its buoyancy, positive towards the wall",
         unit="by 6 pi mu V0 a^2 / x0",
     )
+    friction_coefficient: float = setting(
+        0.0,
+        help="Coulomb friction coefficient of the solid (asperity) contact, tangential over "
+        "normal load (0: none)",
+        lower=0.0,
+    )
+    roughness: float = setting(
+        0.0,
+        help="combined rms roughness sqrt(s1^2 + s2^2) of the surfaces (0: smooth)",
+        unit="by x0",
+        lower=0.0,
+        upper=1.0,
+        upper_open=True,
+    )
+    asperity_density: float = setting(
+        ASPERITY_DENSITY,
+        help="asperity density x tip radius x roughness, eta beta sigma (greenwood-tripp)",
+        lower=0.0,
+        lower_open=True,
+    )
+    asperity_slope: float = setting(
+        ASPERITY_SLOPE,
+        help="roughness over asperity tip radius, sigma / beta (greenwood-tripp)",
+        lower=0.0,
+        upper=1.0,
+        lower_open=True,
+        upper_open=True,
+    )
 
     def __post_init__(self):
         validate(self)
@@ -241,13 +276,18 @@ class PhysicalCollision:
     """Physical inputs (SI): sphere radius [m], materials, liquid, impact speed |v| [m/s], angle
     from the normal [deg], layer thickness x0 [m], layer kind, e_dry, spin [rad/s], ambient
     pressure [Pa], cavitation pressure [Pa absolute; default: the liquid's vapour pressure],
-    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the cavitation model,
+    inertia factor, an optional sphere mass [kg] (default 4/3 pi a^3 rho), the added mass [kg]
+    of liquid moving with it (in St, not in the weight; default 0), the cavitation model,
     the viscosity law, the pressure-viscosity coefficient alpha [1/Pa; default: the liquid's
     preset], the undeformed gap and the shear traction (as in :class:`CollisionParameters`), the
     gravity g [m/s^2] >= 0, towards the wall (default 0: none). Gravity acts through the
     buoyant weight (m - rho_f V_s) g (:attr:`scaled_buoyant_weight`), with rho_f the liquid's
     density when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
-    buoyancy is neglected (rho_f = 0).
+    buoyancy is neglected (rho_f = 0). The surfaces' rms roughness sphere_roughness and
+    wall_roughness [m] (default 0: smooth) combine to sigma = sqrt(s1^2 + s2^2) < x0; the
+    asperities' eta beta sigma and sigma/beta are pure numbers (:class:`CollisionParameters`).
+    The friction coefficient of the solid contact is dimensionless (as in
+    :class:`CollisionParameters`).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float = setting(help="sphere radius a", unit="m", checked=False)
@@ -272,6 +312,12 @@ class PhysicalCollision:
     sphere_mass: float | None = setting(
         None, help="sphere mass", unit="kg", default_text="4/3 pi a^3 rho", checked=False
     )
+    added_mass: float = setting(
+        0.0,
+        help="mass of liquid moving with the sphere, added to its inertia but not to its weight",
+        unit="kg",
+        checked=False,
+    )
     cavitation: str = "truncate"
     viscosity: str = "constant"
     pressure_viscosity: float | None = setting(
@@ -287,6 +333,15 @@ class PhysicalCollision:
         unit="m/s^2",
         checked=False,
     )
+    friction_coefficient: float = 0.0
+    sphere_roughness: float = setting(
+        0.0, help="rms roughness of the sphere's surface", unit="m", checked=False
+    )
+    wall_roughness: float = setting(
+        0.0, help="rms roughness of the wall's surface", unit="m", checked=False
+    )
+    asperity_density: float = ASPERITY_DENSITY
+    asperity_slope: float = ASPERITY_SLOPE
 
     def __post_init__(self):
         for role, kind in (("sphere", Material), ("wall", Material), ("liquid", Liquid)):
@@ -317,12 +372,31 @@ class PhysicalCollision:
             check_vapour_pressure(self.liquid, self.ambient_pressure)
         if self.sphere_mass is not None:
             checks.positive("sphere_mass", self.sphere_mass)
+        checks.number("added_mass", self.added_mass, lower=0.0)
+        self._check_roughness()
         if self.pressure_viscosity is not None:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
         checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
         if self.viscosity == "roelands":
             check_roelands_viscosity(self.liquid.name, self.liquid.viscosity)
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
+
+    def _check_roughness(self):
+        """Each roughness >= 0 [m], their combination sigma below the layer thickness."""
+        checks.number("sphere_roughness", self.sphere_roughness, lower=0.0)
+        checks.number("wall_roughness", self.wall_roughness, lower=0.0)
+        if self.roughness >= self.layer_thickness:
+            raise checks.InputError(
+                f"the combined roughness sqrt(sphere_roughness^2 + wall_roughness^2) = "
+                f"{self.roughness!r} m must be smaller than layer_thickness "
+                f"{self.layer_thickness!r} m (the allowed range is [0, layer_thickness))",
+                "sphere_roughness",
+            )
+
+    @property
+    def roughness(self) -> float:
+        """sigma = sqrt(sphere_roughness^2 + wall_roughness^2) [m]."""
+        return math.hypot(self.sphere_roughness, self.wall_roughness)
 
     @property
     def normal_speed(self) -> float:
@@ -374,7 +448,7 @@ class PhysicalCollision:
         pressure_scale = mu * v0 * a / x0**2
         roelands = self.viscosity == "roelands"
         return CollisionParameters(
-            St=stokes_number(self.mass, v0, mu, a),
+            St=stokes_number(self.mass + self.added_mass, v0, mu, a),
             eps=elasticity_parameter(self.theta, mu, v0, a, x0),
             delta=x0 / a,
             p_cav=(p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a),
@@ -393,6 +467,10 @@ class PhysicalCollision:
             gap=self.gap,
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,
+            friction_coefficient=self.friction_coefficient,
+            roughness=self.roughness / x0,
+            asperity_density=self.asperity_density,
+            asperity_slope=self.asperity_slope,
         )
 
     def scales(self) -> Scales:
@@ -405,7 +483,7 @@ class PhysicalCollision:
             velocity=v0,
             pressure=mu * v0 * a / x0**2,
             force=6.0 * math.pi * mu * v0 * a**2 / x0,
-            energy=self.mass * v0**2,
+            energy=(self.mass + self.added_mass) * v0**2,
             sphere_radius=a,
         )
 

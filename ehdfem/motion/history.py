@@ -10,7 +10,11 @@ opening, (1/3) int P.M dW_shear, and the film's work on the faces' radial motion
 integral of the film's viscous dissipation rate
 (:meth:`ehdfem.film.reynolds.Film.dissipation_rate`) and the work is that of the forces
 applied to the sphere since first touch (:class:`ehdfem.motion.forces.SphereForce`;
-F_ext (X - 1) for a constant force). Without cavitation and with e_dry = 1 the balance
+F_ext (X - 1) for a constant force). Rough surfaces: with Greenwood & Tripp's asperity
+pressure P_a(H) the solids carry P + P_a, so the elastic energy is (1/6) (P + P_a).M C (P + P_a)
+plus the energy stored in the asperities, (1/3) int (int_H^inf P_a dh) R dR
+(:mod:`ehdfem.film.asperities`); a solid impact's loss is in the dissipation
+(:mod:`ehdfem.motion.normal`). Without cavitation and with e_dry = 1 the balance
 kinetic + elastic + dissipated - work = St / 2 holds to discretisation error.
 """
 
@@ -61,9 +65,10 @@ class NormalHistory:
     def record(self, time, gap, velocity, pressure, fill, h, state: FilmState, energies):
         """Append one accepted step. ``energies``: (the sphere
         (:class:`ehdfem.motion.sphere.Sphere`), compliance matrix, full lumped mass, dissipation
-        so far, the film's work on the tangential surface effects so far), from which the
-        kinetic and elastic energies and the applied forces' work are formed."""
-        sphere, compliance, mass, dissipated, tangential_work = energies
+        so far, the film's work on the tangential surface effects so far, the asperities'
+        pressure law or None), from which the kinetic and elastic energies and the applied
+        forces' work are formed."""
+        sphere, compliance, mass, dissipated, tangential_work, asperities = energies
         self.time.append(time)
         self.gap.append(gap)
         self.velocity.append(velocity)
@@ -72,7 +77,10 @@ class NormalHistory:
         self.min_film.append(h.min())
         self.edge_radius.append(state.edge_radius)
         self.kinetic.append(sphere.kinetic_energy(velocity))
-        normal_work = float(mass * pressure @ (compliance @ pressure)) / 6.0
+        load = pressure if asperities is None else pressure + asperities.pressure(h)
+        normal_work = float(mass * load @ (compliance @ load)) / 6.0
+        if asperities is not None:
+            normal_work += float(mass @ asperities.energy(h)) / 3.0
         self.elastic.append(normal_work + tangential_work)
         self.dissipated.append(dissipated)
         self.work.append(sphere.work(SphereState(time, gap, velocity, h)))

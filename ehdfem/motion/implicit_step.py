@@ -28,6 +28,15 @@ the LU (:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iteratio
 a0/dt has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that
 become dry, wet or cavitated, and the columns of nodes whose unknown switches between P and theta
 at a mass-conserving cavity, are swapped in by the Woodbury identity.
+
+Rough surfaces with Greenwood & Tripp's asperity pressure P_a(H) (mixed lubrication,
+:mod:`ehdfem.film.asperities`): the solids carry it with the film's, H = X + S(R) + C (P + P_a(H))
+(+ C_T T, T formed without the asperities' share), solved for H at every iterate; the sphere
+feels both, St (a0 V + past_V) - dt (f.P + w.P_a(H) + sum_i F_i) = 0 with w = M/3 (M the film's
+lumped mass over all nodes). The Newton matrix takes dH/dP = (I - C D)^-1 C in place of C,
+dH/dX = (I - C D)^-1 1 in place of 1 (D = diag(dP_a/dH)) and the asperities' force's
+derivatives w.D dH/d(P, X) in the sphere's row; the asperities' share of the radial surface
+displacement and of the shear opening is left out.
 """
 
 from __future__ import annotations
@@ -37,6 +46,7 @@ from functools import partial
 
 import numpy as np
 
+from ..film.asperities import GreenwoodTripp, LoadedThickness
 from ..film.reynolds import Film, FilmState
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
@@ -100,7 +110,9 @@ class ImplicitStep:
     pressure); ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the
     sphere's equation of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T
     (by x0 per unit T) or None; ``surface_motion``: the surfaces' mean radial displacement
-    (:class:`SurfaceMotion`) or None (not carried in the flux).
+    (:class:`SurfaceMotion`) or None (not carried in the flux); ``asperities``: Greenwood &
+    Tripp's asperity pressure (:class:`ehdfem.film.asperities.GreenwoodTripp`) or None (smooth
+    surfaces, or asperities that only act by a solid impact).
     """
 
     def __init__(
@@ -112,6 +124,7 @@ class ImplicitStep:
         options=None,
         shear_matrix=None,
         surface_motion: SurfaceMotion | None = None,
+        asperities: GreenwoodTripp | None = None,
     ):
         self.film = film
         self.compliance = np.asarray(compliance_matrix, dtype=float)
@@ -122,6 +135,10 @@ class ImplicitStep:
         self.sphere = sphere
         self.options = options or IntegratorOptions()
         self.undeformed = film.gap.height(film.radii)
+        self.asperities = asperities
+        self.asperity_weights = film.full_mass / 3.0
+        self._loaded_at = None  # the latest iterate's H, with asperities
+        self._loaded: LoadedThickness | None = None
         self.factor = None
         self.factorisations = 0
 
@@ -129,17 +146,44 @@ class ImplicitStep:
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
         return self.thickness_parts(pressure, gap)[0]
 
-    def thickness_parts(self, pressure, gap):
+    def _open(self, pressure, gap) -> bool:
+        """The film thickness is positive at every node. The asperities' load (P_a >= 0 on
+        the compliance) opens the film: it is solved for only when the film without it
+        closes somewhere (where the residual checks it again)."""
+        if self.thickness_parts(pressure, gap, loaded=False)[0].min() > 0:
+            return True
+        return self.asperities is not None and self.thickness(pressure, gap).min() > 0
+
+    def thickness_parts(self, pressure, gap, loaded=True):
         """(H, W_shear, U): the film thickness, its shear opening C_T T(H0, P) and the faces'
         mean radial displacement C_r P (by x0; None without the shear traction, without the
-        surface motion), T formed with H0 = X + S(R) + C P."""
+        surface motion), T formed with H0 = X + S(R) + C P; with asperities H also carries
+        their load, H = H0 + W_shear + C P_a(H) (unless ``loaded`` is False)."""
         h0 = gap + self.undeformed + self.compliance @ pressure
         motion = self.surface_motion
         radial = None if motion is None else motion.displacement(pressure)
-        if self.shear is None:
-            return h0, None, radial
-        opening = self.shear @ self.film.squeeze_shear(h0, pressure)
-        return h0 + opening, opening, radial
+        opening = None
+        if self.shear is not None:
+            opening = self.shear @ self.film.squeeze_shear(h0, pressure)
+            h0 = h0 + opening
+        if self.asperities is not None and loaded:
+            h0 = self.asperities.thickness(h0, self.compliance)
+        return h0, opening, radial
+
+    def loaded(self) -> LoadedThickness | None:
+        """The latest iterate's thickness under the asperities' load with its sensitivities
+        (formed when the Newton matrix needs them); None without asperities."""
+        if self._loaded_at is None:
+            return None
+        if self._loaded is None:
+            self._loaded = self.asperities.loaded(self._loaded_at, self.compliance)
+        return self._loaded
+
+    def asperity_force(self, h) -> float:
+        """The asperities' force on the sphere w.P_a(H) (by 6 pi mu V0 a^2 / x0; 0 without)."""
+        if self.asperities is None:
+            return 0.0
+        return float(self.asperity_weights @ self.asperities.pressure(h))
 
     def solve(self, guess, step, a0, past, time) -> StepSolution:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step to the time ``time``, where
@@ -212,6 +256,9 @@ class ImplicitStep:
         residual[state.dry] = pressure[state.dry]
         motion = SphereState(time, gap, velocity, h)
         film_force = state.force_weights @ pressure
+        if self.asperities is not None:
+            self._loaded_at, self._loaded = h, None
+            film_force = film_force + self.asperity_force(h)
         r_sphere = self.sphere.residual(step, a0, (gap_past, velocity_past), motion, film_force)
         rhs = -np.concatenate([residual, r_sphere])
         fixed = self.cavitation.fixed_nodes(state.dry, cavitated)
@@ -243,7 +290,7 @@ class ImplicitStep:
         """The largest of 1, 1/2, 1/4, ... that keeps the film thickness positive."""
         d_pressure, _, d_gap, _ = update
         damping = 1.0
-        while self.thickness(pressure + damping * d_pressure, gap + damping * d_gap).min() <= 0:
+        while not self._open(pressure + damping * d_pressure, gap + damping * d_gap):
             damping *= 0.5
             if damping < 1e-3:
                 raise StepFailed("Newton update closes the film", np.abs(rhs).max())
@@ -284,7 +331,8 @@ class ImplicitStep:
         diag = diag + state.mass * fill * a0 / step
         below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
         out = np.zeros((len(rows), n + 2))
-        c = self.compliance
+        loaded = self.loaded()
+        c = self.compliance if loaded is None else loaded.by_pressure
         out[:, :n] = (
             diag[rows, None] * c[rows] + lower[rows, None] * c[below] + upper[rows, None] * c[above]
         )
@@ -301,7 +349,11 @@ class ImplicitStep:
                 + b_low[rows, None] * c[below]
                 + b_up[rows, None] * c[above]
             )
-        out[:, n] = lower[rows] + diag[rows] + upper[rows]
+        if loaded is None:
+            out[:, n] = lower[rows] + diag[rows] + upper[rows]
+        else:  # dH/dX = (I - C D)^-1 1
+            g = loaded.by_gap
+            out[:, n] = lower[rows] * g[below] + diag[rows] * g[rows] + upper[rows] * g[above]
         if theta_nodes is not None:
             out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out
@@ -316,4 +368,9 @@ class ImplicitStep:
         jac[fixed_rows, :] = 0.0
         jac[fixed_rows, fixed_rows] = 1.0
         jac[n:] = self.sphere.jacobian_rows(step, a0, motion, state.force_weights)
+        loaded = self.loaded()
+        if loaded is not None:  # the asperities' force w.P_a(H) in the sphere's V row
+            row = self.asperity_weights * loaded.slope
+            jac[n + 1, :n] -= step * (row @ loaded.by_pressure)
+            jac[n + 1, n] -= step * (row @ loaded.by_gap)
         return jac

@@ -23,9 +23,25 @@ its error control on X (relative to the thinnest film) and V (:mod:`ehdfem.motio
 This module runs them in time, detects the events and collects the result; the histories are
 :class:`ehdfem.motion.history.NormalHistory`.
 
-Events: the sphere leaves the layer when X returns to 1 with V > 0 (exit); it sticks when its
+Events: the sphere leaves the layer when X returns to 1 (or to the options' larger ``exit_gap``,
+immersed films only) with V > 0 (exit); it sticks when its
 velocity returns to <= 0 after it had started to rebound, or when it comes to rest (|V| below
-1e-10 or the time limit); e_n = e_dry * V_exit (e_dry = 1 is pure EHD; docs/model.md).
+1e-10 or the time limit); e_n = e_dry * V_exit for smooth surfaces (e_dry = 1 is pure EHD;
+docs/model.md).
+
+Rough surfaces (roughness sigma > 0, by x0; docs/model.md, "Rough surfaces"), two asperity
+models. "impact": when the thinnest film reaches sigma while the sphere approaches (V < 0), the
+asperities touch and the approach ends in a solid collision: the step is shortened until it
+ends at H_min = sigma (to TOUCH_TOL), the velocity jumps from V_c to -e_dry V_c (X, P and the
+film stay: the solids' elastic state is continuous), the kinetic energy lost,
+(1 - e_dry^2) St V_c^2 / 2, joins the dissipation, and the BDF history restarts at the
+touching state (order 1, a first step of first_step sigma; the dissipation rate before the
+impact is not used after it). The film then acts on the rebound (suction, cavitation) until
+exit, or stops the sphere (stick: the sphere then rests on its asperities, since a film that
+brings it back to V <= 0 ends the motion before a second touch). e_n = V_exit (e_dry acted at
+the impact). "greenwood-tripp": the asperities' pressure shares the load with the film
+(:mod:`ehdfem.film.asperities`, in the implicit step); the motion stays continuous, the energy
+they store is in the elastic energy and e_n = V_exit (they return it).
 """
 
 from __future__ import annotations
@@ -35,11 +51,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .. import checks
+from ..film.asperities import GreenwoodTripp
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
+from .forces import LAYER_SURFACE
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed, SurfaceMotion
-from .sphere import IMPACT_VELOCITY, LAYER_SURFACE, Sphere
+from .sphere import IMPACT_VELOCITY, Sphere
 from .timestepping import (
     BDFStepper,
     IntegratorOptions,
@@ -66,6 +85,7 @@ GAP_WEIGHT = 3.0
 # sphere's stop at St = 10 within 0.42 % (1.7-1.9 % with 1, 0.55 % with 3;
 # docs/performance.md).
 MOMENTUM_WEIGHT = 5.0
+TOUCH_TOL = 1e-4  # the impact's step ends where H_min is sigma to this relative tolerance
 
 
 class NormalSolverError(RuntimeError):
@@ -96,14 +116,18 @@ class NormalResult:
     """Outcome of the normal collision (scaled; see the module docstring).
 
     ``rebound``: the sphere left the layer (X back to 1 with V > 0). ``exit_velocity``: V there
-    (the pure EHD restitution), ``e_n`` = e_dry * exit_velocity (0 if it sticks).
+    (the pure EHD restitution), ``e_n`` = e_dry * exit_velocity for smooth surfaces,
+    exit_velocity for rough ones (0 if it sticks).
     ``max_rebound_velocity``: the largest V > 0 reached (DSH 1986's restitution for immersed
     spheres). ``min_film_thickness``: min over R and T of H (by x0). ``max_force``: by
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
     stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation + work| /
-    KE0 at the end, with the applied forces' work (meaningful without cavitation). ``status``:
-    "rebound", "stick" or "stalled".
+    KE0 at the end, with the applied forces' work, E_el counted from first touch (the
+    asperities' stored energy in it, a solid impact's loss in the dissipation; meaningful
+    without cavitation). The extremes of a collision with a solid impact are taken on each side
+    of the impact's record (the velocity and, for nearly rigid solids, the force jump there).
+    ``status``: "rebound", "stick" or "stalled".
     Exit, the stop and the extremes are located on the dense output between accepted steps
     (the interpolating polynomials of the BDF history; :func:`ehdfem.motion.timestepping.peak`).
     ``rtol``, ``film_control`` and ``order`` (the highest BDF order): the time-step control
@@ -154,24 +178,38 @@ def _surface_motion(compliance, delta) -> SurfaceMotion | None:
 
 
 def solve_normal(
-    params: CollisionParameters, compliance: Compliance, options: IntegratorOptions | None = None
+    params: CollisionParameters,
+    compliance: Compliance,
+    options: IntegratorOptions | None = None,
+    asperities: str = "impact",
 ) -> NormalResult:
     """Integrate the normal collision from first touch of the layer to exit or sticking.
 
-    ``params``: dimensionless inputs (St, the applied forces, e_dry, layer, the cavitation model
-    and the viscosity law are used here; eps is already in the compliance). ``compliance``: the
-    elasticity, W = matrix @ P at the film nodes ``radii`` (by x0, P by mu V0 a / x0^2, R by
-    sqrt(a x0)).
+    ``params``: dimensionless inputs (St, the applied forces, e_dry, layer, the cavitation model,
+    the viscosity law and the roughness are used here; eps is already in the compliance).
+    ``compliance``: the elasticity, W = matrix @ P at the film nodes ``radii`` (by x0, P by
+    mu V0 a / x0^2, R by sqrt(a x0)). ``asperities``: the asperity model of rough surfaces,
+    "impact" or "greenwood-tripp" (module docstring; unused when params.roughness is 0).
     Returns a :class:`NormalResult`.
     """
-    return _NormalIntegration(params, compliance, options or IntegratorOptions()).run()
+    integration = _NormalIntegration(params, compliance, options or IntegratorOptions(), asperities)
+    return integration.run()
 
 
 class _NormalIntegration:
     """The time loop of :func:`solve_normal`: steps, events and the result."""
 
-    def __init__(self, params, compliance, options):
+    def __init__(self, params, compliance, options, asperities):
+        if options.exit_gap > LAYER_SURFACE and params.layer != "immersed":
+            raise checks.InputError(
+                f"exit_gap = {options.exit_gap!r} needs an immersed layer: a sphere leaves a "
+                f"{params.layer} layer at its surface (the allowed value is 1)"
+            )
         self.params, self.options = params, options
+        rough = params.roughness > 0.0
+        law = GreenwoodTripp.of(params) if rough and asperities == "greenwood-tripp" else None
+        self.touch = params.roughness if rough and asperities == "impact" else None
+        self.impact, self.restart = None, 0  # the solid impact; the history's first usable step
         self.radii = np.asarray(compliance.radii, dtype=float)
         gap = params.gap or default_gap(compliance.model, params.layer)
         self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
@@ -186,6 +224,7 @@ class _NormalIntegration:
             options,
             compliance.shear_matrix,
             _surface_motion(compliance, params.delta),
+            law,
         )
         self.hist = NormalHistory()
         self.stepper = BDFStepper(options, self.hist.time)
@@ -226,7 +265,8 @@ class _NormalIntegration:
             self.surface_weights = weights
         self.opening = opening
         compliance = self.step_solver.compliance
-        energies = (self.sphere, compliance, mass, dissipated, self.tangential_work)
+        law = self.step_solver.asperities
+        energies = (self.sphere, compliance, mass, dissipated, self.tangential_work, law)
         self.hist.record(time, self.gap, self.velocity, self.pressure, fill, h, state, energies)
         if radial is not None:
             self.hist.surface_radial.append(radial)
@@ -264,6 +304,9 @@ class _NormalIntegration:
             return None
         self.iterations += solution.iterations
         thickness = self.step_solver.thickness_parts(solution.pressure, solution.gap)
+        if self._overshoots(float(np.min(thickness[0])), solution.velocity):
+            self._step_to_touch(t_new, t_old, float(np.min(thickness[0])))
+            return None
         error = self._error(t_new, order, solution, thickness[0])
         if error > 1.0:
             self.rejected += 1
@@ -357,26 +400,71 @@ class _NormalIntegration:
                 f"{failure} (residual {residual:.3g})"
             ) from failure
 
-    def _accept(self, solution, thickness, t_new):
-        """Record an accepted step (the dissipation rate integrated over it on the quadratic
-        through the three latest rates) and return its event, if any."""
-        self.dissipation_rates.append(self.film.dissipation_rate(solution.state, solution.pressure))
-        known = min(len(self.hist.time), 2)
+    def _overshoots(self, thinnest, velocity) -> bool:
+        """Impact model: the step's thinnest film went below sigma while approaching."""
+        return self.touch is not None and velocity < 0 and thinnest < self.touch * (1 - TOUCH_TOL)
+
+    def _step_to_touch(self, t_new, t_old, thinnest):
+        """Retry the step shortened to where the thinnest film reaches sigma, on the dense output
+        through the step's solution and the latest accepted thinnest films."""
+        hist = self.hist
+        times = [t_new, *latest(hist.time, 2)]
+        films = [thinnest, *latest(hist.min_film, 2)]
+        touch_time = crossing(times, films, self.touch)
+        self.rejected += 1
+        self.stepper.step = touch_time - t_old if touch_time > t_old else 0.5 * self.stepper.step
+
+    def _dissipated(self, t_new, rate) -> float:
+        """The dissipation up to t_new: the rate integrated over the step on the quadratic
+        through the three latest rates since the start or the solid impact (the first step after
+        an impact by the rectangle rule at its end)."""
+        self.dissipation_rates.append(rate)
+        known = min(len(self.hist.time) - self.restart, 2)
+        if known == 0:
+            return self.hist.dissipated[-1] + (t_new - self.hist.time[-1]) * rate
         times = [t_new, *latest(self.hist.time, known)]
-        dissipated = self.hist.dissipated[-1] + step_integral(
+        return self.hist.dissipated[-1] + step_integral(
             times, latest(self.dissipation_rates, known + 1)
         )
+
+    def _accept(self, solution, thickness, t_new):
+        """Record an accepted step (the dissipation rate integrated over it) and return its event,
+        if any; a step that ends at the asperities' touch is the solid impact."""
+        rate = self.film.dissipation_rate(solution.state, solution.pressure)
+        dissipated = self._dissipated(t_new, rate)
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
         full = self._full(solution.pressure, solution.state)
         if not np.array_equal(full, self.full):
             self.full, self.full_changed_at = full, len(self.hist.time)
-        self.thinnest = min(self.thinnest, float(np.min(thickness[0])))
+        thinnest = float(np.min(thickness[0]))
+        self.thinnest = min(self.thinnest, thinnest)
+        touches = self.touch is not None and self.velocity < 0  # (not after the impact: the
+        touches = touches and thinnest <= self.touch * (1 + TOUCH_TOL)  # stop comes first)
+        if touches:
+            dissipated += self._solid_impact(t_new)
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
+        if touches:
+            self.restart = len(self.hist.time)
+            self.stepper.restart(self.options.first_step * self.touch)
         self.rebounding = self.rebounding or self.velocity > 0
-        if self.sphere.left_layer(self.gap, self.velocity):  # exit, on the dense output
+        return self._event(t_new)
+
+    def _solid_impact(self, t_new) -> float:
+        """The asperities' solid collision at the latest state: V_c -> -e_dry V_c; returns the
+        kinetic energy lost, (1 - e_dry^2) St V_c^2 / 2."""
+        e_dry, approach = self.params.e_dry, self.velocity
+        impulse = self.sphere.St * (1.0 + e_dry) * abs(approach)
+        self.impact = SolidImpact(len(self.hist.time), t_new, approach, impulse)
+        self.velocity = -e_dry * approach
+        return (1.0 - e_dry**2) * self.sphere.kinetic_energy(approach)
+
+    def _event(self, t_new):
+        """The event of the latest accepted step, if any: exit, stop, rest or stall."""
+        exit_gap = self.options.exit_gap
+        if self.sphere.left_layer(self.gap, self.velocity, exit_gap):  # exit, on the dense output
             times = latest(self.hist.time, 3)
-            self.end_time = crossing(times, latest(self.hist.gap, 3), LAYER_SURFACE)
+            self.end_time = crossing(times, latest(self.hist.gap, 3), exit_gap)
             self.exit_velocity = extrapolate(times, latest(self.hist.velocity, 3), self.end_time)
             return "rebound"
         if self.rebounding and self.velocity <= 0:  # the stop: V back to 0, on the dense output
@@ -395,7 +483,9 @@ class _NormalIntegration:
         params = self.params
         rebound = status == "rebound"
         kinetic0 = self.sphere.kinetic_energy(IMPACT_VELOCITY)
-        balance = hist.kinetic[-1] + hist.elastic[-1] + hist.dissipated[-1] - hist.work[-1]
+        stored = hist.elastic[-1] - hist.elastic[0]  # from first touch (asperities at X = 1)
+        balance = hist.kinetic[-1] + stored + hist.dissipated[-1] - hist.work[-1]
+        restitution = 1.0 if params.roughness > 0.0 else params.e_dry  # e_dry is the impact's
         return NormalResult(
             params=params,
             radii=self.radii,
@@ -403,12 +493,12 @@ class _NormalIntegration:
             rebound=rebound,
             status=status,
             exit_velocity=float(self.exit_velocity) if rebound else 0.0,
-            e_n=params.e_dry * float(self.exit_velocity) if rebound else 0.0,
-            max_rebound_velocity=max(peak(hist.time, hist.velocity)[1], 0.0),
-            min_film_thickness=-peak(hist.time, -hist.min_film)[1],
-            max_force=peak(hist.time, hist.force)[1],
+            e_n=restitution * float(self.exit_velocity) if rebound else 0.0,
+            max_rebound_velocity=max(self._largest(hist.velocity), 0.0),
+            min_film_thickness=-self._largest(-hist.min_film),
+            max_force=self._largest(hist.force),
             contact_time=float(self.end_time),
-            max_compression=peak(hist.time, -hist.gap)[1],
+            max_compression=self._largest(-hist.gap),
             energy_error=float(abs(kinetic0 - balance) / kinetic0),
             steps=len(hist.time) - 1,
             rejected_steps=self.rejected,
@@ -417,4 +507,24 @@ class _NormalIntegration:
             film_control=self.options.film_control,
             order=self.options.order,
             gap=self.shape,
+            asperity_force=self._asperity_force(),
+            solid_impact=self.impact,
         )
+
+    def _largest(self, values) -> float:
+        """The largest of a history on the dense output (:func:`peak`), on each side of a solid
+        impact's record separately (the velocity and the force jump there)."""
+        times = self.hist.time
+        if self.impact is None:
+            return peak(times, values)[1]
+        k = self.impact.index
+        return max(peak(times[: k + 1], values[: k + 1])[1], peak(times[k:], values[k:])[1])
+
+    def _asperity_force(self) -> np.ndarray | None:
+        """The asperities' load on the sphere at each recorded step, w.P_a(H) (by 6 pi mu V0
+        a^2 / x0): zero with the impact model (its load is the impact's impulse), None for
+        smooth surfaces."""
+        law = self.step_solver.asperities
+        if law is not None:
+            return law.pressure(self.hist.film_thickness) @ self.step_solver.asperity_weights
+        return None if self.touch is None else np.zeros(len(self.hist.time))

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import checks
-from .forces import LAYER_SURFACE, BuoyantWeight, ConstantForce, SphereForce, SphereState
+from .forces import BuoyantWeight, ConstantForce, SphereForce, SphereState
 
 if TYPE_CHECKING:
     from ..inputs.scales import CollisionParameters
@@ -92,6 +92,8 @@ class Sphere:
         return sum((force.work(state) for force in self.forces), 0.0)
 
     @staticmethod
-    def left_layer(gap: float, velocity: float) -> bool:
-        """The exit: the gap is back at the layer surface, X >= 1, with V > 0."""
-        return gap >= LAYER_SURFACE and velocity > 0
+    def left_layer(gap: float, velocity: float, exit_gap: float) -> bool:
+        """The exit: the gap is back at ``exit_gap`` (by x0: the layer surface X = 1, or a larger
+        exit from an immersed film, :attr:`ehdfem.motion.timestepping.IntegratorOptions.exit_gap`),
+        X >= exit_gap, with V > 0."""
+        return gap >= exit_gap and velocity > 0

@@ -34,6 +34,10 @@ class IntegratorOptions:
     where the film's stiff modes lie). ``max_growth``: the largest step growth per step.
     ``newton_tol``: Newton increments relative to the solution size. ``first_step``: initial
     time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
+    ``exit_gap``: the gap X (by x0) at which a rebounding sphere leaves the film model (V > 0);
+    1, the layer surface, by default; above 1 only for an immersed film, which then follows the
+    sphere further out (a bounce hands back to its flight where cavitation no longer acts,
+    docs/bounce.md).
     """
 
     rtol: float = setting(
@@ -68,6 +72,13 @@ class IntegratorOptions:
         unit="by x0/V0",
         lower=0.0,
         lower_open=True,
+    )
+    exit_gap: float = setting(
+        1.0,
+        help="gap at which a rebounding sphere leaves the film model (above 1: immersed only)",
+        unit="by x0",
+        lower=1.0,
+        upper=1e3,
     )
 
     def __post_init__(self):
@@ -165,15 +176,28 @@ def error_share(t_new, past):
 
 class BDFStepper:
     """Order, weights, predictor, error estimate and step size of a variable-step BDF
-    integration over the accepted times ``times`` (a list the caller appends to)."""
+    integration over the accepted times ``times`` (a list the caller appends to), from the
+    latest :meth:`restart` on (the first time at the start)."""
 
     def __init__(self, options: IntegratorOptions, times: list):
         self.options, self.times = options, times
         self.step = options.first_step
+        self.first = 0  # the index of the first accepted time the history may use
+
+    def restart(self, step: float) -> None:
+        """Start a new history at the latest accepted time, whose values are a new initial
+        state (after a jump of an unknown, such as the velocity at a solid impact), with the
+        time step ``step``: the order drops to 1 and climbs again."""
+        self.first = len(self.times) - 1
+        self.step = step
+
+    def _known(self) -> int:
+        """The accepted times since the start or the latest restart."""
+        return len(self.times) - self.first
 
     def order(self) -> int:
         """BDF order of the next step: order q uses q past values (the predictor q + 1)."""
-        return min(self.options.order, max(len(self.times) - 1, 1))
+        return min(self.options.order, max(self._known() - 1, 1))
 
     def weights(self, t_new: float, order: int) -> np.ndarray:
         """step * (BDF weights at t_new): weights[0] multiplies y(t_new), the rest the
@@ -187,7 +211,7 @@ class BDFStepper:
 
     def guess(self, t_new, histories) -> list:
         """Extrapolation of each history from (up to) the three latest accepted values."""
-        known = min(len(self.times), 3)
+        known = min(self._known(), 3)
         return [
             extrapolate(latest(self.times, known), latest(values, known), t_new)
             for values in histories
@@ -197,7 +221,7 @@ class BDFStepper:
         """The share of (corrector - predictor) that is the local error of the step to t_new
         (Milne's device, :func:`error_share`); None while there are too few accepted values
         for the predictor."""
-        if len(self.times) <= order:
+        if self._known() <= order:
             return None
         return error_share(t_new, latest(self.times, order + 1))
 

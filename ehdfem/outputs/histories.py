@@ -38,9 +38,10 @@ NORMAL = {
     "min_film": ("thinnest film over radius", "x0", "m", lambda s, St: s.gap),
     "edge_radius": ("radius of the wetted edge", "sqrt(a x0)", "m", lambda s, St: s.radius),
     "kinetic": ("kinetic energy St V^2 / 2", "m V0^2 / St", "J", lambda s, St: s.energy / St),
-    "elastic": ("elastic energy in the solids", "m V0^2 / St", "J", lambda s, St: s.energy / St),
-    "dissipated": ("film's viscous dissipation so far", "m V0^2 / St", "J",
-                   lambda s, St: s.energy / St),
+    "elastic": ("elastic energy in the solids (and rough surfaces' asperities)", "m V0^2 / St",
+                "J", lambda s, St: s.energy / St),
+    "dissipated": ("film's viscous dissipation so far (and a solid impact's loss)",
+                   "m V0^2 / St", "J", lambda s, St: s.energy / St),
     "work": ("applied forces' work on the sphere", "m V0^2 / St", "J",
              lambda s, St: s.energy / St),
     "film_thickness": ("film thickness H(R, T), (steps, nodes)", "x0", "m", lambda s, St: s.gap),
@@ -55,6 +56,12 @@ TANGENTIAL = {  # the tangential motion's histories, for oblique impacts; SI fro
 }
 # fmt: on
 RADIUS = ("radius", "film nodes R", "sqrt(a x0)", "m")
+ASPERITY = (  # rough surfaces only (NormalResult.asperity_force)
+    "asperity_force",
+    "asperities' load on the sphere (rough surfaces)",
+    "6 pi mu V0 a^2 / x0",
+    "N",
+)
 
 
 def arrays(result: CollisionResult, command: list[str] | None = None) -> dict:
@@ -66,6 +73,9 @@ def arrays(result: CollisionResult, command: list[str] | None = None) -> dict:
     data[RADIUS[0]] = np.asarray(result.normal.radii)
     units = {name: [meaning, scale] for name, (meaning, scale, _, _) in NORMAL.items()}
     units[RADIUS[0]] = list(RADIUS[1:3])
+    if result.normal.asperity_force is not None:
+        data[ASPERITY[0]] = np.asarray(result.normal.asperity_force)
+        units[ASPERITY[0]] = list(ASPERITY[1:3])
     if result.tangential is not None:
         t = result.tangential
         for name, (meaning, scale, _) in TANGENTIAL.items():
@@ -93,6 +103,9 @@ def _add_si(result: CollisionResult, data: dict, units: dict) -> None:
             units[f"{name}_si"] = [meaning, unit]
     data["radius_si"] = data["radius"] * scales.radius
     units["radius_si"] = [RADIUS[1], RADIUS[3]]
+    if ASPERITY[0] in data:
+        data[f"{ASPERITY[0]}_si"] = data[ASPERITY[0]] * scales.force
+        units[f"{ASPERITY[0]}_si"] = [ASPERITY[1], ASPERITY[3]]
     for name, (meaning, _, unit) in TANGENTIAL.items():
         if name in data:
             data[f"{name}_si"] = data[name] * result.physical.tangential_speed
@@ -113,7 +126,7 @@ def markdown_table() -> str:
     """The table of docs/outputs.md: every array of a histories file, its meaning, its scale
     and the SI unit of its ``<name>_si`` copy (physical inputs)."""
     rows = [(name, meaning, scale, unit) for name, (meaning, scale, unit, _) in NORMAL.items()]
-    rows.append(RADIUS)
+    rows += [RADIUS, ASPERITY]
     rows += [(name, *spec) for name, spec in TANGENTIAL.items()]
     lines = ["| name | meaning | scaled by | SI copy |", "|---|---|---|---|"]
     for name, meaning, scale, unit in rows:

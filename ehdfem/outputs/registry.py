@@ -19,9 +19,12 @@ the summary's "not_applicable".
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from ..film import cavitation
 
@@ -95,9 +98,116 @@ def _superposition(name):
     return lambda r: None if r.superposition is None else getattr(r.superposition, name)
 
 
+def _oblique(read):
+    """``read(result, tan(angle))`` for an oblique impact (None for a head-on one, where the
+    tangential motion is not solved)."""
+    return lambda r: None if r.tangential is None else read(r, r.params.tangential_speed)
+
+
+def _rebound_angle(r, tangent) -> float:
+    """The rebound angle from the wall normal [deg]: atan(e_t U0 / (e_n V0)) =
+    atan(e_t tan(angle) / e_n)."""
+    return math.degrees(math.atan2(r.tangential.e_t * tangent, r.normal.e_n))
+
+
+def _effective_friction(r, tangent) -> float:
+    """Tangential over normal impulse of the whole collision, m U0 (1 - e_t) / (m V0 (1 + e_n))
+    = tan(angle) (1 - e_t) / (1 + e_n) (positive when the tangential motion is slowed)."""
+    return tangent * (1.0 - r.tangential.e_t) / (1.0 + r.normal.e_n)
+
+
+def _psi_out(r, tangent) -> float:
+    """The contact point's slip at exit or stop over V0: tan(angle) (e_t - a Omega_end / U0)."""
+    t = r.tangential
+    return tangent * (t.e_t - t.spin[0] - t.spin_change)
+
+
+def _friction(read):
+    """``read(friction)`` of the solid contact's Coulomb friction (None without one)."""
+
+    def value(r):
+        friction = None if r.tangential is None else r.tangential.friction
+        return None if friction is None else read(friction)
+
+    return value
+
+
+def _impact_psi(which):
+    """psi_in (0) or psi_out (1) at the solid impact (None without a frictional impact)."""
+    return _friction(lambda f: None if f.impact_psi is None else f.impact_psi[which])
+
+
 def _halfspace_range(name):
     """The HalfSpaceRange's attribute ``name`` (None for the other models)."""
     return lambda r: None if r.halfspace_range is None else getattr(r.halfspace_range, name)
+
+
+def _rough(compute):
+    """``compute(normal, sigma)`` for rough surfaces (roughness sigma > 0, by x0), else None."""
+    return lambda r: None if r.params.roughness == 0.0 else compute(r.normal, r.params.roughness)
+
+
+def _mixed(compute):
+    """``compute(normal, sigma)`` for rough surfaces with Greenwood & Tripp's asperity pressure
+    (run setting asperities = "greenwood-tripp"), else None."""
+
+    def value(r):
+        mixed = r.config is not None and r.config.asperities == "greenwood-tripp"
+        return compute(r.normal, r.params.roughness) if mixed and r.params.roughness else None
+
+    return value
+
+
+def _impact(name, then=float):
+    """``then`` of the solid impact's attribute ``name`` (None without one)."""
+    return lambda r: (
+        None if r.normal.solid_impact is None else then(getattr(r.normal.solid_impact, name))
+    )
+
+
+def _touched(normal, sigma) -> bool:
+    """The thinnest film reached the roughness sigma (an impact ends there)."""
+    return normal.solid_impact is not None or normal.min_film_thickness <= sigma
+
+
+def _touch_radius(normal, sigma) -> float | None:
+    """The radius of the thinnest film at the step where it first reaches sigma (the impact's
+    for a solid impact), by sqrt(a x0); None if it never does (0: on the axis, > 0: at the rim
+    of a flattened contact)."""
+    hist = normal.history
+    if normal.solid_impact is not None:
+        step = normal.solid_impact.index
+    else:
+        reached = np.flatnonzero(hist.min_film <= sigma)
+        if reached.size == 0:
+            return None
+        step = int(reached[0])
+    return float(normal.radii[int(np.argmin(hist.film_thickness[step]))])
+
+
+def _largest_asperity_share(normal, sigma) -> float:
+    """The asperities' largest load over the largest total load on the sphere,
+    max F_a / max (F_film + F_a) (0 if they never carry load; the ratio at one instant is
+    ill-defined where the film's force changes sign)."""
+    asperity = normal.asperity_force
+    largest = float(np.max(asperity))
+    return largest / float(np.max(normal.history.force + asperity)) if largest > 0 else 0.0
+
+
+def _contact_end(normal, sigma) -> float | None:
+    """The time the thinnest film last rises back above sigma (the impact's time for a solid
+    impact; None if it never reached sigma), by linear interpolation between the steps."""
+    if normal.solid_impact is not None:
+        return normal.solid_impact.time
+    hist = normal.history
+    below = np.flatnonzero(hist.min_film <= sigma)
+    if below.size == 0:
+        return None
+    i = int(below[-1])
+    if i == len(hist.time) - 1:
+        return float(hist.time[i])
+    (t0, t1), (h0, h1) = hist.time[i : i + 2], hist.min_film[i : i + 2]
+    return float(t0 + (sigma - h0) / (h1 - h0) * (t1 - t0))
 
 
 FORCE = "6 pi mu V0 a^2 / x0"
@@ -113,7 +223,7 @@ OUTPUTS: tuple[Output, ...] = (
            lambda r: r.normal.rebound),
     Output("status", "how the normal motion ended: rebound, stick or stalled", "-", None,
            lambda r: r.normal.status),
-    Output("e_n", "normal restitution e_dry V_exit (0 if the sphere sticks)", "V0", "m/s",
+    Output("e_n", "normal restitution e_dry V_exit, rough: V_exit (0 if it sticks)", "V0", "m/s",
            lambda r: r.normal.e_n, "rebound_normal_speed_m_s", lambda p: p.scales().velocity),
     Output("exit_velocity", "normal velocity V_exit when the gap is back to x0, before e_dry",
            "V0", "m/s", lambda r: r.normal.exit_velocity),
@@ -146,6 +256,23 @@ OUTPUTS: tuple[Output, ...] = (
     Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop", "U0/a",
            "rad/s", _tangential("spin_change"), "spin_change_rad_s",
            lambda p: p.tangential_speed / p.radius),
+    Output("rebound_angle", "rebound angle of the centre from the wall normal, atan(U/V) at exit",
+           "deg", "deg", _oblique(_rebound_angle), applies=lambda r: r.normal.rebound,
+           reason="the sphere sticks: it does not leave the layer"),
+    Output("effective_friction", "tangential over normal impulse of the whole collision",
+           "-", None, _oblique(_effective_friction)),
+    Output("psi_in", "contact point's slip over the normal speed at first touch, (U0-a Omega0)/V0",
+           "-", None, _oblique(lambda r, tangent: tangent * float(r.tangential.slip[0]))),
+    Output("psi_out", "contact point's slip at exit or stop over the normal speed at first touch",
+           "-", None, _oblique(_psi_out)),
+    Output("contact_stuck", "the solid contact's friction stopped the slip (Coulomb stick)",
+           "-", None, _friction(lambda f: f.any_stuck), optional=True),
+    Output("friction_dissipated", "Coulomb friction's dissipation in the solid contact",
+           TANGENTIAL_ENERGY, "J", _friction(lambda f: float(f.dissipated[-1])), optional=True),
+    Output("impact_psi_in", "contact point's slip over the approach speed before the solid impact",
+           "-", None, _impact_psi(0), optional=True),
+    Output("impact_psi_out", "contact point's slip after the solid impact over its approach speed",
+           "-", None, _impact_psi(1), optional=True),
     Output("tangential_balance_error", "sliding film's energy balance error over its loss",
            "-", None, _tangential_energy(lambda e: e.balance_error), optional=True),
     Output("tangential_work_exchanged", "work the normal motion gave the sliding film",
@@ -167,6 +294,24 @@ OUTPUTS: tuple[Output, ...] = (
            None, _superposition("largest_viscosity_tilt"), optional=True),
     Output("superposition_overlap", "largest overlap of the mode-1 suction with the cavity",
            "-", None, _superposition("suction_overlap"), optional=True),
+    Output("asperity_contact", "the thinnest film reached the roughness sigma (rough surfaces)",
+           "-", None, _rough(_touched), optional=True),
+    Output("asperity_touch_radius", "where the thinnest film first reached sigma (0: the axis)",
+           "sqrt(a x0)", "m", _rough(_touch_radius), "asperity_touch_radius_m",
+           lambda p: p.scales().radius, optional=True),
+    Output("solid_impact_velocity", "approach speed |V_c| at the asperities' solid impact",
+           "V0", "m/s", _impact("approach_velocity", abs), "solid_impact_speed_m_s",
+           lambda p: p.scales().velocity, optional=True),
+    Output("solid_impact_time", "time of the asperities' solid impact from first touch",
+           "x0/V0", "s", _impact("time"), "solid_impact_time_s", lambda p: p.scales().time,
+           optional=True),
+    Output("max_asperity_share", "the asperities' largest load over the largest total load",
+           "-", None, _mixed(_largest_asperity_share), optional=True),
+    Output("max_asperity_force", "largest asperity load on the sphere (greenwood-tripp)", FORCE,
+           "N", _mixed(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
+           lambda p: p.scales().force, optional=True),
+    Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
+           "x0/V0", "s", _rough(_contact_end), optional=True),
 )
 # fmt: on
 

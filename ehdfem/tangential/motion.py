@@ -52,6 +52,10 @@ grows by more than 1 + sqrt(2)). Its energy balance (docs/tangential.md)
 
 is recorded term by term: E_1 the mode-1 elastic energy, X the work exchanged with the normal
 motion (zero on rigid solids, where the tangential motion only dissipates).
+
+Where the normal motion has a solid contact (a rough sphere's solid impact, an asperity load)
+and the friction coefficient mu > 0, its Coulomb friction acts in every model
+(:mod:`ehdfem.tangential.friction`), and the sliding film's balance gains its dissipation.
 """
 
 from __future__ import annotations
@@ -66,6 +70,7 @@ from .. import checks
 from ..film.reynolds import Film, ModeOneFilm
 from ..motion.normal import NormalResult, NormalSolverError
 from ..solids.compliance import ModeOneCompliance
+from .friction import ContactFriction, CoulombContact
 
 MODELS = ("couette", "lubrication", "gcb", "flat")
 DEFORMATIONS = ("none", "gap", "full")
@@ -113,13 +118,16 @@ class TangentialEnergy:
     """The sliding film's energy balance at the steps (by m U0^2 / St, as E_t): ``kinetic``
     E_t, ``dissipated`` (Couette and Poiseuille, integrated), ``elastic`` (delta/6) E_1 of the
     mode-1 loads, ``exchanged`` the integrated X (work from the normal motion, zero for rigid
-    solids). ``balance_error``: |E_t(0) - E_t - dissipated - elastic + exchanged| at the end
-    over the energy the tangential motion lost, max(E_t(0) - E_t(end), dissipated)."""
+    solids), ``friction`` the Coulomb friction's dissipation of the solid contact
+    (:mod:`ehdfem.tangential.friction`; zero without one). ``balance_error``:
+    |E_t(0) - E_t - dissipated - elastic + exchanged - friction| at the end over the energy the
+    tangential motion lost, max(E_t(0) - E_t(end), dissipated + friction)."""
 
     kinetic: np.ndarray
     dissipated: np.ndarray
     elastic: np.ndarray
     exchanged: np.ndarray
+    friction: np.ndarray
     balance_error: float
 
     @property
@@ -162,6 +170,9 @@ class TangentialResult:
     ``energy``: its balance (:class:`TangentialEnergy`, None for Couette);
     ``mode_one_pressure``: q and ``mode_one_gap``: H1 at the steps and film nodes (by
     (U0/V0) sqrt(delta) times the film pressure unit and times x0; None for Couette).
+    ``friction``: the Coulomb friction of the solid contact (:class:`ContactFriction`; None
+    without one, or with mu = 0). ``force`` is the film's force; the contact's impulses are in
+    ``friction``.
     """
 
     model: str
@@ -178,6 +189,7 @@ class TangentialResult:
     energy: TangentialEnergy | None
     mode_one_pressure: np.ndarray | None = None
     mode_one_gap: np.ndarray | None = None
+    friction: ContactFriction | None = None
 
 
 def normal_film(normal: NormalResult) -> Film:
@@ -272,7 +284,8 @@ def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialR
     integrated exactly for each step's mean J: St dU/dT = -(delta/3) J u_s = -k St d(a Omega)/dT
     conserves U + k a Omega and makes u_s decay by exp(-(1 + 1/k) delta/(3 St) int J dT) (so
     an overflowing J, a frozen piezoviscous film, rolls the sphere at once), also from the
-    last step to the exit."""
+    last step to the exit; the solid contact's Coulomb impulse after each step
+    (:class:`ehdfem.tangential.friction.CoulombContact`)."""
     params = normal.params
     hist = normal.history
     k, St, delta = params.inertia_factor, params.St, params.delta
@@ -287,14 +300,18 @@ def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialR
         momentum = k * states[i, 1] + states[i, 0]  # conserved: U + k a Omega
         return (momentum + k * slip) / (1 + k), (momentum - slip) / (1 + k)
 
+    contact = CoulombContact.of(normal)
     for i, factor in enumerate(decay):
         states[i + 1] = decayed(i, factor)
+        if contact is not None:
+            states[i + 1] = contact.act(i + 1, *states[i + 1])
     end = _end_index(normal)  # the end inside step i: its share of the step's decay
     i = min(int(end), len(decay) - 1)
     at_end = decayed(i, decay[i] ** (end - i))
     velocity, spin = states.T
     force = -delta / 3.0 * shear * (velocity - spin)
-    return _result(normal, model, "none", (velocity, spin, shear, force), None, at_end=at_end)
+    histories = (velocity, spin, shear, force)
+    return _result(normal, model, "none", histories, None, at_end=at_end, contact=contact)
 
 
 def gcb_resistance(delta: float, min_film) -> np.ndarray:
@@ -333,31 +350,38 @@ def _flat(normal: NormalResult) -> TangentialResult:
     return _sheared(normal, "flat", shear)
 
 
-def integrate_resistance(time, resistance, St: float, k: float, start) -> np.ndarray:
+def integrate_resistance(
+    time, resistance, St: float, k: float, start, contact: CoulombContact | None = None
+) -> np.ndarray:
     """(U, a Omega) at the instants ``time`` (by x0/V0) under a linear resistance R(T)
     (``resistance`` (steps, 2, 2), symmetric non-negative, force by 6 pi mu a^2 U0 / x0):
     St dU/dT = -(R (U, a Omega))_1, k St d(a Omega)/dT = -(R (U, a Omega))_2, from ``start``
     (by U0). Each step takes the exact exponential of its mean R (trapezoid): second order,
-    exact for a constant R, and never gaining energy."""
+    exact for a constant R, and never gaining energy. ``contact``: a solid contact whose
+    Coulomb impulse acts after each step (None: none)."""
     inverse_mass = np.diag([1.0 / St, 1.0 / (k * St)])
     means = 0.5 * (resistance[1:] + resistance[:-1]) * np.diff(time)[:, None, None]
     states = np.empty((len(time), 2))
     states[0] = start
     for i, mean in enumerate(means):
         states[i + 1] = scipy.linalg.expm(-inverse_mass @ mean) @ states[i]
+        if contact is not None:
+            states[i + 1] = contact.act(i + 1, *states[i + 1])
     return states
 
 
 def _resisted(normal: NormalResult, model: str, resistance: np.ndarray) -> TangentialResult:
     """The result of a resistance model (:func:`integrate_resistance`) on the normal solution."""
     params, hist = normal.params, normal.history
+    contact = CoulombContact.of(normal)
+    start = (1.0, _initial_spin(params))
     states = integrate_resistance(
-        hist.time, resistance, params.St, params.inertia_factor, (1.0, _initial_spin(params))
+        hist.time, resistance, params.St, params.inertia_factor, start, contact
     )
     velocity, spin = states.T
     force = -np.einsum("ij,ij->i", resistance[:, 0], states)
     shear = 3.0 * resistance[:, 0, 0] / params.delta
-    return _result(normal, model, "none", (velocity, spin, shear, force), None)
+    return _result(normal, model, "none", (velocity, spin, shear, force), None, contact=contact)
 
 
 def _initial_spin(params) -> float:
@@ -366,10 +390,13 @@ def _initial_spin(params) -> float:
     return 0.0 if tangential == 0.0 else params.spin / tangential
 
 
-def _result(normal, model, deformation, histories, energy, mode_one=(None, None), at_end=None):
+def _result(
+    normal, model, deformation, histories, energy, mode_one=(None, None), at_end=None, contact=None
+):
     """The TangentialResult from the histories (U, a Omega, J, F_t) at the steps and, for the
     sliding film, (q, H1) at the steps. ``at_end``: (U, a Omega) at the end of the collision
-    if the model knows them between its steps (None: interpolated linearly)."""
+    if the model knows them between its steps (None: interpolated linearly). ``contact``: the
+    solid contact's :class:`CoulombContact` (None: none)."""
     params, hist = normal.params, normal.history
     velocity, spin, shear, force = histories
     head_on = params.tangential_speed == 0.0
@@ -391,6 +418,7 @@ def _result(normal, model, deformation, histories, energy, mode_one=(None, None)
         energy=energy,
         mode_one_pressure=mode_one[0],
         mode_one_gap=mode_one[1],
+        friction=None if contact is None else contact.record(),
     )
 
 
@@ -439,12 +467,15 @@ class _SlidingFilm:
         shear, force = np.zeros(steps), np.zeros(steps)
         rates = np.zeros((steps, 2))  # dissipation and exchange rates
         elastic = np.zeros(steps)
+        contact = CoulombContact.of(normal)
         for i, mf in enumerate(mode_one_films(normal, unloaded)):
             shear[i] = mf.shear_weights.sum() + mf.tail
             ops = self._operators(mf, i)
             if i > 0:
                 step = hist.time[i] - hist.time[i - 1]
-                ratio = step / (hist.time[i - 1] - hist.time[i - 2]) if i >= 2 else np.inf
+                ratio = np.inf  # BDF1 on the first step and after the solid impact's jump
+                if i >= 2 and not (contact is not None and contact.is_impact(i - 1)):
+                    ratio = step / (hist.time[i - 1] - hist.time[i - 2])
                 alpha = (1.0, -1.0, 0.0)  # BDF1
                 if ratio <= _BDF2_GROWTH:
                     alpha = ((1 + 2 * ratio) / (1 + ratio), -(1 + ratio), ratio**2 / (1 + ratio))
@@ -452,11 +483,13 @@ class _SlidingFilm:
                     name: (alpha[1] * values[i - 1] + alpha[2] * values[i - 2]) / step
                     for name, values in (*displacements.items(), ("z", z))
                 }
-                z[i] = self._step(mf, ops, alpha[0] / step, past, i)
+                z[i] = self._step(mf, ops, alpha[0] / step, past, i, contact)
                 for name, values in displacements.items():
                     if ops[name] is not None:
                         values[i] = ops[name] @ z[i]
                 self._check_tilts(z[i], displacements["gap"][i], i)
+                if contact is not None and contact.is_impact(i):
+                    self._impact_acts(contact, z[i], i)
             force[i] = ops["force"] @ z[i]
             *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
         velocity, spin = z[:, self.u], z[:, self.omega]
@@ -464,9 +497,12 @@ class _SlidingFilm:
         dissipated, exchanged = scipy.integrate.cumulative_trapezoid(
             rates, hist.time, axis=0, initial=0.0
         ).T
-        lost = max(kinetic[0] - kinetic[-1], dissipated[-1], np.finfo(float).tiny)
+        friction = np.zeros(steps) if contact is None else contact.record().dissipated
+        lost = max(kinetic[0] - kinetic[-1], dissipated[-1] + friction[-1], np.finfo(float).tiny)
         residual = kinetic[0] - kinetic[-1] - dissipated[-1] - elastic[-1] + exchanged[-1]
-        energy = TangentialEnergy(kinetic, dissipated, elastic, exchanged, abs(residual) / lost)
+        residual -= friction[-1]
+        balance = abs(residual) / lost
+        energy = TangentialEnergy(kinetic, dissipated, elastic, exchanged, friction, balance)
         return _result(
             normal,
             "lubrication",
@@ -474,12 +510,33 @@ class _SlidingFilm:
             (velocity, spin, shear, force),
             energy,
             (z[:, :n], displacements["gap"]),
+            contact=contact,
         )
 
-    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int) -> np.ndarray:
-        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution."""
+    def _impact_acts(self, contact: CoulombContact, z: np.ndarray, i: int) -> None:
+        """The solid impact's Coulomb impulse at step i on U and a Omega in z (in place); with
+        deformation "full" the nodal slips v = u_s + sqrt(delta) dD/dT change by the same jump
+        of u_s (the faces' displacements D do not jump)."""
+        slip = z[self.u] - z[self.omega]
+        z[self.u], z[self.omega] = contact.act(i, z[self.u], z[self.omega], load=False)
+        if self.deformation == "full":
+            z[self.n : -2] += (z[self.u] - z[self.omega]) - slip
+
+    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int, contact=None):
+        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution;
+        with the asperities' friction force of ``contact`` (a :class:`CoulombContact`; None:
+        none) in the rows of U and a Omega (St dU/dT = F + F_f, k St d(a Omega)/dT = T - F_f)."""
         try:
-            z = _solve_equilibrated(*self._system(mf, ops, rate, past), self.u, self.omega)
+            matrix, rhs = self._system(mf, ops, rate, past)
+            if contact is None or contact.force_bounds[i] == 0.0:
+                z = _solve_equilibrated(matrix, rhs, self.u, self.omega)
+            else:
+                unit = np.zeros(self.size)
+                unit[self.u], unit[self.omega] = 1.0, -1.0
+                rhs = np.column_stack([rhs, unit])
+                free, response = _solve_equilibrated(matrix, rhs, self.u, self.omega).T
+                slips = [y[self.u] - y[self.omega] for y in (free, response)]
+                z = free + contact.resist(i, *slips) * response
         except (np.linalg.LinAlgError, ValueError):
             z = np.full(self.size, np.nan)
         if not np.isfinite(z).all():
@@ -622,7 +679,8 @@ class _SlidingFilm:
 
 
 def _solve_equilibrated(matrix, rhs, u: int, omega: int):
-    """Solve matrix z = rhs in the unknowns y = z except the sliding velocity U - a Omega in
+    """Solve matrix z = rhs (``rhs`` a vector, or one right-hand side per column) in the
+    unknowns y = z except the sliding velocity U - a Omega in
     place of U (index ``u``; ``omega`` that of a Omega), with every column of the transformed
     matrix and then every row scaled to unit largest entry. A piezoviscous film's Reynolds rows
     are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
@@ -635,6 +693,9 @@ def _solve_equilibrated(matrix, rhs, u: int, omega: int):
     column_scale = 1.0 / np.abs(transformed).max(axis=0)
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
+    if rhs.ndim == 2:  # several right-hand sides, one a column
+        sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale[:, None])
+        return basis @ (column_scale[:, None] * sliding)
     sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
     return basis @ (column_scale * sliding)
 

@@ -1,0 +1,147 @@
+"""The unsteady forces on a sphere in flight near a wall: the added mass raised by the wall, and
+the history (Basset) force with a finite-Reynolds-number kernel (docs/bounce.md).
+
+SI unless said: gap h [m] between the sphere and the wall, sphere radius a [m], kinematic
+viscosity nu [m^2/s], velocity v [m/s] (positive away from the wall). Scaled: the gap by a
+(h/a), the time of the history kernel by the viscous time a^2/nu (s = nu t / a^2), the Reynolds
+number Re = 2 a |v| / nu.
+
+**Added mass near a wall.** In potential flow a sphere moving normal to a plane wall carries
+the added mass C_M(h) m_f, m_f = rho_f 4/3 pi a^3, with (the sphere and its images in the wall,
+Hicks 1880; Milne-Thomson, Theoretical Hydrodynamics, two spheres on their line of centres;
+Kharlamov, Chara & Vlasak 2007)
+
+    C_M(h) = 1/2 + (3/2) sum_{n>=2} (sinh alpha / sinh n alpha)^3,    cosh alpha = 1 + h/a,
+
+1/2 far away (1/2 + (3/16)(a/(h + a))^3 + ...), (1 + 3 (zeta(3) - 1))/2 = 0.8031 at contact.
+:func:`wall_added_mass` gives C_M(h) / (1/2) and its slope in h/a.
+
+**History force.** F_H(t) = -6 pi mu a int_{-inf}^t K(t - tau) dv/dtau dtau with Mei & Adrian
+(1992)'s kernel (their eq. 81, a the radius, f_H = 0.75 + 0.105 Re):
+
+    K(t) = [ (pi nu t / a^2)^(1/4) + ((pi/2) |v|^3 t^2 / (a nu f_H^3))^(1/2) ]^(-2)
+         = [ (pi s)^(1/4) + c(Re) s ]^(-2),     c(Re) = (sqrt(pi)/4) (Re / f_H)^(3/2),
+
+which is Basset's a / sqrt(pi nu t) at short times and for Re -> 0 (c = 0), and decays as
+(c s)^(-2) beyond s ~ (pi^(1/4)/c)^(4/3) (0.05 a^2/nu at Re = 150). c is taken at the current
+Reynolds number Re(t): the vorticity shed earlier is carried away by the flow of the present
+speed. The kernel is approximated by a sum of exponentials with fixed relaxation times
+sigma_i (:data:`RELAXATION_TIMES`, 4 per decade from 1e-8 to 1e4 a^2/nu),
+
+    K(s) ~ sum_i w_i(c) exp(-s / sigma_i),     F_H = -6 pi mu a sum_i w_i(c(t)) z_i,
+    dz_i/dt = -z_i / tau_i + dv/dt,            tau_i = sigma_i a^2 / nu,
+
+so that the whole trajectory's memory is carried by the z_i [m/s]. The weights are a fixed
+linear map of the kernel's values (least squares with a Tikhonov term on the samples s = 1e-7..1e3,
+relative to Basset's kernel): :func:`history_weights`. Their error (:func:`fitted_kernel`): below
+2e-6 K_B(s) for 1e-7 <= s <= 1e3 and any Re, below 1e-5 of K itself for s <= 10 and 2e-4 for s <=
+100 (where K falls to 1e-5 K_B at Re = 800); the sum is finite at s = 0 (a velocity jump's force is
+cut below about 1e-7 a^2/nu, 0.02-0.1 us here; a contact lasts 1e-4 to 1e-3 a^2/nu) and decays
+exponentially beyond s = 1e4 (2e3 to 1e4 s here, far beyond any bounce).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cache
+
+import numpy as np
+
+from .. import checks
+
+HISTORY_KERNELS = ("mei-adrian", "basset", "none")
+RELAXATION_TIMES = np.logspace(-8.0, 4.0, 49)  # sigma_i by a^2 / nu
+FIT_TIMES = np.logspace(-7.0, 3.0, 500)  # s where the sum of exponentials is fitted
+FIT_REGULARISATION = 1e-8  # Tikhonov parameter of the fit (relative to the samples' scale)
+CONTACT_ALPHA = 1e-3  # alpha below which C_M takes its value at alpha = 1e-3 (h/a < 5e-7)
+ZETA3 = 1.2020569031595942  # Riemann zeta(3)
+
+
+def wall_added_mass(gap_over_radius: float) -> tuple[float, float]:
+    """(C_M(h) / C_M(inf), its derivative in h/a) for a sphere moving normal to a plane wall
+    in potential flow (module docstring): 1 + 3 sum_{n>=2} r_n^3, r_n = sinh alpha /
+    sinh(n alpha), cosh alpha = 1 + h/a, summed in the overflow-free form
+    r_n = 2 sinh(alpha) e^(-n alpha) / (1 - e^(-2 n alpha)) up to n alpha = 15 (the rest is
+    below 1e-19 of the sum). d r_n / d alpha = r_n (coth alpha - n coth n alpha), d alpha /
+    d(h/a) = 1 / sinh alpha. 1 + 3 (zeta(3) - 1) = 1.606 at contact."""
+    checks.positive("gap_over_radius", gap_over_radius)
+    alpha = max(math.acosh(1.0 + gap_over_radius), CONTACT_ALPHA)
+    n = np.arange(2.0, int(15.0 / alpha) + 3)
+    decay = np.exp(-2.0 * n * alpha)
+    ratio = 2.0 * math.sinh(alpha) * np.exp(-n * alpha) / (1.0 - decay)
+    coth_n = (1.0 + decay) / (1.0 - decay)
+    slope = 3.0 * ratio**3 * (1.0 / math.tanh(alpha) - n * coth_n) / math.sinh(alpha)
+    return 1.0 + 3.0 * float(np.sum(ratio**3)), 3.0 * float(np.sum(slope))
+
+
+def kernel_decay(reynolds):
+    """c(Re) = (sqrt(pi)/4) (Re / f_H)^(3/2), f_H = 0.75 + 0.105 Re (Mei & Adrian 1992): the
+    finite-Re kernel's long-time term c s (dimensionless; 0 at Re = 0, 13.0 as Re -> inf)."""
+    reynolds = np.abs(np.asarray(reynolds, dtype=float))
+    return math.sqrt(math.pi) / 4.0 * (reynolds / (0.75 + 0.105 * reynolds)) ** 1.5
+
+
+def history_kernel(scaled_time, reynolds):
+    """K(s) = [(pi s)^(1/4) + c(Re) s]^(-2) at s = nu t / a^2 > 0 (module docstring);
+    Basset's 1 / sqrt(pi s) at Re = 0."""
+    s = np.asarray(scaled_time, dtype=float)
+    return ((math.pi * s) ** 0.25 + kernel_decay(reynolds) * s) ** -2
+
+
+@cache
+def _fit_map() -> np.ndarray:
+    """The linear map from K(FIT_TIMES) / K_B(FIT_TIMES) to the weights w_i: the Tikhonov-
+    regularised least-squares solution of sum_i w_i e^(-s/sigma_i) = K(s), rows by K_B(s)."""
+    design = np.exp(-FIT_TIMES[:, None] / RELAXATION_TIMES[None, :]) / _basset_samples()[:, None]
+    u, singular, vt = np.linalg.svd(design, full_matrices=False)
+    filtered = singular / (singular**2 + FIT_REGULARISATION**2)
+    return vt.T @ (filtered[:, None] * u.T)
+
+
+@cache
+def _basset_samples() -> np.ndarray:
+    """Basset's kernel K_B = 1 / sqrt(pi s) at FIT_TIMES."""
+    return history_kernel(FIT_TIMES, 0.0)
+
+
+def history_weights(kernel: str, reynolds: float) -> np.ndarray:
+    """The weights w_i of the exponentials exp(-s / sigma_i) (:data:`RELAXATION_TIMES`) that
+    sum to the history kernel ``kernel`` at the Reynolds number ``reynolds`` ("basset": Re
+    ignored; "mei-adrian"; "none": no weights)."""
+    checks.choice("history", kernel, HISTORY_KERNELS)
+    if kernel == "none":
+        return np.zeros(0)
+    if kernel == "basset":
+        return _fit_map().sum(axis=1)
+    # K / K_B = (1 + c s / (pi s)^(1/4))^-2, and (pi s)^(-1/4) = sqrt(K_B)
+    ratio = (1.0 + kernel_decay(reynolds) * FIT_TIMES * np.sqrt(_basset_samples())) ** -2
+    return _fit_map() @ ratio
+
+
+def fitted_kernel(scaled_time, kernel: str, reynolds: float):
+    """The sum of exponentials sum_i w_i exp(-s / sigma_i) that stands for the kernel (the
+    error of the approximation is in the module docstring)."""
+    s = np.atleast_1d(np.asarray(scaled_time, dtype=float))
+    weights = history_weights(kernel, reynolds)
+    return np.exp(-s[:, None] / RELAXATION_TIMES[None, : len(weights)]) @ weights
+
+
+def carry_memory(memory, times, velocities, relaxation_times) -> np.ndarray:
+    """The memory z_i [m/s] at each of ``times`` [s] of a motion known by samples: from
+    ``memory`` at times[0], dz_i/dt = -z_i / tau_i + dv/dt integrated exactly for v linear
+    between samples,
+
+        z_i(t_k+1) = z_i(t_k) e^(-dt/tau_i) + (v_k+1 - v_k) (tau_i / dt)(1 - e^(-dt/tau_i)),
+
+    a jump (dt = 0) adding v_k+1 - v_k. ``relaxation_times``: tau_i [s]. Returns an array
+    (len(times), len(memory)); the history force is -6 pi mu a sum_i w_i z_i."""
+    z = np.array(memory, dtype=float)
+    tau = np.asarray(relaxation_times, dtype=float)
+    out = [z.copy()]
+    for k in range(len(times) - 1):
+        step = times[k + 1] - times[k]
+        decay = np.exp(-step / tau)
+        gain = np.where(step > 0, -np.expm1(-step / tau) * tau / max(step, 1e-300), 1.0)
+        z = z * decay + (velocities[k + 1] - velocities[k]) * gain
+        out.append(z.copy())
+    return np.array(out)

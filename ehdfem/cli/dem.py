@@ -1,0 +1,74 @@
+"""``ehdfem dem``: a real DEM engine (Yade or LIGGGHTS) on one collision, its rebound printed
+beside the full model's at the same physical inputs (:mod:`ehdfem.dem.engines`). The engine's
+input script, log, history and rebound stay in ``--folder`` to open and rerun by hand."""
+
+from __future__ import annotations
+
+from .. import CollisionParameters, checks
+from ..dem.engines.compare import ENGINES, compare
+from . import paths
+from .arguments import JSON_HELP, add_fields, given, report_stream, write_json
+from .inputs import add_collision_arguments, collision_inputs, run_config
+
+HELP = "run a DEM engine (Yade, LIGGGHTS) on one collision beside the full model"
+
+
+def add_dem(parser) -> None:
+    engine = parser.add_argument_group("DEM engine")
+    engine.add_argument(
+        "--engine",
+        choices=tuple(ENGINES),
+        required=True,
+        help="yade: a sphere on a wall with its implicit lubrication law; liggghts: two equal "
+        "spheres (--wall the sphere's material, head-on) with its easo/capillary/viscous "
+        "bridge, beside the half-space model at the reduced radius and mass",
+    )
+    engine.add_argument(
+        "--folder",
+        metavar="DIR",
+        required=True,
+        help="folder for the engine's input script, log, history and rebound (made if "
+        "missing; rerun by hand there)",
+    )
+    for law, _ in ENGINES.values():
+        add_fields(engine, law)
+    add_collision_arguments(parser)
+    parser.add_argument("--json", metavar="FILE", help=JSON_HELP)
+
+
+def dem_command(args) -> int:
+    paths.output_folder("folder", args.folder)
+    paths.output_file("json", args.json, stdout=True)
+    law_class = ENGINES[args.engine][0]
+    for other, _ in ENGINES.values():
+        if other is not law_class and given(args, other):
+            name = next(iter(given(args, other)))
+            raise checks.InputError(f"is a setting of another engine than {args.engine}", name)
+    collision = collision_inputs(args)
+    if isinstance(collision, CollisionParameters):
+        raise checks.InputError(
+            "the engines take physical inputs: --sphere, --wall, --liquid, --radius, --speed, "
+            "--layer-thickness (or --example)"
+        )
+    result = compare(args.engine, collision, law_class(**given(args, law_class)), args.folder,
+                     run_config(args))  # fmt: skip
+    report = report_stream(args)
+    print_comparison(result, report)
+    write_json(result, args.json)
+    return 0
+
+
+def print_comparison(result: dict, report) -> None:
+    """The engine's e_n (e_t, spin change) beside the full model's, one line each."""
+    engine, model = result["engine"], result["full_model"]
+    print(
+        f"ehdfem dem: {engine['engine']} beside the full model (St = {model['St']:.4g}, "
+        f"eps = {model['eps']:.3g}, delta = {model['delta']:.3g})",
+        file=report,
+    )
+    for key in ("e_n", "e_t", "spin_change"):
+        if engine[key] is None and key != "e_n":
+            continue
+        full = "n/a" if model[key] is None else f"{model[key]:.6g}"
+        print(f"  {key:<12} {engine['engine']} {engine[key]:.6g}   full model {full}", file=report)
+    print(f"  files in {engine['folder']} ({engine['script']}, rebound.json)", file=report)

@@ -1,0 +1,95 @@
+"""An engine's rebound beside the full model's at the same physical inputs (SI).
+
+Yade's sphere on a wall is the full model's collision as given. LIGGGHTS's two equal spheres
+(radius R, mass m, relative speed V0) are set beside the half-space model at the reduced radius
+R/2 and mass m/2 with theta summed over both spheres: the asymptotic theory of Davis, Serayssol
+& Hinch (1986) is exact for two spheres so at leading order in x0 / R, and it runs in seconds
+where the FE model's lower sphere (``--lower sphere``) takes minutes; both spheres here are of
+one material (theta = 2 (1 - nu^2) / (pi E)).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+from typing import Protocol
+
+from ... import checks
+from ...collision import collide
+from ...config import RunConfig
+from ...inputs.scales import PhysicalCollision
+from . import liggghts, yade
+from .rebound import EngineRebound
+
+
+class EngineRun(Protocol):
+    """An engine's run: write its input into a folder, run its binary, read the rebound."""
+
+    def __call__(self, collision: PhysicalCollision, law, folder: Path) -> EngineRebound: ...
+
+
+ENGINES: dict[str, tuple[type, EngineRun]] = {  # name: (its law's settings, its run)
+    "yade": (yade.YadeLaw, yade.run),
+    "liggghts": (liggghts.LiggghtsLaw, liggghts.run),
+}
+
+
+def check_engine_inputs(engine: str, collision: PhysicalCollision) -> None:
+    """Refuse inputs that the engine's scene leaves out, so that both sides collide alike: the
+    engines run a thin layer without gravity, and Yade's contact spring is undamped (e_dry 1;
+    LIGGGHTS's Hertz contact takes e_dry as its coefficientRestitution)."""
+    checks.choice("engine", engine, tuple(ENGINES))
+    if collision.layer != "thin":
+        raise checks.InputError("the engines' scenes are a thin layer: layer must be thin", "layer")
+    if collision.gravity != 0.0:
+        raise checks.InputError("the engines' scenes have no gravity: gravity must be 0", "gravity")
+    if engine == "yade" and collision.e_dry != 1.0:
+        raise checks.InputError(
+            "Yade's contact spring is undamped: e_dry must be 1 with --engine yade", "e_dry"
+        )
+
+
+def full_model_collision(engine: str, collision: PhysicalCollision) -> PhysicalCollision:
+    """The full model's collision beside ``engine``'s: the same (Yade), or the reduced radius
+    R/2 and mass m/2 of two equal spheres (LIGGGHTS; see the module docstring)."""
+    check_engine_inputs(engine, collision)
+    if engine == "yade":
+        return collision
+    liggghts.check_equal_spheres(collision)
+    return dataclasses.replace(
+        collision, radius=collision.radius / 2, sphere_mass=collision.mass / 2
+    )
+
+
+def compare(
+    engine: str, collision: PhysicalCollision, law, folder: Path, config: RunConfig | None = None
+) -> dict:
+    """``engine`` run on ``collision`` with ``law`` in ``folder``, and the full model (run with
+    ``config``) at the same inputs: the engine's rebound, the full model's e_n, e_t and spin
+    change, its St and eps, and the differences e_n(engine) - e_n(full model)."""
+    config = config or RunConfig()
+    if engine == "liggghts" and config.model != "halfspace":
+        raise checks.InputError(
+            "LIGGGHTS's two spheres are compared with the half-space model at the reduced "
+            "radius and mass (ehdfem.dem.engines.compare)",
+            "model",
+        )
+    full = full_model_collision(engine, collision)
+    rebound = ENGINES[engine][1](collision, law, Path(folder))
+    result = collide(full, config)
+    params = full.dimensionless()
+    tangential = result.tangential
+    model = {
+        "St": params.St,
+        "eps": params.eps,
+        "delta": params.delta,
+        "e_n": result.normal.e_n,
+        "e_t": None if tangential is None else tangential.e_t,
+        "spin_change": None if tangential is None else tangential.spin_change,
+    }
+    return {
+        "engine": rebound.summary(),
+        "law": dataclasses.asdict(law),
+        "full_model": model,
+        "e_n_difference": rebound.e_n - model["e_n"],
+    }

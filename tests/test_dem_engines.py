@@ -1,0 +1,146 @@
+"""The real DEM engines (Yade, LIGGGHTS; installed by the set-up, so a missing engine fails)
+run on small collisions: a known limit of each law reproduced by the engine, and the rebound
+read back beside the full model within the error the study states (docs/validation.md,
+"DEM engines"). Each run takes about a second."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ehdfem import from_presets
+from ehdfem.cli.main import main
+from ehdfem.dem.engines import liggghts, yade
+from ehdfem.dem.engines.compare import compare
+from ehdfem.dem.engines.rebound import read_rebound, run_binary
+
+pytestmark = pytest.mark.serial  # the engines are serial binaries: nothing to check on 2 ranks
+MU = 96.5e-3  # Pa s, silicone_oil_100cst
+
+
+def small(**values):
+    """A steel sphere of 2 mm through 0.1 mm of 100 cSt silicone oil at 0.5 m/s."""
+    inputs = dict(sphere="steel", wall="steel", liquid="silicone_oil_100cst", radius=2e-3,
+                  speed=0.5, layer_thickness=1e-4)  # fmt: skip
+    return from_presets(**(inputs | values))
+
+
+def test_yade_without_liquid_restitutes_its_contact_spring(tmp_path):
+    """eta -> 0 (1e-9 Pa s): the asperities' spring keps kn in series with kn, undamped, gives
+    e_n = 1 and the time in the layer 2 (x0 - 2 eps a) / V0 + pi sqrt(m / k) with
+    k = kn keps kn / (kn + keps kn) (exact). Tolerances: e_n to 1e-4 (the vanishing viscous
+    loss); the time to one recorded interval (20 steps), the history's resolution."""
+    collision = small(wall="glass")
+    law = yade.YadeLaw(yade_roughness=1e-2)
+    inputs = yade.script_inputs(collision, law) | {"eta": 1e-9}
+    (tmp_path / "collision.py").write_text(yade.script(inputs))
+    run_binary(["yade", "-n", "-x", "collision.py"], tmp_path, "yade.log")
+    rebound = read_rebound("yade", tmp_path, "collision.py", "yade.log")
+    kn = yade.contact_stiffness(collision, law)
+    spring = kn * law.yade_keps * kn / (kn + law.yade_keps * kn)
+    approach = collision.layer_thickness - 2 * law.yade_roughness * collision.radius
+    expected = 2 * approach / collision.speed + math.pi * math.sqrt(collision.mass / spring)
+    assert rebound.rebounded
+    assert rebound.e_n == pytest.approx(1.0, abs=1e-4)
+    assert rebound.time_in_layer == pytest.approx(expected, abs=20 * inputs["time_step"])
+
+
+def test_yade_wall_force_is_the_rigid_lubrication_force(tmp_path):
+    """Far from contact the spring is rigid and Yade's force with eta = 4 mu is the exact wall
+    force 6 pi mu a^2 v / h (with eta = mu a quarter of it: Yade's wall is a sphere of radius
+    a). Tolerance 1e-3: the force and the recorded gap and velocity are a step apart
+    (dt V0 / h < 1e-4) and the spring's deflection F / kn is 1e-6 of the gap."""
+    collision = small()
+    for factor in (4.0, 1.0):
+        folder = tmp_path / str(factor)
+        yade.run(collision, yade.YadeLaw(yade_viscosity_factor=factor), folder)
+        rows = np.loadtxt(folder / "history.csv", delimiter=",", skiprows=1)
+        approach = rows[1:40]  # the first recorded intervals, h from x0 to 0.9 x0
+        exact = 6 * math.pi * MU * collision.radius**2 * -approach[:, 2] / approach[:, 1]
+        assert approach[:, 5] * 4.0 / factor == pytest.approx(exact, rel=1e-3)
+
+
+def test_liggghts_bridge_force_is_the_rigid_lubrication_force(tmp_path):
+    """After contact, while the bridge holds, LIGGGHTS's viscous force on two separating
+    spheres is 6 pi mu R*^2 v / h, R* = R / 2 (exact for rigid spheres), down to the gap
+    minSeparationDistanceRatio R*; beyond the cut-off (the layer x0 by default) it is zero.
+    Tolerance 1e-2: force and recorded gap are a step apart (dt v / h < 5e-3 at h > x0 / 10)."""
+    collision = small()
+    liggghts.run(collision, liggghts.LiggghtsLaw(), tmp_path)
+    rows = np.loadtxt(tmp_path / "history.txt", skiprows=1)
+    time, gap, velocity, force = rows.T
+    after = time > time[np.argmax(gap < 0)]
+    bridge = after & (gap > 0.1e-4) & (gap < 0.9e-4)
+    exact = 6 * math.pi * MU * (collision.radius / 2) ** 2 * velocity[bridge] / gap[bridge]
+    assert bridge.sum() > 10
+    assert force[bridge] == pytest.approx(exact, rel=1e-2)
+    assert np.all(force[after & (gap > 1.01e-4)] == 0.0)
+
+
+def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
+    """``ehdfem dem`` leaves the engine's files in --folder and its JSON holds both rebounds."""
+    folder, out = tmp_path / "yade", tmp_path / "dem.json"
+    args = ["dem", "--engine", "yade", "--folder", str(folder), "--sphere", "steel", "--wall",
+            "glass", "--liquid", "silicone_oil_100cst", "--radius", "2e-3", "--speed", "1",
+            "--layer-thickness", "1e-4", "--angle", "20", "--json", str(out)]  # fmt: skip
+    assert main(args) == 0
+    assert "full model" in capsys.readouterr().out
+    result = json.loads(out.read_text())
+    assert {p.name for p in folder.iterdir()} >= {"collision.py", "history.csv", "rebound.json"}
+    assert result["engine"]["e_t"] is not None and result["full_model"]["e_t"] is not None
+
+
+@pytest.mark.parametrize(
+    "extra, flag",
+    [
+        (["--engine", "liggghts", "--wall", "glass"], "--wall"),  # two equal spheres only
+        (["--engine", "liggghts", "--wall", "steel", "--yade-keps", "2"], "--yade-keps"),
+        (["--engine", "yade", "--wall", "steel", "--yade-roughness", "0.5"], "--yade-roughness"),
+        (["--engine", "yade", "--wall", "steel", "--e-dry", "0.9"], "--e-dry"),
+        (["--engine", "liggghts", "--wall", "steel", "--gravity", "9.81"], "--gravity"),
+    ],
+)
+def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):
+    args = ["dem", "--folder", str(tmp_path), "--sphere", "steel", "--liquid", "water",
+            "--radius", "2e-3", "--speed", "1", "--layer-thickness", "1e-4", *extra]  # fmt: skip
+    assert main(args) == 2
+    assert f"error: {flag}:" in capsys.readouterr().err
+
+
+STUDY = Path(__file__).resolve().parents[1] / "studies/results/dem_engines.json"
+CASE = "steel, 100 cSt oil, 0.1 mm"
+SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s, those of studies/dem_engines.py
+
+
+def stated_error(engine, setting):
+    """The largest |e_n(engine) - e_n(full model)| that the study (docs/validation.md, "DEM
+    engines") states for ``setting`` on CASE over its speeds."""
+    table = json.loads(STUDY.read_text())
+    rows = [(table[f"{engine}|{CASE}|{setting}|{v}"], table[f"{engine}|{CASE}|full model|{v}"])
+            for v in SPEEDS]  # fmt: skip
+    return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)
+
+
+@pytest.mark.parametrize(
+    "engine, setting, law, wall",
+    [
+        ("yade", "eta = 4 mu, eps = 1e-3", yade.YadeLaw(yade_roughness=1e-3), "glass"),
+        ("liggghts", "min 0.001, cut-off at 1 x0", liggghts.LiggghtsLaw(1e-3), "steel"),
+    ],
+)
+def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wall):
+    """The engine's rebound with its best setting, read back, is within the error the study
+    states for it (its largest over the case's St) of the full model at the same physical
+    inputs (1.2 m/s); 1e-3 more for the run's own spread (time steps move e_n by < 1e-4)."""
+    collision = small(wall=wall, speed=1.2)
+    result = compare(engine, collision, law, tmp_path)
+    assert result["engine"]["rebounded"]
+    assert abs(result["e_n_difference"]) <= stated_error(engine, setting) + 1e-3
+
+
+def test_a_missing_engine_is_named_with_the_set_up(tmp_path, monkeypatch):
+    monkeypatch.setenv("PATH", str(tmp_path))
+    with pytest.raises(OSError, match="yade is not installed.*make.sh setup"):
+        run_binary(["yade", "-n", "-x", "collision.py"], tmp_path, "yade.log")

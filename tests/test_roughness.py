@@ -1,0 +1,256 @@
+"""Rough surfaces: the asperities' solid impact against its closed form, Greenwood & Tripp's
+pressure law, its load on the solids, the energy balance of both models, the FE solids on one
+and two ranks, and the inputs.
+
+Closed form of a rigid sphere with a solid impact (no suction limit). The film's force on a
+rigid sphere is F = -V L'(X) with L'(X) = 1/X fully immersed (Reynolds) and (1 - X)^2 / X in a
+thin layer (the truncated squeeze film, P = 3|V| (1/H^2 - 1) out to the wetted edge H = 1, whose
+force (1/3) int_X^1 P dH is |V| (1/X - 2 + X)). St dV/dT = F with dX/dT = V gives
+St dV = -L'(X) dX whatever the sign of V, so with
+
+    L(X) = ln(1/X) (immersed),    L(X) = ln(1/X) - (1 - X)(3 - X)/2 (thin),    L(1) = 0,
+
+the approach from X = 1, V = -1 runs at |V| = 1 - L(X)/St and reaches X = sigma at
+|V_c| = 1 - L(sigma)/St (if St > L(sigma)); the impact sends it back at e_dry |V_c|, and the
+rebound against the same resistance runs at V = e_dry |V_c| - (L(sigma) - L(X))/St, leaving the
+layer (X = 1) at
+
+    e_n = V_exit = e_dry (1 - L(sigma)/St) - L(sigma)/St,    St_c = (1 + 1/e_dry) L(sigma).
+"""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+from scipy.integrate import quad
+
+from ehdfem.checks import InputError
+from ehdfem.collision import collide
+from ehdfem.config import RunConfig
+from ehdfem.film.asperities import GreenwoodTripp, gaussian_integral, stiffness
+from ehdfem.film.reynolds import radial_grid
+from ehdfem.inputs.scales import CollisionParameters, from_presets
+from ehdfem.motion.normal import solve_normal
+from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.outputs import histories, registry
+from ehdfem.solids.compliance import RigidSolids
+from ehdfem.solids.halfspace import HalfSpaceCompliance
+
+
+def rigid_loss(gap, layer):
+    """L(X): the velocity a rigid sphere loses between X and 1, times St (module docstring)."""
+    immersed = np.log(1.0 / gap)
+    return immersed if layer == "immersed" else immersed - 0.5 * (1 - gap) * (3 - gap)
+
+
+OUTER = {"thin": 1.05 * np.sqrt(2.0), "immersed": 30.0}
+
+
+@pytest.mark.serial
+@pytest.mark.parametrize("layer,St", [("thin", 10.0), ("immersed", 20.0)])
+def test_rigid_sphere_impact_matches_the_closed_form(layer, St):
+    """Rigid solids, sigma = 0.01, e_dry = 0.9, no suction limit, 200 nodes, rtol 1e-5: the
+    approach speed along the way and at the impact, the rebound speed along the way, e_n and the
+    impulse St (1 + e_dry)|V_c| match the closed form. Tolerances: 2e-3 on e_n and 1e-3 on
+    |V_c| (measured 1.5e-3 and 6e-4 thin, 3e-4 and 3e-4 immersed: the film's P1 force on the
+    grid), 2e-3/St... 5e-3/St on V(X) along the way as in tests/test_normal.py."""
+    sigma, e_dry = 0.01, 0.9
+    params = CollisionParameters(St=St, eps=1.0, layer=layer, roughness=sigma, e_dry=e_dry)
+    grid = radial_grid(200, np.sqrt(sigma), OUTER[layer])
+    result = solve_normal(params, RigidSolids(grid), IntegratorOptions(rtol=1e-5))
+    impact, hist = result.solid_impact, result.history
+    loss = rigid_loss(sigma, layer)
+    speed = 1 - loss / St
+    assert result.status == "rebound" and impact is not None
+    assert -impact.approach_velocity == pytest.approx(speed, rel=1e-3)
+    assert impact.normal_impulse == pytest.approx(St * (1 + e_dry) * speed, rel=1e-3)
+    assert hist.min_film[impact.index] == pytest.approx(sigma, rel=1e-4)
+    assert result.e_n == result.exit_velocity == pytest.approx(e_dry * speed - loss / St, rel=2e-3)
+    k = impact.index
+    approach = -hist.velocity[:k]
+    assert np.abs(approach - (1 - rigid_loss(hist.gap[:k], layer) / St)).max() < 5e-3 / St
+    rebound = e_dry * speed - (loss - rigid_loss(hist.gap[k:], layer)) / St
+    assert np.abs(hist.velocity[k:] - rebound).max() < 5e-3 / St
+    assert np.all(result.asperity_force == 0.0)
+    assert result.max_rebound_velocity == pytest.approx(e_dry * speed, rel=1e-3)
+
+
+@pytest.mark.serial
+def test_nearly_rigid_half_spaces_reach_sigma_at_the_rigid_speed():
+    """eps = 1e-9 (the elastic flattening gap eps^(2/5) = 2.5e-4 is far below sigma = 0.01),
+    default grid, rtol 1e-5: the half-spaces' collision meets the rigid closed form, |V_c|
+    within 1e-3 (measured 7e-4; 5e-3 at the default rtol, the approach's accumulated time-step
+    error) and e_n within 5e-3 (measured 4e-3, 5e-4 on 480 nodes: the grid's share)."""
+    St, sigma, e_dry = 10.0, 0.01, 0.9
+    params = CollisionParameters(St=St, eps=1e-9, roughness=sigma, e_dry=e_dry)
+    normal = collide(params, rtol=1e-5).normal
+    speed = 1 - rigid_loss(sigma, "thin") / St
+    assert -normal.solid_impact.approach_velocity == pytest.approx(speed, rel=1e-3)
+    exact = e_dry * speed - rigid_loss(sigma, "thin") / St
+    assert normal.e_n == pytest.approx(exact, rel=5e-3)
+
+
+@pytest.mark.serial
+def test_smooth_surfaces_are_unchanged():
+    """roughness = 0 (the default) ignores the asperity model: both give the same collision bit
+    for bit, with no asperity load, no impact and no asperity outputs in the summary (the
+    regression table guards the numbers themselves)."""
+    params = CollisionParameters(St=10.0, eps=1e-3)
+    results = [
+        collide(params, asperities=model, nodes=80) for model in ("impact", "greenwood-tripp")
+    ]
+    assert results[0].normal.e_n == results[1].normal.e_n
+    assert results[0].normal.energy_error == results[1].normal.energy_error
+    for result in results:
+        assert result.normal.asperity_force is None and result.normal.solid_impact is None
+        assert "asperity_contact" not in result.summary()
+
+
+def test_gaussian_integral_against_quadrature_and_the_standard_fit():
+    """F_n(t) in closed form (parabolic cylinder function) against the integral by quadrature
+    to 1e-10 for n = 3/2, 5/2, 7/2 and t in [-1, 4]; the fit 4.4086e-5 (4 - t)^6.804 within 11 %
+    for t in [0, 2] (its own accuracy: 10.7 % low at t = 0)."""
+    for order in (1.5, 2.5, 3.5):
+        for t in (-1.0, 0.0, 0.5, 1.0, 2.0, 3.0, 4.0):
+            exact = quad(integrand, t, np.inf, args=(t, order), epsabs=0.0, epsrel=1e-13)[0]
+            assert gaussian_integral(order, t) == pytest.approx(exact, rel=1e-10)
+    t = np.linspace(0.0, 2.0, 9)
+    fit = 4.4086e-5 * (4 - t) ** 6.804
+    assert np.abs(fit / gaussian_integral(2.5, t) - 1).max() < 0.11
+
+
+def integrand(s, t, order):
+    """(s - t)^n exp(-s^2/2) / sqrt(2 pi), the integrand of F_n(t)."""
+    return (s - t) ** order * np.exp(-0.5 * s**2) / np.sqrt(2 * np.pi)
+
+
+def test_greenwood_tripp_pressure_slope_and_energy():
+    """P_a = K F_{5/2}(H/sigma); its slope against central differences (1e-7) and the stored
+    energy against int_H^inf P_a dH by quadrature (1e-9); K from its formula."""
+    law = GreenwoodTripp(roughness=0.02, stiffness=3.0)
+    h = np.array([0.005, 0.02, 0.05, 0.09])
+    step = 1e-7
+    numeric = (law.pressure(h + step) - law.pressure(h - step)) / (2 * step)
+    assert np.allclose(law.slope(h), numeric, rtol=1e-7)
+    for thickness in h:
+        stored = quad(lambda x: float(law.pressure(x)), thickness, 0.12, epsrel=1e-12)[0]
+        assert float(law.energy(thickness)) == pytest.approx(stored, rel=1e-9)
+    expected = 128 * np.sqrt(2) / 15 * 0.04**2 * np.sqrt(1e-3) / (1e-3 * 0.1)
+    assert stiffness(0.04, 1e-3, 1e-3, 0.01) == pytest.approx(expected, rel=1e-14)
+
+
+def test_the_solids_carry_the_asperities_load():
+    """Half-space compliance on 60 nodes, a film whose undeformed thickness dips below sigma:
+    H solves H = base + C P_a(H) to 1e-12, and dH/dP, dH/dX (Woodbury) match central differences
+    of the solve (1e-6 of the largest entry; the differences' own error is O(step^2) and the
+    solve's tolerance over the step)."""
+    radii = radial_grid(60, 0.3, 1.5)
+    compliance = HalfSpaceCompliance(radii, 1e-3).matrix
+    law = GreenwoodTripp(roughness=0.01, stiffness=stiffness(0.04, 1e-3, 1e-3, 0.01) * 100)
+    base = -0.004 + 0.5 * radii**2 + 0.01
+    h = law.thickness(base, compliance)
+    assert np.abs(h - base - compliance @ law.pressure(h)).max() < 1e-12
+    loaded = law.loaded(h, compliance)
+    step = 1e-6
+    by_gap = (law.thickness(base + step, compliance) - law.thickness(base - step, compliance)) / (
+        2 * step
+    )
+    assert np.abs(loaded.by_gap - by_gap).max() < 1e-6 * np.abs(by_gap).max()
+    node, step = 3, 1e-3
+    push = compliance[:, node] * step  # dP at one node moves the base by C e_node dP
+    by_pressure = (
+        law.thickness(base + push, compliance) - law.thickness(base - push, compliance)
+    ) / (2 * step)
+    assert np.abs(loaded.by_pressure[:, node] - by_pressure).max() < 1e-6 * by_pressure.max()
+    assert np.abs(loaded.by_gap - 1).max() > 0.1  # the asperities' load matters here
+
+
+@pytest.mark.serial
+def test_energy_balance_of_the_impact_model():
+    """eps = 1e-6, thin, St = 10, sigma = 0.01, no suction limit: the impact's loss
+    (1 - e_dry^2) St V_c^2 / 2 is in the dissipation and the balance closes to the time steps'
+    error, below 3e-4 at rtol 2e-6 (measured 1.2e-4; 5e-3 at the default rtol, already before
+    the impact: the stiff approach's own error)."""
+    params = CollisionParameters(St=10.0, eps=1e-6, roughness=0.01, e_dry=0.9)
+    normal = collide(params, rtol=2e-6, nodes=120).normal
+    assert normal.solid_impact is not None and normal.rebound
+    assert normal.energy_error < 3e-4
+
+
+@pytest.mark.serial
+def test_energy_balance_of_the_greenwood_tripp_model():
+    """eps = 1e-3, thin, St = 10, sigma = 0.03, no suction limit, 120 nodes, and an asperity
+    population five times denser than the default (eta beta sigma = 0.2) so that their share of
+    the largest load is visible (2.5 %; 0.1 % at the default): their stored energy is in the
+    elastic energy, the motion stays continuous and the balance closes below 3e-4 at rtol 2e-6
+    (9e-4 at the default rtol, as for smooth surfaces); the histories file carries the
+    asperities' load."""
+    params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2)
+    result = collide(params, asperities="greenwood-tripp", rtol=2e-6, nodes=120)
+    normal, summary = result.normal, result.summary()
+    assert normal.solid_impact is None and normal.asperity_force.max() > 0
+    assert summary["asperity_contact"] and summary["max_asperity_share"] > 0.01
+    assert normal.energy_error < 3e-4
+    assert np.array_equal(histories.arrays(result)["asperity_force"], normal.asperity_force)
+
+
+def test_greenwood_tripp_with_fe_solids_on_every_rank():
+    """The mixed model on the FE solids (delta = 0.01, 80 nodes, thin, St = 10, eps = 1e-3,
+    sigma = 0.03): the FE compliance carries the asperities' load as the half-space's does, so
+    e_n agrees with the half-space model within 2 % (as smooth FE and half-space collisions do
+    at small delta, tests/test_fem.py) and the energy balance closes below 2e-3 (measured
+    7e-4); the impact model on the FE solids (eps = 1e-6, sigma = 0.01) closes its balance
+    below 6e-3 at the default rtol (measured 5.3e-3, the stiff approach's time-step error, as
+    on half-spaces); under mpirun -n 2 every rank gets the same results bit for bit."""
+    params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, cavitation="none")
+    fem = collide(params, model="fem", asperities="greenwood-tripp", nodes=80).normal
+    half_space = collide(params, asperities="greenwood-tripp", nodes=80).normal
+    assert fem.asperity_force.max() > 0 and fem.rebound
+    assert fem.e_n == pytest.approx(half_space.e_n, rel=0.02)
+    assert fem.energy_error < 2e-3
+    impact = collide(replace(params, eps=1e-6, roughness=0.01), model="fem", nodes=80).normal
+    assert impact.solid_impact is not None and impact.energy_error < 6e-3
+    values = (fem.e_n, fem.min_film_thickness, float(fem.asperity_force.max()), impact.e_n)
+    assert all(other == values for other in MPI.COMM_WORLD.allgather(values))
+
+
+def test_physical_roughness_combines_the_two_surfaces():
+    """sigma = sqrt(s1^2 + s2^2) / x0 in the scaled inputs; a combined roughness as thick as the
+    layer is refused, naming the parameter; the asperity model is a run setting; a steel ball
+    of Gondret's roughness (1e-4 a) on glass at 1 m/s ends its approach on the asperities, and
+    its SI outputs are the scaled ones times their units."""
+    physical = from_presets(**physical_inputs(), sphere_roughness=3e-6, wall_roughness=4e-6)
+    assert physical.dimensionless().roughness == pytest.approx(5e-6 / 5e-4, rel=1e-14)
+    with pytest.raises(InputError, match="sphere_roughness"):
+        from_presets(**{**physical_inputs(), "sphere_roughness": 5e-4})
+    with pytest.raises(InputError, match="roughness"):
+        CollisionParameters(St=1.0, eps=1e-3, roughness=1.0)
+    with pytest.raises(InputError, match="asperities"):
+        RunConfig(asperities="plastic")
+    assert RunConfig.from_settings(asperities="greenwood-tripp").settings()["asperities"] == (
+        "greenwood-tripp"
+    )
+    assert {"asperity_contact", "solid_impact_velocity"} <= set(registry.names())
+    inputs = {**physical_inputs(), "wall": "glass", "speed": 1.0, "e_dry": 0.97}
+    rough = collide(from_presets(**inputs, sphere_roughness=6.35e-7), nodes=120)  # 1e-4 a
+    summary, scales = rough.summary(), rough.physical.scales()
+    assert rough.normal.solid_impact is not None
+    assert summary["si"]["solid_impact_speed_m_s"] == pytest.approx(
+        summary["solid_impact_velocity"] * scales.velocity, rel=1e-14
+    )
+    assert summary["si"]["asperity_touch_radius_m"] == pytest.approx(
+        summary["asperity_touch_radius"] * scales.radius, rel=1e-14
+    )
+
+
+def physical_inputs() -> dict:
+    """A steel ball in 80 % glycerol (the issue's oblique example), SI."""
+    return {
+        "radius": 6.35e-3,
+        "sphere": "steel",
+        "wall": "steel",
+        "liquid": "glycerol_80",
+        "speed": 0.3,
+        "layer_thickness": 5e-4,
+    }

@@ -2,24 +2,23 @@
 
 For each layer-to-radius ratio delta and dry Hertz compression c = (13.88 eps St)^(2/5) (gap
 units; St = 20, eps from c), thin layer, P_cav = -2, 30 degrees, Couette tangential model, 120
-film nodes, rtol 1e-5 (film thickness controlled), five models on the same film grid, each one
-step from the theory:
-
-- theory:    half-space, paraboloid gap, pressure only (the asymptotic theory);
-- geometry:  half-space, exact sphere gap;
-- shear:     half-space, with the squeeze-shear traction (closed form);
-- finite:    FE solids, paraboloid gap, pressure only (finite-size elasticity);
-- full:      FE solids, exact gap and shear traction (the full model).
+film nodes, rtol 1e-5 (film thickness controlled), the five models of
+:mod:`ehdfem.study.corrections` on the same film grid, each one change from a neighbour: the
+theory (half-space, paraboloid, pressure only), + the true sphere gap (geometry), + the
+tangential surface effects (the squeeze shear's opening and the faces' radial velocity in the
+flux), both on half-spaces, and the full model (FE solids with both).
 
 Two material pairs: identical solids (nu = 0.3) and a hard sphere on a soft wall (E ratio 50,
-nu 0.2 on 0.35). The relative error of the theory in e_n, the thinnest film, the largest
-compression and e_t is (theory - full) / full; each cause's share is (variant - theory) /
-full, and what is left is their interaction. Points where the film would reach beyond 0.7 of
-the sphere radius (the FE solids' limit) are skipped.
+nu 0.2 on 0.35). The relative error of the theory in each output is (theory - full) / full;
+the causes' shares (geometry, surface effects, finite size of the solids, interaction) are
+relative to the theory and add up to (full - theory) / theory. Points where the film would
+reach beyond 0.7 of the sphere radius (the FE solids' limit) are skipped: with a thin layer
+the film's grid ends at 1.05 sqrt(2 (1 + c)) sqrt(delta) a, so nothing above delta = 0.22 fits.
 
 Writes studies/results/validity_map.csv, docs/figures/validity_map.png and the tables of
 docs/fem.md's study section (printed). Resumable: finished points are kept in the CSV.
-Run: .venv/bin/python studies/validity_map.py [--plot-only]   (about 20 minutes on 2 cores)
+Run: nice -n 10 .venv/bin/python studies/validity_map.py [--plot-only]   (about 15 minutes
+on 2 cores)
 """
 
 import math
@@ -32,83 +31,57 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem import (  # noqa: E402
-    CollisionParameters,
-    IntegratorOptions,
-    collide,
-    elasticity,
-    film_radii,
-)
-from ehdfem.config import RunConfig
-from ehdfem.solids.fe.solids import FECompliance  # noqa: E402
-from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
+from ehdfem import CollisionParameters, film_radii  # noqa: E402
+from ehdfem.config import RunConfig  # noqa: E402
+from ehdfem.study.corrections import CAUSES, OUTPUTS, VARIANTS, run_variants  # noqa: E402
 from ehdfem.study.sweep import ResultTable  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "validity_map.csv"
 FIGURE = ROOT / "docs" / "figures" / "validity_map.png"
-DELTAS = (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2)
+DELTAS = (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.1, 0.2, 0.5)
 COMPRESSIONS = (0.03, 0.1, 0.3, 1.0, 3.0)
 MATERIALS = {
     "identical": ((1.0, 0.3), (1.0, 0.3)),
     "hard sphere, soft wall": ((50.0, 0.2), (1.0, 0.35)),
 }
-VARIANTS = ("theory", "geometry", "shear", "finite", "full")
-OUTPUTS = ("e_n", "min_film_thickness", "max_compression", "e_t")
-ST, NODES, FE_LIMIT = 20.0, 120, 0.7
-OPTIONS = IntegratorOptions(rtol=1e-5)
+PLOTTED = ("e_n", "min_film_thickness", "max_compression", "e_t")
+ST, NODES, FE_LIMIT = 20.0, (120, 240), 0.7
+CONFIG = RunConfig.from_settings(rtol=1e-5)
 
 
-def parameters(delta, compression, gap):
+def parameters(delta, compression):
     eps = compression**2.5 / (90 * math.pi**2 / 64 * ST)
-    return CollisionParameters(
-        St=ST, eps=eps, delta=delta, layer="thin", p_cav=-2.0, angle=30.0, gap=gap
-    )
+    return CollisionParameters(St=ST, eps=eps, delta=delta, layer="thin", p_cav=-2.0, angle=30.0)
 
 
 def feasible(delta, compression):
-    radii = film_radii(parameters(delta, compression, None), NODES)
+    radii = film_radii(parameters(delta, compression), NODES[-1])
     return radii[-1] * math.sqrt(delta) < FE_LIMIT
 
 
-def run_point(delta, compression, materials):
-    """The five models at one point, on one film grid (dicts of the outputs)."""
-    base = parameters(delta, compression, "paraboloid")
-    radii = film_radii(base, NODES)
-    eps = base.eps
-    full = elasticity(base, radii, RunConfig(model="fem"), materials=MATERIALS[materials])
-    finite = FECompliance(full.solids, full.unit_matrix, eps)
-    half_space = HalfSpaceCompliance(radii, eps)
-    sheared = HalfSpaceCompliance(radii, eps, (delta, MATERIALS[materials]))
-    models = {
-        "theory": (half_space, "paraboloid"),
-        "geometry": (half_space, "exact"),
-        "shear": (sheared, "paraboloid"),
-        "finite": (finite, "paraboloid"),
-        "full": (full, "exact"),
-    }
-    out = {}
-    for name, (compliance, gap) in models.items():
-        summary = collide(parameters(delta, compression, gap), compliance=compliance).summary()
-        out[name] = {k: summary[k] for k in OUTPUTS}
-    return out
-
-
 def compute():
-    table = ResultTable(TABLE, ("materials", "delta", "compression", "variant"))
-    for materials in MATERIALS:
-        for delta in DELTAS:
-            for compression in COMPRESSIONS:
-                key = dict(materials=materials, delta=delta, compression=compression)
-                if table.get(**key, variant="full") is not None:
-                    continue
-                if not feasible(delta, compression):
-                    table.add({**key, "variant": "full", "skipped": "film beyond 0.7 a"})
-                    continue
-                print(f"{materials}: delta = {delta:g}, c = {compression:g}", flush=True)
-                for variant, values in run_point(delta, compression, materials).items():
-                    table.add({**key, "variant": variant, "skipped": "", **values})
+    table = ResultTable(TABLE, ("nodes", "materials", "delta", "compression", "variant"))
+    for nodes in NODES:
+        for materials in MATERIALS:
+            for delta in DELTAS:
+                for compression in COMPRESSIONS:
+                    run_point(table, nodes, materials, delta, compression)
     return table.rows
+
+
+def run_point(table, nodes, materials, delta, compression):
+    """The five models at one point on ``nodes`` film nodes, into ``table`` (skipped: done)."""
+    key = dict(nodes=nodes, materials=materials, delta=delta, compression=compression)
+    if table.get(**key, variant="full") is not None:
+        return
+    if not feasible(delta, compression):
+        table.add({**key, "variant": "full", "skipped": "film beyond 0.7 a"})
+        return
+    print(f"{nodes} nodes, {materials}: delta = {delta:g}, c = {compression:g}", flush=True)
+    found = run_variants(parameters(delta, compression), nodes, MATERIALS[materials], CONFIG)
+    for variant, values in found.items():
+        table.add({**key, "variant": variant, "skipped": "", **values})
 
 
 def errors(rows):

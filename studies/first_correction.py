@@ -1,0 +1,155 @@
+"""The first correction to the half-space theory: each cause's share / sqrt(delta) as delta -> 0.
+
+The five models of :mod:`ehdfem.study.corrections` (theory, + true gap, + tangential surface
+effects, both on half-spaces, and the full FE model) at St = 20, 30 degrees, identical solids
+(nu = 0.3), Couette tangential model, rtol 1e-6, for four cases: a thin layer with eps = 1e-3
+and 1e-2 without cavitation, eps = 1e-3 with P_cav = -2, and an immersed sphere with eps = 1e-3
+without cavitation. Each cause's share (relative to the theory's output) is computed on 120 and
+240 film nodes and extrapolated to the continuum by Richardson's rule for order 2,
+s = (4 s_240 - s_120) / 3 (the film, the half-space kernel and the FE read-out converge at
+order 2; at a common grid the collocated half-space kernel and the hat-averaged FE read-out
+differ by O(h^2), which is 1 % of the thinnest film at 120 nodes). Then
+share / sqrt(delta) = c1 + c2 sqrt(delta) is fitted by least squares
+(:func:`ehdfem.study.corrections.first_order_fit`): c1 is the first-order constant.
+
+An immersed film reaches R = 30 sqrt(a x0), beyond the FE solids' 0.7 a above delta = 5e-4:
+its deltas are 1e-5 ... 3e-4. It has no true-gap variant (geometry share zero).
+
+Writes studies/results/first_correction.csv (the shares per grid; resumable),
+studies/results/first_correction_fit.csv (c1, c2 and their standard errors per case, cause and
+output) and docs/figures/first_correction.png.
+Run: nice -n 10 .venv/bin/python studies/first_correction.py [--plot-only]   (about 15
+minutes on 2 cores)
+"""
+
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ehdfem import CollisionParameters  # noqa: E402
+from ehdfem.config import RunConfig  # noqa: E402
+from ehdfem.study.corrections import (  # noqa: E402
+    CAUSES,
+    OUTPUTS,
+    cause_shares,
+    first_order_fit,
+    run_variants,
+)
+from ehdfem.study.sweep import ResultTable, write_csv  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+TABLE = ROOT / "studies" / "results" / "first_correction.csv"
+FIT = ROOT / "studies" / "results" / "first_correction_fit.csv"
+FIGURE = ROOT / "docs" / "figures" / "first_correction.png"
+THIN_DELTAS = (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.02, 0.05)
+IMMERSED_DELTAS = (1e-5, 3e-5, 1e-4, 3e-4)
+CASES = {
+    "thin, eps 1e-3": dict(eps=1e-3, layer="thin"),
+    "thin, eps 1e-2": dict(eps=1e-2, layer="thin"),
+    "thin, eps 1e-3, P_cav -2": dict(eps=1e-3, layer="thin", p_cav=-2.0),
+    "immersed, eps 1e-3": dict(eps=1e-3, layer="immersed"),
+}
+NODES = (120, 240)
+IDENTICAL = ((1.0, 0.3), (1.0, 0.3))
+CONFIG = RunConfig.from_settings(rtol=1e-6)
+
+
+def deltas(case):
+    return THIN_DELTAS if CASES[case]["layer"] == "thin" else IMMERSED_DELTAS
+
+
+def compute():
+    table = ResultTable(TABLE, ("case", "delta", "nodes", "cause"))
+    for case, inputs in CASES.items():
+        for delta in deltas(case):
+            for nodes in NODES:
+                if table.get(case=case, delta=delta, nodes=nodes, cause="total") is not None:
+                    continue
+                print(f"{case}: delta = {delta:g}, {nodes} nodes", flush=True)
+                params = CollisionParameters(St=20.0, delta=delta, angle=30.0, **inputs)
+                shares = cause_shares(run_variants(params, nodes, IDENTICAL, CONFIG))
+                for cause, values in shares.items():
+                    table.add(dict(case=case, delta=delta, nodes=nodes, cause=cause, **values))
+    return table.rows
+
+
+def extrapolated(rows):
+    """{(case, cause, output): (deltas, shares)}: Richardson's continuum shares (order 2)."""
+    by_key = {}
+    for row in rows:
+        for output in OUTPUTS:
+            key = (row["case"], row["cause"], output, float(row["delta"]))
+            by_key.setdefault(key, {})[int(row["nodes"])] = float(row[output])
+    out = {}
+    for (case, cause, output, delta), grids in sorted(by_key.items()):
+        if set(NODES) <= set(grids):
+            coarse, fine = (grids[n] for n in NODES)
+            series = out.setdefault((case, cause, output), ([], []))
+            series[0].append(delta)
+            series[1].append((4 * fine - coarse) / 3)
+    return out
+
+
+def fits(series):
+    """Rows of c1, c2 and their standard errors for each (case, cause, output)."""
+    rows = []
+    for (case, cause, output), (ds, shares) in series.items():
+        if cause == "geometry" and CASES[case]["layer"] != "thin":
+            continue
+        c1, c2, e1, e2 = first_order_fit(ds, shares)
+        rows.append(
+            dict(case=case, cause=cause, output=output, c1=c1, c1_error=e1, c2=c2, c2_error=e2)
+        )
+    return rows
+
+
+def plot(series):
+    """share / sqrt(delta) against delta: a column per output, a row per cause."""
+    shown = ("e_n", "min_film_thickness", "max_force", "contact_time", "max_compression")
+    causes = (*CAUSES[:3], "total")
+    fig, axes = plt.subplots(len(causes), len(shown), figsize=(17, 11), sharex=True)
+    for i, cause in enumerate(causes):
+        for j, output in enumerate(shown):
+            ax = axes[i, j]
+            for k, case in enumerate(CASES):
+                if (case, cause, output) in series:
+                    ds, shares = series[(case, cause, output)]
+                    quotient = np.asarray(shares) / np.sqrt(ds)
+                    ax.semilogx(ds, quotient, f"C{k}o-", ms=3, label=case)
+            ax.axhline(0.0, color="k", lw=0.5)
+            ax.set_title(f"{cause}: {output}", fontsize=9)
+            ax.grid(alpha=0.3, which="both")
+            if i == len(causes) - 1:
+                ax.set_xlabel("delta = x0 / a")
+    axes[0, 0].set_ylabel("share / sqrt(delta)")
+    axes[0, 0].legend(fontsize=7)
+    fig.suptitle(
+        "First correction to the half-space theory: (model - its neighbour) / theory / "
+        "sqrt(delta), St = 20, identical solids, continuum (Richardson 120/240 nodes)"
+    )
+    fig.tight_layout()
+    FIGURE.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(FIGURE, dpi=100)
+
+
+def main():
+    rows = ResultTable(TABLE, ()).rows if "--plot-only" in sys.argv else compute()
+    series = extrapolated(rows)
+    found = fits(series)
+    write_csv(FIT, found)
+    plot(series)
+    for row in found:
+        print(
+            f"{row['case']:26s} {row['cause']:12s} {row['output']:20s} "
+            f"c1 = {row['c1']:+.4f} +- {row['c1_error']:.4f}   c2 = {row['c2']:+.3f}"
+        )
+    print(f"wrote {TABLE}, {FIT} and {FIGURE}")
+
+
+if __name__ == "__main__":
+    main()

@@ -15,6 +15,12 @@ share / sqrt(delta) = c1 + c2 sqrt(delta) is fitted by least squares
 An immersed film reaches R = 30 sqrt(a x0), beyond the FE solids' 0.7 a above delta = 5e-4:
 its deltas are 1e-5 ... 3e-4. It has no true-gap variant (geometry share zero).
 
+The surface effects are two terms switched together: the squeeze shear's gap opening and the
+liquid the faces' radial velocity carries. Their first-order shares add up (each is linear in
+the perturbation); :func:`surface_split` runs each alone on half-spaces at delta = 1e-4 (where
+the quotient is its limit within O(sqrt(delta)) = 1 %) and writes
+studies/results/first_correction_surface.csv.
+
 Writes studies/results/first_correction.csv (the shares per grid; resumable),
 studies/results/first_correction_fit.csv (c1, c2 and their standard errors per case, cause and
 output) and docs/figures/first_correction.png.
@@ -22,6 +28,7 @@ Run: nice -n 10 .venv/bin/python studies/first_correction.py [--plot-only]   (ab
 minutes on 2 cores)
 """
 
+import math
 import sys
 from pathlib import Path
 
@@ -32,19 +39,27 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem import CollisionParameters  # noqa: E402
+from ehdfem.collision import collide, film_radii  # noqa: E402
 from ehdfem.config import RunConfig  # noqa: E402
+from ehdfem.solids.compliance import LinearCompliance  # noqa: E402
+from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
 from ehdfem.study.corrections import (  # noqa: E402
     CAUSES,
     OUTPUTS,
     cause_shares,
     first_order_fit,
     run_variants,
+    variant_parameters,
 )
 from ehdfem.study.sweep import ResultTable, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "first_correction.csv"
 FIT = ROOT / "studies" / "results" / "first_correction_fit.csv"
+SPLIT = ROOT / "studies" / "results" / "first_correction_surface.csv"
+SPLIT_DELTA = 1e-4
+EFFECTS = ("opening", "velocity")
+NORMAL = OUTPUTS[:5]  # the normal motion's outputs
 FIGURE = ROOT / "docs" / "figures" / "first_correction.png"
 THIN_DELTAS = (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.02, 0.05)
 IMMERSED_DELTAS = (1e-5, 3e-5, 1e-4, 3e-4)
@@ -76,6 +91,52 @@ def compute():
                 for cause, values in shares.items():
                     table.add(dict(case=case, delta=delta, nodes=nodes, cause=cause, **values))
     return table.rows
+
+
+class OneSurfaceEffect(LinearCompliance):
+    """Identical half-spaces (scale: eps times the kernel) with one of the two tangential
+    surface effects: "opening" (the squeeze shear's gap opening) or "velocity" (the faces'
+    radial velocity in the film's flux)."""
+
+    model = "halfspace"
+
+    def __init__(self, radii, eps, delta, effect):
+        both = HalfSpaceCompliance(radii, eps, (delta, IDENTICAL), IDENTICAL)
+        opening = both.unit_shear if effect == "opening" else None
+        velocity = both.unit_surface_radial if effect == "velocity" else None
+        super().__init__(both.radii, both.unit_matrix, eps, opening, None, velocity)
+
+    def factor(self, eps):
+        return eps
+
+
+def surface_split():
+    """Rows per case: the shares / sqrt(delta) of the opening alone, the velocity alone and
+    both (relative to the theory, Richardson 120/240 nodes) at delta = SPLIT_DELTA."""
+    rows = []
+    for case, inputs in CASES.items():
+        params = CollisionParameters(St=20.0, delta=SPLIT_DELTA, angle=30.0, **inputs)
+        params = variant_parameters(params, "surface")
+        per_grid = []
+        for nodes in NODES:
+            radii = film_radii(params, nodes)
+            models = {e: OneSurfaceEffect(radii, params.eps, SPLIT_DELTA, e) for e in EFFECTS}
+            models["theory"] = HalfSpaceCompliance(radii, params.eps)
+            models["both"] = HalfSpaceCompliance(radii, params.eps, (SPLIT_DELTA, IDENTICAL))
+            found = {k: collide(params, CONFIG, compliance=m).summary() for k, m in models.items()}
+            theory = found.pop("theory")
+            per_grid.append(
+                {
+                    effect: {k: (v[k] / theory[k] - 1) / math.sqrt(SPLIT_DELTA) for k in NORMAL}
+                    for effect, v in found.items()
+                }
+            )
+        coarse, fine = per_grid
+        for effect in fine:
+            richardson = {k: (4 * fine[effect][k] - coarse[effect][k]) / 3 for k in NORMAL}
+            rows.append({"case": case, "effect": effect, **richardson})
+        print(case, rows[-3:], flush=True)
+    return rows
 
 
 def extrapolated(rows):
@@ -143,12 +204,14 @@ def main():
     found = fits(series)
     write_csv(FIT, found)
     plot(series)
+    if "--plot-only" not in sys.argv or not SPLIT.exists():
+        write_csv(SPLIT, surface_split())
     for row in found:
         print(
             f"{row['case']:26s} {row['cause']:12s} {row['output']:20s} "
             f"c1 = {row['c1']:+.4f} +- {row['c1_error']:.4f}   c2 = {row['c2']:+.3f}"
         )
-    print(f"wrote {TABLE}, {FIT} and {FIGURE}")
+    print(f"wrote {TABLE}, {FIT}, {SPLIT} and {FIGURE}")
 
 
 if __name__ == "__main__":

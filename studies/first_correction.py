@@ -2,10 +2,11 @@
 
 The five models of :mod:`ehdfem.study.corrections` (theory, + true gap, + tangential surface
 effects, both on half-spaces, and the full FE model) at St = 20, 30 degrees, identical solids
-(nu = 0.3), Couette tangential model, rtol 1e-6, for four cases: a thin layer with eps = 1e-3
-and 1e-2 without cavitation, eps = 1e-3 with P_cav = -2, and an immersed sphere with eps = 1e-3
-without cavitation. Each cause's share (relative to the theory's output) is computed on 120 and
-240 film nodes and extrapolated to the continuum by Richardson's rule for order 2,
+(nu = 0.3), Couette tangential model, rtol 1e-6, for four cases (``CASES``): a thin layer with
+eps = 1e-3 (delta = 1e-4 ... 0.05) and 1e-2 without cavitation and eps = 1e-3 with P_cav = -2
+(delta = 1e-4, 1e-3, 0.01, 0.05), and an immersed sphere with eps = 1e-3 without cavitation.
+Each cause's share (relative to the theory's output) is computed on 120 and 240 film nodes
+and extrapolated to the continuum by Richardson's rule for order 2,
 s = (4 s_240 - s_120) / 3 (the film, the half-space kernel and the FE read-out converge at
 order 2; at a common grid the collocated half-space kernel and the hat-averaged FE read-out
 differ by O(h^2), which is 1 % of the thinnest film at 120 nodes). Then
@@ -13,7 +14,7 @@ share / sqrt(delta) = c1 + c2 sqrt(delta) is fitted by least squares
 (:func:`ehdfem.study.corrections.first_order_fit`): c1 is the first-order constant.
 
 An immersed film reaches R = 30 sqrt(a x0), beyond the FE solids' 0.7 a above delta = 5e-4:
-its deltas are 1e-5 ... 3e-4. It has no true-gap variant (geometry share zero).
+its deltas are 1e-5, 1e-4 and 3e-4. It has no true-gap variant (geometry share zero).
 
 The surface effects are two terms switched together: the squeeze shear's gap opening and the
 liquid the faces' radial velocity carries. Their first-order shares add up (each is linear in
@@ -61,27 +62,24 @@ SPLIT_DELTA = 1e-4
 EFFECTS = ("opening", "velocity")
 NORMAL = OUTPUTS[:5]  # the normal motion's outputs
 FIGURE = ROOT / "docs" / "figures" / "first_correction.png"
-THIN_DELTAS = (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.02, 0.05)
-IMMERSED_DELTAS = (1e-5, 3e-5, 1e-4, 3e-4)
-CASES = {
-    "thin, eps 1e-3": dict(eps=1e-3, layer="thin"),
-    "thin, eps 1e-2": dict(eps=1e-2, layer="thin"),
-    "thin, eps 1e-3, P_cav -2": dict(eps=1e-3, layer="thin", p_cav=-2.0),
-    "immersed, eps 1e-3": dict(eps=1e-3, layer="immersed"),
+CASES = {  # the inputs and the deltas of each case
+    "thin, eps 1e-3": (dict(eps=1e-3, layer="thin"), (1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.05)),
+    "thin, eps 1e-2": (dict(eps=1e-2, layer="thin"), (1e-4, 1e-3, 0.01, 0.05)),
+    "thin, eps 1e-3, P_cav -2": (
+        dict(eps=1e-3, layer="thin", p_cav=-2.0),
+        (1e-4, 1e-3, 0.01, 0.05),
+    ),
+    "immersed, eps 1e-3": (dict(eps=1e-3, layer="immersed"), (1e-5, 1e-4, 3e-4)),
 }
 NODES = (120, 240)
 IDENTICAL = ((1.0, 0.3), (1.0, 0.3))
 CONFIG = RunConfig.from_settings(rtol=1e-6)
 
 
-def deltas(case):
-    return THIN_DELTAS if CASES[case]["layer"] == "thin" else IMMERSED_DELTAS
-
-
 def compute():
     table = ResultTable(TABLE, ("case", "delta", "nodes", "cause"))
-    for case, inputs in CASES.items():
-        for delta in deltas(case):
+    for case, (inputs, deltas) in CASES.items():
+        for delta in deltas:
             for nodes in NODES:
                 if table.get(case=case, delta=delta, nodes=nodes, cause="total") is not None:
                     continue
@@ -114,7 +112,7 @@ def surface_split():
     """Rows per case: the shares / sqrt(delta) of the opening alone, the velocity alone and
     both (relative to the theory, Richardson 120/240 nodes) at delta = SPLIT_DELTA."""
     rows = []
-    for case, inputs in CASES.items():
+    for case, (inputs, _) in CASES.items():
         params = CollisionParameters(St=20.0, delta=SPLIT_DELTA, angle=30.0, **inputs)
         params = variant_parameters(params, "surface")
         per_grid = []
@@ -160,7 +158,7 @@ def fits(series):
     """Rows of c1, c2 and their standard errors for each (case, cause, output)."""
     rows = []
     for (case, cause, output), (ds, shares) in series.items():
-        if cause == "geometry" and CASES[case]["layer"] != "thin":
+        if cause == "geometry" and CASES[case][0]["layer"] != "thin":
             continue
         c1, c2, e1, e2 = first_order_fit(ds, shares)
         rows.append(

@@ -87,53 +87,49 @@ def compute():
     return table.rows
 
 
-SHOWN = {  # output: (label, SI factor of the scales, SI unit shown, digits)
-    "e_n": ("e_n", lambda s: 1.0, "", 4),
-    "min_film_thickness": ("H_min", lambda s: s.gap * 1e6, "um", 3),
-    "max_force": ("F_max", lambda s: s.force, "N", 3),
-    "contact_time": ("t_c", lambda s: s.time * 1e6, "us", 3),
-    "e_t": ("e_t", lambda s: 1.0, "", 4),
+SHOWN = {  # output: (label, SI factor of the scales, SI unit shown)
+    "e_n": ("e_n", lambda s: 1.0, ""),
+    "min_film_thickness": ("H_min", lambda s: s.gap * 1e9, "nm"),
+    "max_force": ("F_max", lambda s: s.force, "N"),
+    "contact_time": ("t_c", lambda s: s.time * 1e6, "us"),
+    "e_t": ("e_t", lambda s: 1.0, ""),
 }
 
 
 def markdown(rows):
-    """The docs' table: per collision theory -> full (SI), the difference (%) and the cause
-    with the largest share of it."""
+    """The docs' table: per collision each output of the theory (SI) with the full model's
+    difference (full - theory) / theory in %, and the cause with the largest share of the
+    largest difference."""
     found = {}
     for row in rows:
         key = (row["sphere"], row["liquid"], float(row["layer"]))
-        found.setdefault(key, {})[row["variant"]] = {k: float(row[k]) for k in OUTPUTS}
-        found[key]["groups"] = row
-    head = "| sphere | liquid | x0/a | St | eps | " + " | ".join(
-        f"{label} {unit}".strip() for label, _, unit, _ in SHOWN.values()
-    )
-    lines = [head + " |", "|" + "---|" * (5 + len(SHOWN))]
+        found.setdefault(key, {"groups": row})[row["variant"]] = {k: float(row[k]) for k in OUTPUTS}
+    labels = [f"{label} {unit}".strip() for label, _, unit in SHOWN.values()]
+    head = "| sphere | liquid | x0/a | St | eps | " + " | ".join(labels) + " | dominant cause |"
+    lines = [head, "|" + "---|" * (6 + len(SHOWN))]
     for (sphere, liquid, layer), models in found.items():
-        groups = models["groups"]
         scales = physical(sphere, liquid, layer).scales()
-        cells = [
-            sphere,
-            liquid.replace("_", " "),
-            f"{layer:g}",
-            f"{float(groups['St']):.0f}",
-            f"{float(groups['eps']):.1e}",
-        ]
+        groups = models["groups"]
+        cells = [sphere, liquid.replace("_", " "), f"{layer:g}", f"{float(groups['St']):.0f}",
+                 f"{float(groups['eps']):.1e}"]  # fmt: skip
         shares = cause_shares(models) if set(VARIANTS) <= set(models) else None
-        for key, (_, factor, _, digits) in SHOWN.items():
-            cells.append(_cell(models, shares, key, factor(scales), digits))
+        for key, (_, factor, _) in SHOWN.items():
+            theory = f"{models['theory'][key] * factor(scales):.4g}"
+            total = "" if shares is None else f" ({100 * shares['total'][key]:+.2f} %)"
+            cells.append(theory + total)
+        cells.append(_dominant(shares))
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
-def _cell(models, shares, key, factor, digits):
-    """theory -> full (difference %, dominant cause), or the theory alone."""
-    theory = models["theory"][key] * factor
+def _dominant(shares):
+    """'cause (output)' with the largest share of the output the theory misses most, or that
+    the FE solids cannot hold the film."""
     if shares is None:
-        return f"{theory:.{digits}g} (theory only)"
-    full = models["full"][key] * factor
-    total = 100 * shares["total"][key]
-    cause = max(CAUSES, key=lambda c: abs(shares[c][key]))
-    return f"{theory:.{digits}g} -> {full:.{digits}g} ({total:+.1f} %, {cause})"
+        return "film beyond the FE solids: theory only"
+    output = max(SHOWN, key=lambda k: abs(shares["total"][k]))
+    cause = max(CAUSES, key=lambda c: abs(shares[c][output]))
+    return f"{cause} ({SHOWN[output][0]})"
 
 
 def main():

@@ -196,6 +196,30 @@ def plot(series):
     fig.savefig(FIGURE, dpi=100)
 
 
+def markdown(found, split):
+    """The docs' tables: c1 +- its standard error per case and cause (rows) and output
+    (columns; geometry: c2, the order-delta constant, since its c1 is nil), and the split of
+    the surface effects."""
+    lines = ["| case | cause | " + " | ".join(NORMAL) + " | e_t |", "|---" * 8 + "|"]
+    table = {(r["case"], r["cause"], r["output"]): r for r in found}
+    for case in CASES:
+        for cause in (*CAUSES[:3], "total"):
+            if (case, cause, "e_n") not in table:
+                continue
+            cells = []
+            for output in OUTPUTS:
+                row = table[(case, cause, output)]
+                which = "c2" if cause == "geometry" else "c1"
+                cells.append(f"{float(row[which]):+.4f} ± {float(row[which + '_error']):.4f}")
+            label = "geometry (c2: share / delta)" if cause == "geometry" else cause
+            lines.append(f"| {case} | {label} | " + " | ".join(cells) + " |")
+    lines += ["", "| case | effect | " + " | ".join(NORMAL) + " |", "|---" * 7 + "|"]
+    for row in split:
+        cells = [f"{float(row[k]):+.4f}" for k in NORMAL]
+        lines.append(f"| {row['case']} | {row['effect']} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def main():
     rows = ResultTable(TABLE, ()).rows if "--plot-only" in sys.argv else compute()
     series = extrapolated(rows)
@@ -204,11 +228,7 @@ def main():
     plot(series)
     if "--plot-only" not in sys.argv or not SPLIT.exists():
         write_csv(SPLIT, surface_split())
-    for row in found:
-        print(
-            f"{row['case']:26s} {row['cause']:12s} {row['output']:20s} "
-            f"c1 = {row['c1']:+.4f} +- {row['c1_error']:.4f}   c2 = {row['c2']:+.3f}"
-        )
+    print(markdown(found, ResultTable(SPLIT, ()).rows))
     print(f"wrote {TABLE}, {FIT}, {SPLIT} and {FIGURE}")
 
 

@@ -185,6 +185,12 @@ def tables(found):
                         if m == materials and d == delta]  # fmt: skip
                 cells.append(f"{100 * max(errs):.2f}" if errs else "")
             lines.append(f"| {materials}: {output} | " + " | ".join(cells) + " |")
+    lines += ["", "| materials: output | within 1 % up to delta | within 5 % up to delta |",
+              "|---|---|---|"]  # fmt: skip
+    for materials in MATERIALS:
+        for output in OUTPUTS:
+            limits = [_within(found, materials, output, level) for level in (0.01, 0.05)]
+            lines.append(f"| {materials}: {output} | " + " | ".join(limits) + " |")
     lines += ["", "| materials | delta | c | output | full - theory | geometry | surface | "
               "finite size | interaction | grids |", "|---" * 10 + "|"]  # fmt: skip
     for (materials, delta, c), (shares, grids) in sorted(found.items()):
@@ -193,6 +199,21 @@ def tables(found):
             lines.append(f"| {materials} | {delta:g} | {c:g} | {output} | " + " | ".join(cells)
                          + f" | {'/'.join(map(str, grids))} |")  # fmt: skip
     return "\n".join(lines)
+
+
+def _within(found, materials, output, level):
+    """The largest delta up to which the theory's error stays below ``level`` at every
+    compression that ran (text; "> d" when it holds at every delta that ran)."""
+    largest = None
+    for delta in DELTAS:
+        errs = [abs(theory_error(v[0], output)) for (m, d, _), v in found.items()
+                if m == materials and d == delta]  # fmt: skip
+        if not errs:
+            continue
+        if max(errs) > level:
+            return f"{largest:g}" if largest is not None else f"< {delta:g}"
+        largest = delta
+    return f">= {largest:g}" if largest is not None else ""
 
 
 def main():

@@ -168,28 +168,34 @@ def fits(series):
 
 
 def plot(series):
-    """share / sqrt(delta) against delta: a column per output, a row per cause."""
-    shown = ("e_n", "min_film_thickness", "max_force", "contact_time", "max_compression")
+    """share / sqrt(delta) against sqrt(delta), with the fitted line c1 + c2 sqrt(delta) (its
+    intercept c1 is the first-order constant): a column per output, a row per cause."""
     causes = (*CAUSES[:3], "total")
-    fig, axes = plt.subplots(len(causes), len(shown), figsize=(17, 11), sharex=True)
+    fig, axes = plt.subplots(len(causes), len(NORMAL), figsize=(17, 11), sharex=True)
     for i, cause in enumerate(causes):
-        for j, output in enumerate(shown):
+        for j, output in enumerate(NORMAL):
             ax = axes[i, j]
             for k, case in enumerate(CASES):
-                if (case, cause, output) in series:
-                    ds, shares = series[(case, cause, output)]
-                    quotient = np.asarray(shares) / np.sqrt(ds)
-                    ax.semilogx(ds, quotient, f"C{k}o-", ms=3, label=case)
+                if (case, cause, output) not in series:
+                    continue
+                ds, shares = series[(case, cause, output)]
+                root = np.sqrt(ds)
+                ax.plot(root, np.asarray(shares) / root, f"C{k}o", ms=4, label=case)
+                if len(ds) >= 3:
+                    c1, c2, _, _ = first_order_fit(ds, shares)
+                    line = np.linspace(0.0, root.max(), 20)
+                    ax.plot(line, c1 + c2 * line, f"C{k}--", lw=0.8)
             ax.axhline(0.0, color="k", lw=0.5)
             ax.set_title(f"{cause}: {output}", fontsize=9)
-            ax.grid(alpha=0.3, which="both")
+            ax.grid(alpha=0.3)
             if i == len(causes) - 1:
-                ax.set_xlabel("delta = x0 / a")
+                ax.set_xlabel("sqrt(delta)")
     axes[0, 0].set_ylabel("share / sqrt(delta)")
     axes[0, 0].legend(fontsize=7)
     fig.suptitle(
         "First correction to the half-space theory: (model - its neighbour) / theory / "
-        "sqrt(delta), St = 20, identical solids, continuum (Richardson 120/240 nodes)"
+        "sqrt(delta), St = 20, identical solids, continuum (Richardson 120/240 nodes); "
+        "dashed: c1 + c2 sqrt(delta)"
     )
     fig.tight_layout()
     FIGURE.parent.mkdir(parents=True, exist_ok=True)

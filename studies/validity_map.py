@@ -1,9 +1,10 @@
 """Where the asymptotic half-space theory holds: a validity map against the full FE model.
 
 For each layer-to-radius ratio delta and dry Hertz compression c = (13.88 eps St)^(2/5) (gap
-units; St = 20, eps from c), thin layer, P_cav = -2, 30 degrees, Couette tangential model, 120
-film nodes, rtol 1e-5 (film thickness controlled), the five models of
-:mod:`ehdfem.study.corrections` on the same film grid, each one change from a neighbour: the
+units; St = 20, eps from c), thin layer, P_cav = -2, 30 degrees, Couette tangential model, rtol
+1e-5 (film thickness controlled), the five models of :mod:`ehdfem.study.corrections` on one
+film grid, 120 and then 240 nodes (the causes' shares extrapolated to the continuum by
+Richardson's rule for order 2), each model one change from a neighbour: the
 theory (half-space, paraboloid, pressure only), + the true sphere gap (geometry), + the
 tangential surface effects (the squeeze shear's opening and the faces' radial velocity in the
 flux), both on half-spaces, and the full model (FE solids with both).
@@ -17,7 +18,7 @@ the film's grid ends at 1.05 sqrt(2 (1 + c)) sqrt(delta) a, so nothing above del
 
 Writes studies/results/validity_map.csv, docs/figures/validity_map.png and the tables of
 docs/fem.md's study section (printed). Resumable: finished points are kept in the CSV.
-Run: nice -n 10 .venv/bin/python studies/validity_map.py [--plot-only]   (about 15 minutes
+Run: nice -n 10 .venv/bin/python studies/validity_map.py [--plot-only]   (about 40 minutes
 on 2 cores)
 """
 

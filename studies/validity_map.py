@@ -100,6 +100,8 @@ def continuum(rows):
         if row.get("skipped"):
             continue
         key = (row["materials"], float(row["delta"]), float(row["compression"]))
+        if key[1] not in DELTAS or key[2] not in COMPRESSIONS:
+            continue  # a point of an earlier grid
         grid = values.setdefault(key, {}).setdefault(int(row["nodes"]), {})
         grid[row["variant"]] = {k: _number(row.get(k)) for k in OUTPUTS}
     out = {}

@@ -56,7 +56,7 @@ GRID = [
     (St, eps, sigma, asperities)
     for St in (5.0, 50.0)
     for eps in (1e-4, 1e-2)
-    for sigma in (0.02, 0.1)
+    for sigma in (0.03, 0.2)
     for asperities in ("impact", "greenwood-tripp")
 ]
 
@@ -66,15 +66,20 @@ def test_energy_is_never_created(St, eps, sigma, asperities):
     """Over mu (0.05, 0.5), the angle (15, 60 deg) and the Couette and sliding films: the
     tangential kinetic energy never rises above its impact value (1e-12 of it: the exact
     integrations only remove energy, the sliding film by its balance, which closes to 0.05 of
-    the energy lost: its BDF2 error on the normal motion's steps, docs/tangential.md); every
+    the energy lost: its BDF2 error on the normal motion's steps, at most 9e-3 here); every
     friction impulse dissipates; the normal motion's kinetic plus stored energy never exceeds
     St/2 by more than its own balance error; so the total, normal plus tan^2(angle) times
-    tangential (both by m V0^2 / St), is never created either."""
+    tangential (both by m V0^2 / St), is never created either. The solids carry 0.3 to 100 %
+    of the normal impulse where the film reaches sigma; at eps 1e-2 the flattened film stays
+    above 0.055, so sigma = 0.03 is never reached: the impact model's contact takes no friction
+    impulse (Greenwood & Tripp's asperities carry their Gaussian tail's load, 1e-5 of the
+    normal impulse and less)."""
     base = rough(St, eps, sigma, asperities)
     hist = base.normal.history
     slack = base.normal.energy_error + 1e-12
     normal_energy = np.asarray(hist.kinetic) + np.asarray(hist.elastic) - hist.elastic[0]
     assert normal_energy.max() <= 0.5 * St * (1 + slack)
+    frictionless = asperities == "impact" and base.normal.min_film_thickness > sigma
     for mu in (0.05, 0.5):
         for angle in (15.0, 60.0):
             tangent = np.tan(np.radians(angle))
@@ -84,6 +89,7 @@ def test_energy_is_never_created(St, eps, sigma, asperities):
                 kinetic = 0.5 * St * (t.velocity**2 + K * t.spin**2)
                 assert kinetic.max() <= kinetic[0] * (1 + 1e-12), (mu, angle, model)
                 assert np.diff(t.friction.dissipated).min() >= 0.0
+                assert not (frictionless and np.any(t.friction.impulse))
                 total = normal_energy + tangent**2 * kinetic
                 assert total.max() <= 0.5 * St * (1 + tangent**2) * (1 + slack)
                 if t.energy is not None:

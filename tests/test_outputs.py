@@ -24,6 +24,7 @@ NODES_40 = RunConfig.from_settings(nodes=40)
 ROUGH_ONLY = {o.name for o in registry.OUTPUTS if "asperit" in o.name or "impact" in o.name} | {
     "contact_stuck",
     "friction_dissipated",
+    "solid_impulse_share",
 }
 STUDY = """
 [grid]

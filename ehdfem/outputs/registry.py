@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import scipy.integrate
 
 from ..film import cavitation
 
@@ -194,6 +195,17 @@ def _largest_asperity_share(normal, sigma) -> float:
     return largest / float(np.max(normal.history.force + asperity)) if largest > 0 else 0.0
 
 
+def _solid_impulse_share(normal, sigma) -> float:
+    """The solids' share of the collision's normal impulse: the solid impact's St (1 + e_dry)
+    |V_c| plus the asperities' load int F_a dT (trapezoid over the steps), over the sphere's
+    change of normal momentum St (1 + e_n) (impulses by 6 pi mu a^2, the force scale times
+    x0/V0). With sliding Coulomb friction throughout, the effective friction is mu times it
+    plus the film's (docs/tangential.md)."""
+    solid = 0.0 if normal.solid_impact is None else normal.solid_impact.normal_impulse
+    solid += float(scipy.integrate.trapezoid(normal.asperity_force, normal.history.time))
+    return solid / (normal.params.St * (1.0 + normal.e_n))
+
+
 def _contact_end(normal, sigma) -> float | None:
     """The time the thinnest film last rises back above sigma (the impact's time for a solid
     impact; None if it never reached sigma), by linear interpolation between the steps."""
@@ -310,6 +322,8 @@ OUTPUTS: tuple[Output, ...] = (
     Output("max_asperity_force", "largest asperity load on the sphere (greenwood-tripp)", FORCE,
            "N", _mixed(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
            lambda p: p.scales().force, optional=True),
+    Output("solid_impulse_share", "the solids' share (impact, asperity load) of the normal impulse",
+           "-", None, _rough(_solid_impulse_share), optional=True),
     Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
            "x0/V0", "s", _rough(_contact_end), optional=True),
 )

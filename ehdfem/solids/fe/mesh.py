@@ -44,8 +44,9 @@ def cache_key(arguments, sources) -> str:
 
 def load_or_build(gmsh, build, arguments) -> None:
     """Put the mesh of ``build(*arguments)`` in the current gmsh model: opened from the cache
-    when it holds that mesh, else built and then stored there."""
-    path = MESH_CACHE / f"{cache_key(arguments, [build])}.msh"
+    when it holds that mesh (keyed by the arguments and the source of the generator's module),
+    else built and then stored there."""
+    path = MESH_CACHE / f"{cache_key(arguments, [inspect.getmodule(build)])}.msh"
     if path.exists():
         gmsh.open(str(path))
         return

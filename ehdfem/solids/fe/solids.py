@@ -42,6 +42,7 @@ DOLFINx call goes through :mod:`ehdfem.solids.fe.dolfinx_compat`.
 
 from __future__ import annotations
 
+import inspect
 import math
 import sys
 from functools import cached_property
@@ -173,7 +174,7 @@ class FESolids:
         ``cache_arguments``: the mesh generator's arguments, the scaled moduli per cell tag and
         the degree; :func:`ehdfem.solids.fe.mesh.cached_matrices`)."""
         modules = [sys.modules[__name__], meshed, linear_algebra, dolfinx_compat]
-        return [*modules, type(self.meshed.lower), self.meshed.build]
+        return [*modules, type(self.meshed.lower), inspect.getmodule(self.meshed.build)]
 
     @property
     def dofs(self) -> int:

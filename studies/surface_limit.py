@@ -14,7 +14,12 @@ before sqrt(2)), rtol 1e-10 (the change is 1e-5 to 1e-6 of the film: the time-st
 must be far below it). Then each effect alone (the opening, the faces' velocity) at k = 0.01,
 delta = 0.01, 120 nodes, against its own constant.
 
-Writes studies/results/surface_limit.csv (resumable: a row per run pair). Run:
+The velocity at a given gap as well: V1(X) = -(eps sqrt(delta) kappa / St) J(X) against the
+runs' difference of V at X (a cubic spline of V in X over the approach's accepted steps), at
+St = 1, eps = 1e-4 and 3e-5 (k = 0.032 and 0.0096), delta = 0.01, 120 nodes.
+
+Writes studies/results/surface_limit.csv (resumable: a row per run pair) and
+studies/results/surface_limit_velocity.csv. Run:
 nice -n 10 .venv/bin/python studies/surface_limit.py   (about 10 minutes on 2 cores)
 """
 
@@ -22,18 +27,21 @@ import math
 from pathlib import Path
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.compliance import LinearCompliance
-from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from ehdfem.study.surface_limit import rigid_stopping_gap, stopping_gap_constant
-from ehdfem.study.sweep import ResultTable
+from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
+from ehdfem.study.surface_limit import rigid_stopping_gap, stopping_gap_constant, velocity_integral
+from ehdfem.study.sweep import ResultTable, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "surface_limit.csv"
+VELOCITY = ROOT / "studies" / "results" / "surface_limit_velocity.csv"
+GAPS = (0.7, 0.5, 0.3, 0.2, 0.15, 0.12)  # the rigid sphere stops at 0.0997 (St = 1)
 STOKES = (0.5, 1.0, 2.0)
 WEAKNESS = (0.1, 0.03, 0.01)  # k = eps / X_s^(5/2) at delta = 0.01
 DELTAS = (0.1, 0.01, 1e-3)  # at k = 0.03
@@ -126,5 +134,31 @@ def summary(rows):
         )
 
 
+def approach_velocity(params, solids):
+    """V(X) over the approach (V < 0) as a cubic spline of the accepted steps."""
+    history = collide(params, CONFIG, compliance=solids).normal.history
+    gap, velocity = np.asarray(history.gap), np.asarray(history.velocity)
+    approach = velocity < 0
+    return CubicSpline(gap[approach][::-1], velocity[approach][::-1])
+
+
+def velocity_check():
+    """Rows (eps, X, quotient (V_on - V_off)/(eps sqrt(delta)), its closed form)."""
+    St, delta, rows = 1.0, 0.01, []
+    radii = radial_grid(NODES[-1], 0.5, 1.5)
+    for eps in (1e-4, 3e-5):
+        params = CollisionParameters(St=St, eps=eps, delta=delta)
+        off = approach_velocity(params, HalfSpaceCompliance(radii, eps))
+        on = approach_velocity(params, HalfSpaceCompliance(radii, eps, (delta, IDENTICAL_SOLIDS)))
+        for x in GAPS:
+            found = float(on(x) - off(x)) / (eps * math.sqrt(delta))
+            closed = -shear_coefficient() / St * velocity_integral(x, St)
+            rows.append(dict(eps=eps, gap=x, quotient=found, closed_form=closed))
+            print(rows[-1], f"ratio {found / closed:.4f}", flush=True)
+    return rows
+
+
 if __name__ == "__main__":
     summary(compute())
+    if not VELOCITY.exists():
+        write_csv(VELOCITY, velocity_check())

@@ -52,6 +52,8 @@ class LiggghtsLaw:
     liggghts_min_separation: float = setting(
         0.01, help="minSeparationDistanceRatio: the smallest gap in the viscous force (1.01 "
         "is LIGGGHTS's recommended value)", unit="by R*", lower=0.0, upper=2.0, lower_open=True,
+        default_text="0.01 on smooth surfaces, sigma / R* on rough ones (the surfaces' combined "
+        "rms roughness sigma)",
     )  # fmt: skip
     liggghts_max_separation: float | None = setting(
         None, help="maxSeparationDistanceRatio: the bridge breaks at the gap (ratio - 1) 2 R",
@@ -64,6 +66,13 @@ class LiggghtsLaw:
 
     def __post_init__(self):
         validate(self)
+
+
+def min_separation_of(collision: PhysicalCollision) -> float:
+    """minSeparationDistanceRatio of the surfaces' roughness: the viscous force's smallest gap
+    minSeparationDistanceRatio R* is the combined rms roughness sigma [m] of the full model's
+    asperities, the ratio sigma / R* with R* = R / 2 (docs/validation.md, "DEM engines")."""
+    return collision.roughness / (collision.radius / 2.0)
 
 
 def hertz_contact_time(collision: PhysicalCollision) -> float:

@@ -46,6 +46,8 @@ class YadeLaw:
     yade_roughness: float = setting(
         1e-3, help="Yade's eps: the asperities touch at the film u = 2 eps a", unit="by a",
         lower=0.0, upper=0.1, lower_open=True,
+        default_text="1e-3 on smooth surfaces, sigma / (2 a) on rough ones (the surfaces' "
+        "combined rms roughness sigma)",
     )  # fmt: skip
     yade_keps: float = setting(
         1.0, help="Yade's keps: the asperities' stiffness by the spring kn", lower=0.0,
@@ -67,6 +69,13 @@ class YadeLaw:
 
     def __post_init__(self):
         validate(self)
+
+
+def roughness_of(collision: PhysicalCollision) -> float:
+    """Yade's eps of the surfaces' roughness: its asperities touch at the film u = 2 eps a
+    where the full model's impact model has them touch, at the combined rms roughness sigma
+    [m]: eps = sigma / (2 a) (a the sphere's radius [m]; docs/validation.md, "DEM engines")."""
+    return collision.roughness / (2.0 * collision.radius)
 
 
 def contact_stiffness(collision: PhysicalCollision, law: YadeLaw) -> float:

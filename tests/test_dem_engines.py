@@ -13,7 +13,7 @@ import pytest
 from ehdfem import from_presets
 from ehdfem.cli.main import main
 from ehdfem.dem.engines import liggghts, yade
-from ehdfem.dem.engines.compare import compare
+from ehdfem.dem.engines.compare import compare, engine_law
 from ehdfem.dem.engines.rebound import read_rebound, run_binary
 
 pytestmark = pytest.mark.serial  # the engines are serial binaries: nothing to check on 2 ranks
@@ -90,6 +90,34 @@ def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
     result = json.loads(out.read_text())
     assert {p.name for p in folder.iterdir()} >= {"collision.py", "history.csv", "rebound.json"}
     assert result["engine"]["e_t"] is not None and result["full_model"]["e_t"] is not None
+
+
+def test_the_roughness_sets_each_engine_unless_given():
+    """On rough surfaces (sigma = 4 um on a 2 mm sphere) the engine's asperity setting is the
+    roughness: Yade's eps = sigma / (2 a) = 1e-3 and LIGGGHTS's minimum gap ratio sigma / R*
+    = 4e-3 (R* = 1 mm), exact up to rounding; a value given stays; smooth: the defaults."""
+    rough = small(sphere_roughness=3.2e-6, wall_roughness=2.4e-6)  # sigma = 4 um
+    assert engine_law("yade", rough, {}).yade_roughness == pytest.approx(1e-3, rel=1e-12)
+    law = engine_law("liggghts", rough, {})
+    assert law.liggghts_min_separation == pytest.approx(4e-3, rel=1e-12)
+    assert engine_law("yade", rough, {"yade_roughness": 0.02}).yade_roughness == 0.02
+    assert engine_law("yade", small(), {}) == yade.YadeLaw()
+    assert engine_law("liggghts", small(), {}) == liggghts.LiggghtsLaw()
+
+
+def test_dem_command_passes_the_roughness_to_the_engine_and_the_full_model(tmp_path):
+    """``--sphere-roughness`` [m] reaches the engine's script (Yade's eps) and the full model
+    (sigma / x0)."""
+    out = tmp_path / "dem.json"
+    args = ["dem", "--engine", "yade", "--folder", str(tmp_path / "yade"), "--sphere", "steel",
+            "--wall", "glass", "--liquid", "silicone_oil_100cst", "--radius", "2e-3", "--speed",
+            "1", "--layer-thickness", "1e-4", "--sphere-roughness", "8e-6", "--json",
+            str(out)]  # fmt: skip
+    assert main(args) == 0
+    result = json.loads(out.read_text())
+    assert result["law"]["yade_roughness"] == pytest.approx(2e-3, rel=1e-12)
+    assert result["full_model"]["roughness"] == pytest.approx(0.08, rel=1e-12)
+    assert '"eps": 0.002' in (tmp_path / "yade" / "collision.py").read_text()
 
 
 @pytest.mark.parametrize(

@@ -5,9 +5,11 @@ the error left. Writes studies/results/dem_engines.json (each finished run at on
 a run stopped and started again computes only what is missing), the figures
 docs/figures/dem_engines_{yade,liggghts}.png and the section "DEM engines" of docs/validation.md.
 The engines' own files stay in out/dem_engines/ (input script, log, history, rebound).
+Rough surfaces: for a sphere of roughness sigma, each engine's parameter that stands for the
+asperities (Yade's eps, LIGGGHTS's minimum gap) at a factor times its value of sigma
+(ehdfem.dem.engines.compare.ROUGHNESS) beside the full model with that sigma, by the impact
+model and Greenwood-Tripp's; the figure docs/figures/dem_engines_roughness.png.
 Run: bash make.sh dem-engines
-Roughness: the full model is run smooth here; once it has a roughness (the asperities'
-contact), pass it through FULL_MODEL_INPUTS to set Yade's eps beside it.
 """
 
 import dataclasses
@@ -21,8 +23,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem import collide, from_presets  # noqa: E402
+from ehdfem.config import RunConfig  # noqa: E402
 from ehdfem.dem.engines import liggghts, yade  # noqa: E402
-from ehdfem.dem.engines.compare import ENGINES, full_model_collision  # noqa: E402
+from ehdfem.dem.engines.compare import (  # noqa: E402
+    ENGINES,
+    ROUGHNESS,
+    engine_law,
+    full_model_collision,
+)
 from ehdfem.study.sweep import write_atomic  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -32,7 +40,6 @@ REPORT = ROOT / "docs/validation.md"
 SECTION = "## DEM engines: Yade and LIGGGHTS against the full model"
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s
 RADIUS = 2e-3  # m
-FULL_MODEL_INPUTS = {}  # e.g. the full model's roughness, once it has one
 CASES = {  # name: (sphere, Yade's wall (LIGGGHTS: a second sphere alike), liquid, layer [m])
     "steel, 100 cSt oil, 0.1 mm": ("steel", "glass", "silicone_oil_100cst", 1e-4),
     "glass, 80 % glycerol, 0.1 mm": ("glass", "glass", "glycerol_80", 1e-4),
@@ -57,15 +64,15 @@ SETTINGS = {
 INTRODUCTION = [
     "Both engines run as a DEM user runs them (`ehdfem dem`, ehdfem/dem/engines/; the input "
     "script, log and history of every run below are in out/dem_engines/ after "
-    "`studies/dem_engines.py`): Yade 2023.02a's `Law2_ScGeom_ImplicitLubricationPhys` for a "
-    "sphere (radius 2 mm) on a wall, LIGGGHTS 3.8's `cohesion easo/capillary/viscous` (Hertz "
-    "contact, surface tension 0) for two equal spheres, set beside the half-space model at the "
-    "reduced radius and mass (exact to leading order in x0/a for two spheres, and seconds per "
-    "run). The full model is run smooth, with the liquid's vapour pressure as the cavitation "
-    "limit. e_n is the relative normal speed when the gap reopens to the layer thickness x0 over "
-    "the approach speed; 0: the sphere stays in the layer (for Yade: its speed stays below "
-    "1e-2 V0 for x0/V0, so e_n < 1e-2 counts as 0). Errors are |e_n(engine) - e_n(full model)| "
-    "over the five speeds 0.15-2.4 m/s; the engines' time steps (Yade 0.02 sqrt(m/kn), "
+    "`studies/dem_engines.py`): Yade 2023.02a's `Law2_ScGeom_ImplicitLubricationPhys` for a sphere"
+    " (radius 2 mm) on a wall, LIGGGHTS 3.8's `cohesion easo/capillary/viscous` (Hertz contact, "
+    "surface tension 0) for two equal spheres, set beside the half-space model at the reduced "
+    "radius and mass (exact to leading order in x0/a for two spheres, and seconds per run). The "
+    "full model is run smooth (rough surfaces below), with the liquid's vapour pressure as the "
+    "cavitation limit. e_n is the relative normal speed when the gap reopens to the layer "
+    "thickness x0 over the approach speed; 0: the sphere stays in the layer (for Yade: its speed "
+    "stays below 1e-2 V0 for x0/V0, so e_n < 1e-2 counts as 0). Errors are |e_n(engine) - e_n(full"
+    " model)| over the five speeds 0.15-2.4 m/s; the engines' time steps (Yade 0.02 sqrt(m/kn), "
     "LIGGGHTS 1 % of the Hertz contact time) move e_n by less than 1e-4 (a quarter of them).",
     "",
     "Two facts of the laws, checked on the engines (tests/test_dem_engines.py): Yade treats a wall "
@@ -110,9 +117,65 @@ CONCLUSIONS = [
     "the film's thickness at contact, which in the full model thins as St and the deformation "
     "(eps, the flattened shape) grow, so that one ratio that fits low St overestimates the "
     "loss at high St.",
-    "- **Roughness:** the full model here is smooth; Yade's eps is its only stand-in for the "
-    "asperities. Set beside the full model's roughness once it has one (FULL_MODEL_INPUTS in "
-    "studies/dem_engines.py).",
+    "- **Rough surfaces (rms sigma known), Yade:** eta = 4 mu and eps = sigma/(2a), its "
+    "asperities where the full model's touch (what `ehdfem dem` sets from `--sphere-roughness` "
+    "and `--wall-roughness`): Yade's law is then the full model's mixed lubrication "
+    "(Greenwood-Tripp; `ehdfem dem --asperities greenwood-tripp` sets it beside that model), "
+    "within 0.025 at sigma/x0 = 0.03. Keep eps at or above about 1e-3 "
+    "(2 eps a of a few um, a few hundredths of x0 here), or the suction on the rebound holds "
+    "the sphere at high St (sigma/x0 = 0.01: eps = 3 sigma/(2a) is within 0.03). At "
+    "sigma/x0 = 0.1 the error left is 0.24 at best, below St 20. Where the asperities' "
+    "contact is a solid impact (the impact model; plastic asperities, e_dry), raise eps to "
+    "3-10 sigma/(2a) (errors 0.04-0.17): Yade's undamped asperity spring in parallel with the "
+    "film is not an impact.",
+    "- **Rough surfaces, LIGGGHTS:** minSeparationDistanceRatio = 3 sigma/R* (a smallest gap "
+    "of 3 sigma; what `ehdfem dem` sets) and coefficientRestitution = e_dry: within 0.05 of "
+    "the impact model over sigma/x0 = 0.01-0.1 and St 10.7-172 in the one case run. The factor "
+    "3 is a fit of this case: the bridge's only loss, on separation, has to stand for the "
+    "full model's loss in the approach too, and for the cavitation that limits its suction on "
+    "the rebound. As for smooth surfaces, no setting follows the mixed lubrication's low-St "
+    "losses (0.06-0.15 at best).",
+]
+ROUGH_TEXT = [
+    "The sphere's rms roughness sigma = 1, 3 and 10 um (sigma/x0 = 0.01-0.1, the wall smooth) "
+    "on steel, 100 cSt oil, 0.1 mm; the full model by both asperity models (impact with "
+    "e_dry = 1, Yade's spring being undamped, and Greenwood-Tripp's mixed lubrication with "
+    'its default asperities; docs/model.md, "Rough surfaces"); each engine\'s asperity '
+    "parameter at a factor 0.3-10 times its value of sigma: Yade's asperity height "
+    "2 eps a = factor sigma (eta = 4 mu, its own kn, keps = 1), LIGGGHTS's smallest gap "
+    "minSeparationDistanceRatio R* = factor sigma (cut-off at x0). Errors as above, over the "
+    "five speeds.",
+]
+ROUGH_ENGINE_TEXT = {
+    "yade": "Yade's asperities are a spring keps kn in parallel with its film, which keeps "
+    "thinning below 2 eps a and dissipating: a mixed lubrication, so that at factor 1 Yade "
+    "follows the full model's Greenwood-Tripp curve (sigma = 3 um: 0.025) and rebounds less "
+    "than the impact model, which ends the approach at sigma with a solid bounce; only a "
+    "higher asperity height (factor 3-10) approaches the impact model. At sigma = 1 um and "
+    "factor 1 (2 eps a = 1 um) Yade's suction without cavitation holds the sphere on the "
+    "rebound at high St (e_n falls from 0.75 to 0.54 between St 43 and 86), as in the smooth "
+    "runs with eps = 1e-4. At sigma = 10 um the mixed full model's e_n levels off near 0.53 "
+    "below St 11, which no factor tried reproduces.",
+    "liggghts": "LIGGGHTS's smallest gap at 3 sigma is the best against the impact model at "
+    "every sigma (the bridge's loss grows as ln(x0/h_min), one factor fits the three). "
+    "Against Greenwood-Tripp's mixed lubrication no factor fits: its loss at low St, where the "
+    "film and the asperities share the load during the approach, has no counterpart in a "
+    "bridge that forms at contact.",
+}
+ROUGH_OBLIQUE_TEXT = [
+    "The full model is the impact model here (Couette film), so e_n differs as in the head-on "
+    "table (Yade's law is a mixed lubrication). Without friction, Yade's tangential loss and "
+    "spin change are again 6-12 times the full model's. With Coulomb friction mu = 0.3 "
+    "(Yade's friction angle atan(mu)) the full model's friction impulse at the asperities' "
+    "impact stops the slip and the sphere leaves rolling: e_t = spin change = 1/(1 + k) = 5/7 "
+    "for a solid sphere (k = 2/5), at every St (docs/tangential.md). Yade's tangential contact "
+    "spring, undamped in this law, stores the slip and returns it: e_t 0.49-0.50 and a spin "
+    "change of 1.21-1.26 at St >= 18.6, the contact point leaving with a backward slip of "
+    "0.72-0.77 U0 instead of rolling. eps does not enter it; the cause is the tangential "
+    "spring's elastic recovery (ks and the friction as Yade derives them from the materials), "
+    "which only a tangential damping or a friction model without recovery would remove (not "
+    "tried here). The normal motion is the same with and without "
+    "friction in both (the friction acts tangentially only).",
 ]
 
 
@@ -143,7 +206,7 @@ def compute(table):
                 if key not in table:
                     full = full_model_collision(engine, physical)
                     params = full.dimensionless()
-                    e_n = collide(dataclasses.replace(full, **FULL_MODEL_INPUTS)).normal.e_n
+                    e_n = collide(full).normal.e_n
                     table[key] = {"St": params.St, "eps": params.eps, "e_n": e_n}
                     write_atomic(TABLE, json.dumps(table, indent=1))
                 for name in SETTINGS[engine]:
@@ -164,32 +227,47 @@ def compute(table):
 
 
 OBLIQUE = ("steel, 100 cSt oil, 0.1 mm", "eta = 4 mu, eps = 1e-3", 30.0)  # deg
+ROUGH_OBLIQUE = (3e-6, (0.0, 0.3))  # the sphere's roughness sigma [m], friction coefficients
 
 
-def oblique(table):
-    """Yade's e_n, e_t and spin change at 30 degrees beside the full model's (OBLIQUE's case and
-    setting); the rows of a markdown table."""
+def oblique_run(table, speed, sigma=0.0, friction=0.0):
+    """Yade and the full model at OBLIQUE's angle and ``speed`` on OBLIQUE's case: smooth with
+    OBLIQUE's setting, or rough (the sphere's ``sigma`` [m], Coulomb's ``friction``) with Yade's
+    eps = sigma / (2 a) and friction angle atan(friction); (Yade's, the full model's) rebound."""
     case, name, angle = OBLIQUE
-    lines = ["| St | e_n Yade / full | e_t Yade / full | spin change Yade / full |",
-             "|---|---|---|---|"]  # fmt: skip
-    for speed in SPEEDS:
-        physical = dataclasses.replace(collision("yade", case, speed), angle=angle)
-        key = f"yade oblique|{case}|{name}|{speed}"
-        if key not in table:
-            result = collide(dataclasses.replace(physical, **FULL_MODEL_INPUTS))
-            folder = RUNS / "yade_oblique" / f"{speed}"
-            rebound = yade.run(physical, SETTINGS["yade"][name], folder)
-            motion = result.tangential
-            full = {"St": physical.dimensionless().St, "e_n": result.normal.e_n,
-                    "e_t": motion.e_t, "spin_change": motion.spin_change}  # fmt: skip
-            table[key] = {"yade": rebound.summary(), "full model": full}
-            write_atomic(TABLE, json.dumps(table, indent=1))
-        run, full = table[key]["yade"], table[key]["full model"]
-        lines.append(
-            f"| {full['St']:.3g} | "
-            + " | ".join(f"{run[q]:.3f} / {full[q]:.3f}" for q in ("e_n", "e_t", "spin_change"))
-            + " |"
-        )
+    physical = dataclasses.replace(
+        collision("yade", case, speed), angle=angle, sphere_roughness=sigma,
+        friction_coefficient=friction,
+    )  # fmt: skip
+    rough = sigma > 0.0
+    label = f"sigma {sigma:g}, mu {friction:g}" if rough else name
+    key = f"yade oblique|{case}|{label}|{speed}"
+    if key not in table:
+        result = collide(physical)
+        law = engine_law("yade", physical, {}) if rough else SETTINGS["yade"][name]
+        folder = RUNS / "yade_oblique" / (f"sigma_{sigma:g}_mu_{friction:g}" if rough else "")
+        rebound = yade.run(physical, law, folder / f"{speed}")
+        motion = result.tangential
+        full = {"St": physical.dimensionless().St, "e_n": result.normal.e_n,
+                "e_t": motion.e_t, "spin_change": motion.spin_change}  # fmt: skip
+        table[key] = {"yade": rebound.summary(), "full model": full}
+        write_atomic(TABLE, json.dumps(table, indent=1))
+    return table[key]["yade"], table[key]["full model"]
+
+
+def oblique(table, sigma=0.0, frictions=(0.0,)):
+    """Yade's e_n, e_t and spin change at OBLIQUE's angle beside the full model's, smooth or
+    rough (:func:`oblique_run`) for each friction coefficient; the rows of a markdown table."""
+    lines = ["| mu | St | e_n Yade / full | e_t Yade / full | spin change Yade / full |",
+             "|---|---|---|---|---|"]  # fmt: skip
+    for friction in frictions:
+        for speed in SPEEDS:
+            run, full = oblique_run(table, speed, sigma, friction)
+            lines.append(
+                f"| {friction:g} | {full['St']:.3g} | "
+                + " | ".join(f"{run[q]:.3f} / {full[q]:.3f}" for q in ("e_n", "e_t", "spin_change"))
+                + " |"
+            )
     return lines
 
 
@@ -261,6 +339,115 @@ def largest_best_error(table, engine):
     return max(min(by_setting.values())[1] for by_setting in errors(table, engine).values())
 
 
+ROUGH_CASE = "steel, 100 cSt oil, 0.1 mm"
+ROUGHNESSES = (1e-6, 3e-6, 1e-5)  # m, the sphere's rms roughness sigma (the wall smooth)
+ROUGH_FACTORS = (0.3, 1.0, 3.0, 10.0)  # the engine's parameter by its value of sigma
+ASPERITY_MODELS = ("impact", "greenwood-tripp")
+
+
+def rough_full_model(table, engine, sigma, speed):
+    """The full model's St and e_n beside ``engine`` at ``speed`` on ROUGH_CASE with the
+    sphere's roughness ``sigma``, by each asperity model (e_dry 1, as Yade's spring)."""
+    physical = dataclasses.replace(collision(engine, ROUGH_CASE, speed), sphere_roughness=sigma)
+    full = full_model_collision(engine, physical)
+    for model in ASPERITY_MODELS:
+        key = f"rough|{engine}|{sigma}|full model {model}|{speed}"
+        if key not in table:
+            e_n = collide(full, RunConfig(asperities=model)).normal.e_n
+            table[key] = {"St": full.dimensionless().St, "e_n": e_n}
+            write_atomic(TABLE, json.dumps(table, indent=1))
+            print(key, f"e_n = {e_n:.4f}", flush=True)
+    return physical
+
+
+def compute_rough(table):
+    """Every missing rough run: the full model by each asperity model, the engine at each
+    factor of its roughness parameter (Yade: eta = 4 mu, its own kn; LIGGGHTS: the cut-off
+    at x0)."""
+    for engine in ENGINES:
+        name, of_roughness = ROUGHNESS[engine]
+        for sigma in ROUGHNESSES:
+            for speed in SPEEDS:
+                physical = rough_full_model(table, engine, sigma, speed)
+                for factor in ROUGH_FACTORS:
+                    key = f"rough|{engine}|{sigma}|x{factor:g}|{speed}"
+                    if key in table:
+                        continue
+                    law = engine_law(engine, physical, {name: of_roughness(physical, factor)})
+                    folder = RUNS / "rough" / engine / f"sigma_{sigma:g}" / f"x{factor:g}"
+                    rebound = ENGINES[engine][1](physical, law, folder / f"{speed}")
+                    table[key] = rebound.summary()
+                    write_atomic(TABLE, json.dumps(table, indent=1))
+                    print(key, f"e_n = {rebound.e_n:.4f}", flush=True)
+
+
+def rough_curves(table, engine, sigma):
+    """St, the full model's e_n by asperity model, and the engine's e_n by factor."""
+    St = np.array([table[f"rough|{engine}|{sigma}|full model impact|{v}"]["St"] for v in SPEEDS])
+    full = {
+        model: np.array(
+            [table[f"rough|{engine}|{sigma}|full model {model}|{v}"]["e_n"] for v in SPEEDS]
+        )  # fmt: skip
+        for model in ASPERITY_MODELS
+    }
+    runs = {
+        factor: np.array([table[f"rough|{engine}|{sigma}|x{factor:g}|{v}"]["e_n"] for v in SPEEDS])
+        for factor in ROUGH_FACTORS
+    }
+    return St, full, runs
+
+
+def rough_errors(table, engine, sigma, model):
+    """Each factor's RMS and largest |e_n - e_n(full model by ``model``)| over the speeds."""
+    _, full, runs = rough_curves(table, engine, sigma)
+    difference = {factor: e - full[model] for factor, e in runs.items()}
+    return {f: (float(np.sqrt(np.mean(d**2))), float(np.max(np.abs(d))))
+            for f, d in difference.items()}  # fmt: skip
+
+
+def rough_table(table, engine):
+    """A markdown table per sigma and asperity model: the best factor and its RMS / max
+    error, and factor 1's (the engine's parameter at sigma itself)."""
+    lines = ["| sigma (sigma/x0) | St | full model | best factor | RMS / max | "
+             "factor 1: RMS / max |", "|---|---|---|---|---|---|"]  # fmt: skip
+    x0 = CASES[ROUGH_CASE][3]
+    for sigma in ROUGHNESSES:
+        St = rough_curves(table, engine, sigma)[0]
+        for model in ASPERITY_MODELS:
+            by_factor = rough_errors(table, engine, sigma, model)
+            best = min(by_factor, key=lambda f: by_factor[f][0])
+            (rms, worst), (rms1, worst1) = by_factor[best], by_factor[1.0]
+            lines.append(
+                f"| {sigma * 1e6:g} um ({sigma / x0:g}) | {St.min():.3g}-{St.max():.3g} | "
+                f"{model} | {best:g} | {rms:.3f} / {worst:.3f} | {rms1:.3f} / {worst1:.3f} |"
+            )
+    return lines
+
+
+def rough_figure(table):
+    """e_n(St) on rough surfaces: a row per engine, a column per sigma; the full model by
+    each asperity model and the engine at each factor."""
+    fig, axes = plt.subplots(len(ENGINES), len(ROUGHNESSES), figsize=(14, 8), sharey=True)
+    for row, engine in zip(axes, ENGINES, strict=True):
+        for ax, sigma in zip(row, ROUGHNESSES, strict=True):
+            St, full, runs = rough_curves(table, engine, sigma)
+            ax.plot(St, full["impact"], "k-", lw=2, label="full model, impact")
+            ax.plot(St, full["greenwood-tripp"], "k:", lw=2, label="full model, Greenwood-Tripp")
+            for factor, e in runs.items():
+                ax.plot(St, e, "o--", ms=4, label=f"{engine}, factor {factor:g}")
+            ax.set_xscale("log")
+            ax.set_xlabel("St")
+            ax.set_title(f"{engine}, sigma = {sigma * 1e6:g} um", fontsize=9)
+        row[0].set_ylabel("e_n")
+        row[0].legend(fontsize=7)
+    fig.suptitle(f"rough surfaces: {ROUGH_CASE} (radius {RADIUS * 1e3:g} mm)")
+    fig.tight_layout()
+    path = ROOT / "docs/figures/dem_engines_roughness.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def write_section(table):
     """The section "DEM engines" of docs/validation.md (replacing an earlier one): the tables
     of errors, the figures, and what a DEM user should set."""
@@ -272,7 +459,21 @@ def write_section(table):
         lines += [f"![{engine}](figures/dem_engines_{engine}.png)", ""]
     case, name, angle = OBLIQUE
     lines += [f"### yade, oblique ({angle:g} degrees; {case}; {name})", "", *oblique(table), ""]
-    lines += [*OBLIQUE_TEXT, "", *CONCLUSIONS, ""]
+    lines += [*OBLIQUE_TEXT, ""]
+    lines += ["### Rough surfaces", "", *ROUGH_TEXT, ""]
+    for engine in ENGINES:
+        lines += [f"#### {engine}", "", *rough_table(table, engine), "", ROUGH_ENGINE_TEXT[engine]]
+        lines += [""]
+    lines += ["![roughness](figures/dem_engines_roughness.png)", ""]
+    sigma, frictions = ROUGH_OBLIQUE
+    lines += [
+        f"### yade, rough and oblique ({angle:g} degrees; {case}; sigma = "
+        f"{sigma * 1e6:g} um, eps = sigma / (2a))",
+        "",
+        *oblique(table, sigma, frictions),
+        "",
+    ]
+    lines += [*ROUGH_OBLIQUE_TEXT, "", *CONCLUSIONS, ""]
     REPORT.write_text("\n".join(lines))
     print(f"wrote {REPORT}")
 
@@ -280,6 +481,8 @@ def write_section(table):
 if __name__ == "__main__":
     table = json.loads(TABLE.read_text()) if TABLE.exists() else {}
     compute(table)
+    compute_rough(table)
+    print(rough_figure(table))
     for engine in ENGINES:
         print(figure(table, engine))
         print("\n".join(error_table(table, engine)))

@@ -94,12 +94,12 @@ def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
 
 def test_the_roughness_sets_each_engine_unless_given():
     """On rough surfaces (sigma = 4 um on a 2 mm sphere) the engine's asperity setting is the
-    roughness: Yade's eps = sigma / (2 a) = 1e-3 and LIGGGHTS's minimum gap ratio sigma / R*
-    = 4e-3 (R* = 1 mm), exact up to rounding; a value given stays; smooth: the defaults."""
+    roughness: Yade's eps = sigma / (2 a) = 1e-3 and LIGGGHTS's minimum gap ratio 3 sigma / R*
+    = 1.2e-2 (R* = 1 mm), exact up to rounding; a value given stays; smooth: the defaults."""
     rough = small(sphere_roughness=3.2e-6, wall_roughness=2.4e-6)  # sigma = 4 um
     assert engine_law("yade", rough, {}).yade_roughness == pytest.approx(1e-3, rel=1e-12)
     law = engine_law("liggghts", rough, {})
-    assert law.liggghts_min_separation == pytest.approx(4e-3, rel=1e-12)
+    assert law.liggghts_min_separation == pytest.approx(1.2e-2, rel=1e-12)
     assert engine_law("yade", rough, {"yade_roughness": 0.02}).yade_roughness == 0.02
     assert engine_law("yade", small(), {}) == yade.YadeLaw()
     assert engine_law("liggghts", small(), {}) == liggghts.LiggghtsLaw()

@@ -43,7 +43,7 @@ ROUGHNESS = {  # name: (its law's setting for the surfaces' roughness, its value
 def engine_law(engine: str, collision: PhysicalCollision, settings: dict):
     """``engine``'s law with ``settings`` (its fields by name); on rough surfaces (sigma > 0)
     the setting that stands for the asperities, unless given, is the collision's roughness
-    (:data:`ROUGHNESS`: Yade's eps = sigma / (2 a), LIGGGHTS's minimum gap sigma), as the
+    (:data:`ROUGHNESS`: Yade's eps = sigma / (2 a), LIGGGHTS's minimum gap 3 sigma), as the
     full model's is."""
     checks.choice("engine", engine, tuple(ENGINES))
     name, of_roughness = ROUGHNESS[engine]

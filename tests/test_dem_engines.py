@@ -12,6 +12,7 @@ import pytest
 
 from ehdfem import from_presets
 from ehdfem.cli.main import main
+from ehdfem.config import RunConfig
 from ehdfem.dem.engines import liggghts, yade
 from ehdfem.dem.engines.compare import compare, engine_law
 from ehdfem.dem.engines.rebound import read_rebound, run_binary
@@ -166,6 +167,38 @@ def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wa
     result = compare(engine, collision, law, tmp_path)
     assert result["engine"]["rebounded"]
     assert abs(result["e_n_difference"]) <= stated_error(engine, setting) + 1e-3
+
+
+def stated_rough_error(engine, factor, asperities, sigma=3e-6):
+    """The largest |e_n(engine) - e_n(full model by ``asperities``)| that the study states for
+    the engine's asperity parameter at ``factor`` times its value of ``sigma`` (docs/validation.md,
+    "DEM engines", rough surfaces) over its speeds."""
+    table = json.loads(STUDY.read_text())
+    key = f"rough|{engine}|{sigma}"
+    rows = [(table[f"{key}|x{factor:g}|{v}"], table[f"{key}|full model {asperities}|{v}"])
+            for v in SPEEDS]  # fmt: skip
+    return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)
+
+
+@pytest.mark.parametrize(
+    "engine, wall, factor, asperities",
+    [
+        ("yade", "glass", 1.0, "greenwood-tripp"),  # eps = sigma / (2 a): mixed lubrication
+        ("liggghts", "steel", 3.0, "impact"),  # the smallest gap 3 sigma: the impact model
+    ],
+)
+def test_rough_engine_rebound_beside_the_full_model(tmp_path, engine, wall, factor, asperities):
+    """On a rough sphere (sigma = 3 um, sigma / x0 = 0.03) at 1.2 m/s, the engine with the
+    asperity parameter that ``ehdfem dem`` sets from the roughness is within the error the study
+    states for it of the full model by the asperity model it stands for; 1e-3 more for the
+    run's own spread (time steps move e_n by < 1e-4)."""
+    collision = small(wall=wall, speed=1.2, sphere_roughness=3e-6)
+    law = engine_law(engine, collision, {})
+    result = compare(engine, collision, law, tmp_path, RunConfig(asperities=asperities))
+    assert result["engine"]["rebounded"]
+    assert result["full_model"]["roughness"] == pytest.approx(0.03, rel=1e-12)
+    limit = stated_rough_error(engine, factor, asperities)
+    assert abs(result["e_n_difference"]) <= limit + 1e-3
 
 
 def test_a_missing_engine_is_named_with_the_set_up(tmp_path, monkeypatch):

@@ -121,7 +121,7 @@ CONCLUSIONS = [
     "asperities where the full model's touch (what `ehdfem dem` sets from `--sphere-roughness` "
     "and `--wall-roughness`): Yade's law is then the full model's mixed lubrication "
     "(Greenwood-Tripp; `ehdfem dem --asperities greenwood-tripp` sets it beside that model), "
-    "within 0.025 at sigma/x0 = 0.03. Keep 2 eps a at or above about "
+    "within 0.025 at sigma/x0 = 0.03 (0.014 on glass in glycerol). Keep 2 eps a at or above about "
     "3 um (0.03 x0, eps = 7.5e-4 here), or the suction on the rebound holds "
     "the sphere at high St (sigma/x0 = 0.01: eps = 3 sigma/(2a) is within 0.03). At "
     "sigma/x0 = 0.1 the error left is 0.24 at best, below St 20. Where the asperities' "
@@ -130,15 +130,16 @@ CONCLUSIONS = [
     "film is not an impact.",
     "- **Rough surfaces, LIGGGHTS:** minSeparationDistanceRatio = 3 sigma/R* (a smallest gap "
     "of 3 sigma; what `ehdfem dem` sets) and coefficientRestitution = e_dry: within 0.05 of "
-    "the impact model over sigma/x0 = 0.01-0.1 and St 10.7-172 in the one case run. The factor "
-    "3 is a fit of this case: the bridge's only loss, on separation, has to stand for the "
+    "the impact model over sigma/x0 = 0.01-0.1 and St 5.6-172 in both cases run. The factor "
+    "3 is a fit of these cases: the bridge's only loss, on separation, has to stand for the "
     "full model's loss in the approach too, and for the cavitation that limits its suction on "
     "the rebound. As for smooth surfaces, no setting follows the mixed lubrication's low-St "
     "losses (0.06-0.15 at best).",
 ]
 ROUGH_TEXT = [
     "The sphere's rms roughness sigma = 1, 3 and 10 um (sigma/x0 = 0.01-0.1, the wall smooth) "
-    "on steel, 100 cSt oil, 0.1 mm; the full model by both asperity models (impact with "
+    "on steel, 100 cSt oil, 0.1 mm, and 3 um on glass, 80 % glycerol, 0.1 mm; the full model "
+    "by both asperity models (impact with "
     "e_dry = 1, Yade's spring being undamped, and Greenwood-Tripp's mixed lubrication with "
     'its default asperities; docs/model.md, "Rough surfaces"); each engine\'s asperity '
     "parameter at a factor 0.3-10 times its value of sigma: Yade's asperity height "
@@ -149,7 +150,8 @@ ROUGH_TEXT = [
 ROUGH_ENGINE_TEXT = {
     "yade": "Yade's asperities are a spring keps kn in parallel with its film, which keeps "
     "thinning below 2 eps a and dissipating: a mixed lubrication, so that at factor 1 Yade "
-    "follows the full model's Greenwood-Tripp curve (sigma = 3 um: 0.025) and rebounds less "
+    "follows the full model's Greenwood-Tripp curve (sigma = 3 um: within 0.025 in oil, 0.014 "
+    "in glycerol) and rebounds less "
     "than the impact model, which ends the approach at sigma with a solid bounce; only a "
     "higher asperity height (factor 3-10) approaches the impact model. At sigma = 1 um and "
     "factor 1 (2 eps a = 1 um) Yade's suction without cavitation holds the sphere on the "
@@ -157,25 +159,30 @@ ROUGH_ENGINE_TEXT = {
     "runs with eps = 1e-4. At sigma = 10 um the mixed full model's e_n levels off near 0.53 "
     "below St 11, which no factor tried reproduces.",
     "liggghts": "LIGGGHTS's smallest gap at 3 sigma is the best against the impact model at "
-    "every sigma (the bridge's loss grows as ln(x0/h_min), one factor fits the three). "
+    "every sigma, in both cases (the bridge's loss grows as ln(x0/h_min), one factor fits "
+    "them all). "
     "Against Greenwood-Tripp's mixed lubrication no factor fits: its loss at low St, where the "
     "film and the asperities share the load during the approach, has no counterpart in a "
     "bridge that forms at contact.",
 }
 ROUGH_OBLIQUE_TEXT = [
-    "The full model is the impact model here (Couette film), so e_n differs as in the head-on "
-    "table (Yade's law is a mixed lubrication). Without friction, Yade's tangential loss and "
-    "spin change are again 6-12 times the full model's. With Coulomb friction mu = 0.3 "
-    "(Yade's friction angle atan(mu)) the full model's friction impulse at the asperities' "
-    "impact stops the slip and the sphere leaves rolling: e_t = spin change = 1/(1 + k) = 5/7 "
-    "for a solid sphere (k = 2/5), at every St (docs/tangential.md). Yade's tangential contact "
-    "spring, undamped in this law, stores the slip and returns it: e_t 0.49-0.50 and a spin "
-    "change of 1.21-1.26 at St >= 18.6, the contact point leaving with a backward slip of "
-    "0.72-0.77 U0 instead of rolling. eps does not enter it; the cause is the tangential "
-    "spring's elastic recovery (ks and the friction as Yade derives them from the materials), "
-    "which only a tangential damping or a friction model without recovery would remove (not "
-    "tried here). The normal motion is the same with and without "
-    "friction in both (the friction acts tangentially only).",
+    "The full model by the impact model and by Greenwood-Tripp's mixed lubrication (Couette "
+    "film, the default). Yade's e_n follows the mixed model (within 0.03), as head-on. Without "
+    "friction Yade's tangential loss 1 - e_t and spin change are 2-5 times the mixed model's "
+    "(6-12 times the impact model's). With Coulomb friction mu = 0.3 (Yade's friction angle "
+    "atan(mu)) the three part: the impact model's friction impulse at the asperities' impact "
+    "stops the slip and the sphere leaves rolling, e_t = spin change = 1/(1 + k) = 5/7 for a "
+    "solid sphere (k = 2/5) at every St (docs/tangential.md); the mixed model's friction acts "
+    "on the asperities' load only, which the film keeps small (docs/model.md), so e_t falls "
+    "only to 0.89-0.985 and the spin change rises to 0.27-0.04 (St 9.3-74.5); Yade's contact "
+    "takes a far larger tangential impulse and its tangential spring, undamped in this law, "
+    "returns the slip: e_t 0.49-0.52 and a spin change of 1.0-1.26 (St 9.3-74.5), the contact "
+    "point leaving with a backward slip of 0.5-0.77 U0 where the impact model's rolls. eps "
+    "does not enter the recovery (ks and the friction are as Yade derives them from the "
+    "materials); only a tangential damping or a friction law without elastic recovery would "
+    "remove it (not tried here). With friction Yade's e_t and spin change are therefore "
+    "further from both full models than without it. The normal motion is the same with and "
+    "without friction in all three (the friction acts tangentially only).",
 ]
 
 
@@ -230,10 +237,19 @@ OBLIQUE = ("steel, 100 cSt oil, 0.1 mm", "eta = 4 mu, eps = 1e-3", 30.0)  # deg
 ROUGH_OBLIQUE = (3e-6, (0.0, 0.3))  # the sphere's roughness sigma [m], friction coefficients
 
 
+def oblique_full_model(physical, asperities="impact"):
+    """The full model's St, e_n, e_t and spin change of ``physical`` by ``asperities``."""
+    result = collide(physical, RunConfig(asperities=asperities))
+    motion = result.tangential
+    return {"St": physical.dimensionless().St, "e_n": result.normal.e_n, "e_t": motion.e_t,
+            "spin_change": motion.spin_change}  # fmt: skip
+
+
 def oblique_run(table, speed, sigma=0.0, friction=0.0):
     """Yade and the full model at OBLIQUE's angle and ``speed`` on OBLIQUE's case: smooth with
     OBLIQUE's setting, or rough (the sphere's ``sigma`` [m], Coulomb's ``friction``) with Yade's
-    eps = sigma / (2 a) and friction angle atan(friction); (Yade's, the full model's) rebound."""
+    eps = sigma / (2 a) and friction angle atan(friction), and the full model by both asperity
+    models; Yade's rebound and the full model's (impact, then Greenwood-Tripp when rough)."""
     case, name, angle = OBLIQUE
     physical = dataclasses.replace(
         collision("yade", case, speed), angle=angle, sphere_roughness=sigma,
@@ -243,31 +259,33 @@ def oblique_run(table, speed, sigma=0.0, friction=0.0):
     label = f"sigma {sigma:g}, mu {friction:g}" if rough else name
     key = f"yade oblique|{case}|{label}|{speed}"
     if key not in table:
-        result = collide(physical)
         law = engine_law("yade", physical, {}) if rough else SETTINGS["yade"][name]
         folder = RUNS / "yade_oblique" / (f"sigma_{sigma:g}_mu_{friction:g}" if rough else "")
         rebound = yade.run(physical, law, folder / f"{speed}")
-        motion = result.tangential
-        full = {"St": physical.dimensionless().St, "e_n": result.normal.e_n,
-                "e_t": motion.e_t, "spin_change": motion.spin_change}  # fmt: skip
-        table[key] = {"yade": rebound.summary(), "full model": full}
+        table[key] = {"yade": rebound.summary(), "full model": oblique_full_model(physical)}
         write_atomic(TABLE, json.dumps(table, indent=1))
-    return table[key]["yade"], table[key]["full model"]
+    models = ["full model"]
+    if rough:
+        models.append("full model greenwood-tripp")
+        if models[1] not in table[key]:
+            table[key][models[1]] = oblique_full_model(physical, "greenwood-tripp")
+            write_atomic(TABLE, json.dumps(table, indent=1))
+    return table[key]["yade"], [table[key][model] for model in models]
 
 
 def oblique(table, sigma=0.0, frictions=(0.0,)):
     """Yade's e_n, e_t and spin change at OBLIQUE's angle beside the full model's, smooth or
-    rough (:func:`oblique_run`) for each friction coefficient; the rows of a markdown table."""
-    lines = ["| mu | St | e_n Yade / full | e_t Yade / full | spin change Yade / full |",
+    rough (:func:`oblique_run`; then by the impact model and Greenwood-Tripp's) for each
+    friction coefficient; the rows of a markdown table."""
+    full = "impact / mixed" if sigma > 0.0 else "full"
+    lines = [f"| mu | St | e_n Yade / {full} | e_t Yade / {full} | spin change Yade / {full} |",
              "|---|---|---|---|---|"]  # fmt: skip
     for friction in frictions:
         for speed in SPEEDS:
-            run, full = oblique_run(table, speed, sigma, friction)
-            lines.append(
-                f"| {friction:g} | {full['St']:.3g} | "
-                + " | ".join(f"{run[q]:.3f} / {full[q]:.3f}" for q in ("e_n", "e_t", "spin_change"))
-                + " |"
-            )
+            run, models = oblique_run(table, speed, sigma, friction)
+            cells = [" / ".join(f"{r[q]:.3f}" for r in (run, *models))
+                     for q in ("e_n", "e_t", "spin_change")]  # fmt: skip
+            lines.append(f"| {friction:g} | {models[0]['St']:.3g} | " + " | ".join(cells) + " |")
     return lines
 
 
@@ -339,19 +357,22 @@ def largest_best_error(table, engine):
     return max(min(by_setting.values())[1] for by_setting in errors(table, engine).values())
 
 
-ROUGH_CASE = "steel, 100 cSt oil, 0.1 mm"
-ROUGHNESSES = (1e-6, 3e-6, 1e-5)  # m, the sphere's rms roughness sigma (the wall smooth)
+ROUGH = (  # (case, the sphere's rms roughness sigma [m]; the wall smooth)
+    *(("steel, 100 cSt oil, 0.1 mm", sigma) for sigma in (1e-6, 3e-6, 1e-5)),
+    ("glass, 80 % glycerol, 0.1 mm", 3e-6),
+)
 ROUGH_FACTORS = (0.3, 1.0, 3.0, 10.0)  # the engine's parameter by its value of sigma
 ASPERITY_MODELS = ("impact", "greenwood-tripp")
 
 
-def rough_full_model(table, engine, sigma, speed):
-    """The full model's St and e_n beside ``engine`` at ``speed`` on ROUGH_CASE with the
-    sphere's roughness ``sigma``, by each asperity model (e_dry 1, as Yade's spring)."""
-    physical = dataclasses.replace(collision(engine, ROUGH_CASE, speed), sphere_roughness=sigma)
+def rough_full_model(table, engine, point, speed):
+    """The full model's St and e_n beside ``engine`` at ``speed`` on ``point`` (case, sigma),
+    by each asperity model (e_dry 1, as Yade's spring); the engine's collision."""
+    case, sigma = point
+    physical = dataclasses.replace(collision(engine, case, speed), sphere_roughness=sigma)
     full = full_model_collision(engine, physical)
     for model in ASPERITY_MODELS:
-        key = f"rough|{engine}|{sigma}|full model {model}|{speed}"
+        key = f"rough|{engine}|{case}|{sigma}|full model {model}|{speed}"
         if key not in table:
             e_n = collide(full, RunConfig(asperities=model)).normal.e_n
             table[key] = {"St": full.dimensionless().St, "e_n": e_n}
@@ -366,81 +387,83 @@ def compute_rough(table):
     at x0)."""
     for engine in ENGINES:
         name, of_roughness = ROUGHNESS[engine]
-        for sigma in ROUGHNESSES:
+        for point in ROUGH:
+            case, sigma = point
             for speed in SPEEDS:
-                physical = rough_full_model(table, engine, sigma, speed)
+                physical = rough_full_model(table, engine, point, speed)
                 for factor in ROUGH_FACTORS:
-                    key = f"rough|{engine}|{sigma}|x{factor:g}|{speed}"
+                    key = f"rough|{engine}|{case}|{sigma}|x{factor:g}|{speed}"
                     if key in table:
                         continue
                     law = engine_law(engine, physical, {name: of_roughness(physical, factor)})
-                    folder = RUNS / "rough" / engine / f"sigma_{sigma:g}" / f"x{factor:g}"
+                    folder = (RUNS / "rough" / engine / f"{list(CASES).index(case)}"
+                              / f"sigma_{sigma:g}" / f"x{factor:g}")  # fmt: skip
                     rebound = ENGINES[engine][1](physical, law, folder / f"{speed}")
                     table[key] = rebound.summary()
                     write_atomic(TABLE, json.dumps(table, indent=1))
                     print(key, f"e_n = {rebound.e_n:.4f}", flush=True)
 
 
-def rough_curves(table, engine, sigma):
+def rough_curves(table, engine, point):
     """St, the full model's e_n by asperity model, and the engine's e_n by factor."""
-    St = np.array([table[f"rough|{engine}|{sigma}|full model impact|{v}"]["St"] for v in SPEEDS])
+    key = "rough|{}|{}|{}".format(engine, *point)
+    St = np.array([table[f"{key}|full model impact|{v}"]["St"] for v in SPEEDS])
     full = {
-        model: np.array(
-            [table[f"rough|{engine}|{sigma}|full model {model}|{v}"]["e_n"] for v in SPEEDS]
-        )  # fmt: skip
+        model: np.array([table[f"{key}|full model {model}|{v}"]["e_n"] for v in SPEEDS])
         for model in ASPERITY_MODELS
     }
     runs = {
-        factor: np.array([table[f"rough|{engine}|{sigma}|x{factor:g}|{v}"]["e_n"] for v in SPEEDS])
+        factor: np.array([table[f"{key}|x{factor:g}|{v}"]["e_n"] for v in SPEEDS])
         for factor in ROUGH_FACTORS
     }
     return St, full, runs
 
 
-def rough_errors(table, engine, sigma, model):
+def rough_errors(table, engine, point, model):
     """Each factor's RMS and largest |e_n - e_n(full model by ``model``)| over the speeds."""
-    _, full, runs = rough_curves(table, engine, sigma)
+    _, full, runs = rough_curves(table, engine, point)
     difference = {factor: e - full[model] for factor, e in runs.items()}
     return {f: (float(np.sqrt(np.mean(d**2))), float(np.max(np.abs(d))))
             for f, d in difference.items()}  # fmt: skip
 
 
 def rough_table(table, engine):
-    """A markdown table per sigma and asperity model: the best factor and its RMS / max
+    """A markdown table per case, sigma and asperity model: the best factor and its RMS / max
     error, and factor 1's (the engine's parameter at sigma itself)."""
-    lines = ["| sigma (sigma/x0) | St | full model | best factor | RMS / max | "
-             "factor 1: RMS / max |", "|---|---|---|---|---|---|"]  # fmt: skip
-    x0 = CASES[ROUGH_CASE][3]
-    for sigma in ROUGHNESSES:
-        St = rough_curves(table, engine, sigma)[0]
+    lines = ["| case | sigma (sigma/x0) | St | full model | best factor | RMS / max | "
+             "factor 1: RMS / max |", "|---|---|---|---|---|---|---|"]  # fmt: skip
+    for point in ROUGH:
+        case, sigma = point
+        St = rough_curves(table, engine, point)[0]
         for model in ASPERITY_MODELS:
-            by_factor = rough_errors(table, engine, sigma, model)
+            by_factor = rough_errors(table, engine, point, model)
             best = min(by_factor, key=lambda f: by_factor[f][0])
             (rms, worst), (rms1, worst1) = by_factor[best], by_factor[1.0]
             lines.append(
-                f"| {sigma * 1e6:g} um ({sigma / x0:g}) | {St.min():.3g}-{St.max():.3g} | "
-                f"{model} | {best:g} | {rms:.3f} / {worst:.3f} | {rms1:.3f} / {worst1:.3f} |"
+                f"| {case} | {sigma * 1e6:g} um ({sigma / CASES[case][3]:g}) | "
+                f"{St.min():.3g}-{St.max():.3g} | {model} | {best:g} | {rms:.3f} / {worst:.3f} "
+                f"| {rms1:.3f} / {worst1:.3f} |"
             )
     return lines
 
 
 def rough_figure(table):
-    """e_n(St) on rough surfaces: a row per engine, a column per sigma; the full model by
-    each asperity model and the engine at each factor."""
-    fig, axes = plt.subplots(len(ENGINES), len(ROUGHNESSES), figsize=(14, 8), sharey=True)
+    """e_n(St) on rough surfaces: a row per engine, a column per (case, sigma); the full model
+    by each asperity model and the engine at each factor."""
+    fig, axes = plt.subplots(len(ENGINES), len(ROUGH), figsize=(18, 8), sharey=True)
     for row, engine in zip(axes, ENGINES, strict=True):
-        for ax, sigma in zip(row, ROUGHNESSES, strict=True):
-            St, full, runs = rough_curves(table, engine, sigma)
+        for ax, point in zip(row, ROUGH, strict=True):
+            St, full, runs = rough_curves(table, engine, point)
             ax.plot(St, full["impact"], "k-", lw=2, label="full model, impact")
             ax.plot(St, full["greenwood-tripp"], "k:", lw=2, label="full model, Greenwood-Tripp")
             for factor, e in runs.items():
                 ax.plot(St, e, "o--", ms=4, label=f"{engine}, factor {factor:g}")
             ax.set_xscale("log")
             ax.set_xlabel("St")
-            ax.set_title(f"{engine}, sigma = {sigma * 1e6:g} um", fontsize=9)
+            ax.set_title(f"{engine}: {point[0]}, sigma = {point[1] * 1e6:g} um", fontsize=9)
         row[0].set_ylabel("e_n")
         row[0].legend(fontsize=7)
-    fig.suptitle(f"rough surfaces: {ROUGH_CASE} (radius {RADIUS * 1e3:g} mm)")
+    fig.suptitle(f"rough surfaces (radius {RADIUS * 1e3:g} mm)")
     fig.tight_layout()
     path = ROOT / "docs/figures/dem_engines_roughness.png"
     fig.savefig(path, dpi=110)

@@ -174,7 +174,7 @@ def stated_rough_error(engine, factor, asperities, sigma=3e-6):
     the engine's asperity parameter at ``factor`` times its value of ``sigma`` (docs/validation.md,
     "DEM engines", rough surfaces) over its speeds."""
     table = json.loads(STUDY.read_text())
-    key = f"rough|{engine}|{sigma}"
+    key = f"rough|{engine}|{CASE}|{sigma}"
     rows = [(table[f"{key}|x{factor:g}|{v}"], table[f"{key}|full model {asperities}|{v}"])
             for v in SPEEDS]  # fmt: skip
     return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)

@@ -1,6 +1,9 @@
 """``ehdfem dem``: a real DEM engine (Yade or LIGGGHTS) on one collision, its rebound printed
 beside the full model's at the same physical inputs (:mod:`ehdfem.dem.engines`). The engine's
-input script, log, history and rebound stay in ``--folder`` to open and rerun by hand."""
+input script, log, history and rebound stay in ``--folder`` to open and rerun by hand. On rough
+surfaces (``--sphere-roughness``, ``--wall-roughness`` [m]) the full model runs with their sigma
+and the engine's asperity parameter, unless given, is set from it
+(:func:`ehdfem.dem.engines.compare.engine_law`)."""
 
 from __future__ import annotations
 

@@ -108,17 +108,19 @@ def test_the_roughness_sets_each_engine_unless_given():
 
 def test_dem_command_passes_the_roughness_to_the_engine_and_the_full_model(tmp_path):
     """``--sphere-roughness`` [m] reaches the engine's script (Yade's eps) and the full model
-    (sigma / x0)."""
+    (sigma / x0); ``--friction-coefficient`` mu reaches Yade as the friction angle atan(mu)."""
     out = tmp_path / "dem.json"
     args = ["dem", "--engine", "yade", "--folder", str(tmp_path / "yade"), "--sphere", "steel",
             "--wall", "glass", "--liquid", "silicone_oil_100cst", "--radius", "2e-3", "--speed",
-            "1", "--layer-thickness", "1e-4", "--sphere-roughness", "8e-6", "--json",
-            str(out)]  # fmt: skip
+            "1", "--layer-thickness", "1e-4", "--sphere-roughness", "8e-6",
+            "--friction-coefficient", "0.5", "--json", str(out)]  # fmt: skip
     assert main(args) == 0
     result = json.loads(out.read_text())
     assert result["law"]["yade_roughness"] == pytest.approx(2e-3, rel=1e-12)
     assert result["full_model"]["roughness"] == pytest.approx(0.08, rel=1e-12)
-    assert '"eps": 0.002' in (tmp_path / "yade" / "collision.py").read_text()
+    script = (tmp_path / "yade" / "collision.py").read_text()
+    assert '"eps": 0.002' in script
+    assert f'"friction_angle": {math.atan(0.5)!r}' in script
 
 
 @pytest.mark.parametrize(

@@ -12,8 +12,9 @@ import pytest
 
 from ehdfem import from_presets
 from ehdfem.cli.main import main
+from ehdfem.config import RunConfig
 from ehdfem.dem.engines import liggghts, yade
-from ehdfem.dem.engines.compare import compare
+from ehdfem.dem.engines.compare import compare, engine_law
 from ehdfem.dem.engines.rebound import read_rebound, run_binary
 
 pytestmark = pytest.mark.serial  # the engines are serial binaries: nothing to check on 2 ranks
@@ -92,6 +93,36 @@ def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
     assert result["engine"]["e_t"] is not None and result["full_model"]["e_t"] is not None
 
 
+def test_the_roughness_sets_each_engine_unless_given():
+    """On rough surfaces (sigma = 4 um on a 2 mm sphere) the engine's asperity setting is the
+    roughness: Yade's eps = sigma / (2 a) = 1e-3 and LIGGGHTS's minimum gap ratio 3 sigma / R*
+    = 1.2e-2 (R* = 1 mm), exact up to rounding; a value given stays; smooth: the defaults."""
+    rough = small(sphere_roughness=3.2e-6, wall_roughness=2.4e-6)  # sigma = 4 um
+    assert engine_law("yade", rough, {}).yade_roughness == pytest.approx(1e-3, rel=1e-12)
+    law = engine_law("liggghts", rough, {})
+    assert law.liggghts_min_separation == pytest.approx(1.2e-2, rel=1e-12)
+    assert engine_law("yade", rough, {"yade_roughness": 0.02}).yade_roughness == 0.02
+    assert engine_law("yade", small(), {}) == yade.YadeLaw()
+    assert engine_law("liggghts", small(), {}) == liggghts.LiggghtsLaw()
+
+
+def test_dem_command_passes_the_roughness_to_the_engine_and_the_full_model(tmp_path):
+    """``--sphere-roughness`` [m] reaches the engine's script (Yade's eps) and the full model
+    (sigma / x0); ``--friction-coefficient`` mu reaches Yade as the friction angle atan(mu)."""
+    out = tmp_path / "dem.json"
+    args = ["dem", "--engine", "yade", "--folder", str(tmp_path / "yade"), "--sphere", "steel",
+            "--wall", "glass", "--liquid", "silicone_oil_100cst", "--radius", "2e-3", "--speed",
+            "1", "--layer-thickness", "1e-4", "--sphere-roughness", "8e-6",
+            "--friction-coefficient", "0.5", "--json", str(out)]  # fmt: skip
+    assert main(args) == 0
+    result = json.loads(out.read_text())
+    assert result["law"]["yade_roughness"] == pytest.approx(2e-3, rel=1e-12)
+    assert result["full_model"]["roughness"] == pytest.approx(0.08, rel=1e-12)
+    script = (tmp_path / "yade" / "collision.py").read_text()
+    assert '"eps": 0.002' in script
+    assert f'"friction_angle": {math.atan(0.5)!r}' in script
+
+
 @pytest.mark.parametrize(
     "extra, flag",
     [
@@ -138,6 +169,38 @@ def test_engine_rebound_beside_the_full_model(tmp_path, engine, setting, law, wa
     result = compare(engine, collision, law, tmp_path)
     assert result["engine"]["rebounded"]
     assert abs(result["e_n_difference"]) <= stated_error(engine, setting) + 1e-3
+
+
+def stated_rough_error(engine, factor, asperities, sigma=3e-6):
+    """The largest |e_n(engine) - e_n(full model by ``asperities``)| that the study states for
+    the engine's asperity parameter at ``factor`` times its value of ``sigma`` (docs/validation.md,
+    "DEM engines", rough surfaces) over its speeds."""
+    table = json.loads(STUDY.read_text())
+    key = f"rough|{engine}|{CASE}|{sigma}"
+    rows = [(table[f"{key}|x{factor:g}|{v}"], table[f"{key}|full model {asperities}|{v}"])
+            for v in SPEEDS]  # fmt: skip
+    return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)
+
+
+@pytest.mark.parametrize(
+    "engine, wall, factor, asperities",
+    [
+        ("yade", "glass", 1.0, "greenwood-tripp"),  # eps = sigma / (2 a): mixed lubrication
+        ("liggghts", "steel", 3.0, "impact"),  # the smallest gap 3 sigma: the impact model
+    ],
+)
+def test_rough_engine_rebound_beside_the_full_model(tmp_path, engine, wall, factor, asperities):
+    """On a rough sphere (sigma = 3 um, sigma / x0 = 0.03) at 1.2 m/s, the engine with the
+    asperity parameter that ``ehdfem dem`` sets from the roughness is within the error the study
+    states for it of the full model by the asperity model it stands for; 1e-3 more for the
+    run's own spread (time steps move e_n by < 1e-4)."""
+    collision = small(wall=wall, speed=1.2, sphere_roughness=3e-6)
+    law = engine_law(engine, collision, {})
+    result = compare(engine, collision, law, tmp_path, RunConfig(asperities=asperities))
+    assert result["engine"]["rebounded"]
+    assert result["full_model"]["roughness"] == pytest.approx(0.03, rel=1e-12)
+    limit = stated_rough_error(engine, factor, asperities)
+    assert abs(result["e_n_difference"]) <= limit + 1e-3
 
 
 def test_a_missing_engine_is_named_with_the_set_up(tmp_path, monkeypatch):

@@ -1,11 +1,14 @@
 """``ehdfem dem``: a real DEM engine (Yade or LIGGGHTS) on one collision, its rebound printed
 beside the full model's at the same physical inputs (:mod:`ehdfem.dem.engines`). The engine's
-input script, log, history and rebound stay in ``--folder`` to open and rerun by hand."""
+input script, log, history and rebound stay in ``--folder`` to open and rerun by hand. On rough
+surfaces (``--sphere-roughness``, ``--wall-roughness`` [m]) the full model runs with their sigma
+and the engine's asperity parameter, unless given, is set from it
+(:func:`ehdfem.dem.engines.compare.engine_law`)."""
 
 from __future__ import annotations
 
 from .. import CollisionParameters, checks
-from ..dem.engines.compare import ENGINES, compare
+from ..dem.engines.compare import ENGINES, compare, engine_law
 from . import paths
 from .arguments import JSON_HELP, add_fields, given, report_stream, write_json
 from .inputs import add_collision_arguments, collision_inputs, run_config
@@ -50,8 +53,8 @@ def dem_command(args) -> int:
             "the engines take physical inputs: --sphere, --wall, --liquid, --radius, --speed, "
             "--layer-thickness (or --example)"
         )
-    result = compare(args.engine, collision, law_class(**given(args, law_class)), args.folder,
-                     run_config(args))  # fmt: skip
+    law = engine_law(args.engine, collision, given(args, law_class))
+    result = compare(args.engine, collision, law, args.folder, run_config(args))
     report = report_stream(args)
     print_comparison(result, report)
     write_json(result, args.json)
@@ -63,7 +66,8 @@ def print_comparison(result: dict, report) -> None:
     engine, model = result["engine"], result["full_model"]
     print(
         f"ehdfem dem: {engine['engine']} beside the full model (St = {model['St']:.4g}, "
-        f"eps = {model['eps']:.3g}, delta = {model['delta']:.3g})",
+        f"eps = {model['eps']:.3g}, delta = {model['delta']:.3g}, "
+        f"sigma/x0 = {model['roughness']:.3g}, asperities {model['asperities']})",
         file=report,
     )
     for key in ("e_n", "e_t", "spin_change"):

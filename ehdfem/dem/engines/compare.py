@@ -34,6 +34,24 @@ ENGINES: dict[str, tuple[type, EngineRun]] = {  # name: (its law's settings, its
 }
 
 
+ROUGHNESS = {  # name: (its law's setting for the surfaces' roughness, its value of a collision)
+    "yade": ("yade_roughness", yade.roughness_of),
+    "liggghts": ("liggghts_min_separation", liggghts.min_separation_of),
+}
+
+
+def engine_law(engine: str, collision: PhysicalCollision, settings: dict):
+    """``engine``'s law with ``settings`` (its fields by name); on rough surfaces (sigma > 0)
+    the setting that stands for the asperities, unless given, is the collision's roughness
+    (:data:`ROUGHNESS`: Yade's eps = sigma / (2 a), LIGGGHTS's minimum gap 3 sigma), as the
+    full model's is."""
+    checks.choice("engine", engine, tuple(ENGINES))
+    name, of_roughness = ROUGHNESS[engine]
+    if collision.roughness > 0.0 and name not in settings:
+        settings = settings | {name: of_roughness(collision)}
+    return ENGINES[engine][0](**settings)
+
+
 def check_engine_inputs(engine: str, collision: PhysicalCollision) -> None:
     """Refuse inputs that the engine's scene leaves out, so that both sides collide alike: the
     engines run a thin layer without gravity, and Yade's contact spring is undamped (e_dry 1;
@@ -66,7 +84,8 @@ def compare(
 ) -> dict:
     """``engine`` run on ``collision`` with ``law`` in ``folder``, and the full model (run with
     ``config``) at the same inputs: the engine's rebound, the full model's e_n, e_t and spin
-    change, its St and eps, and the differences e_n(engine) - e_n(full model)."""
+    change, its St, eps, delta, roughness sigma / x0 and asperity model, and the difference
+    e_n(engine) - e_n(full model)."""
     config = config or RunConfig()
     if engine == "liggghts" and config.model != "halfspace":
         raise checks.InputError(
@@ -83,6 +102,8 @@ def compare(
         "St": params.St,
         "eps": params.eps,
         "delta": params.delta,
+        "roughness": params.roughness,
+        "asperities": config.asperities,
         "e_n": result.normal.e_n,
         "e_t": None if tangential is None else tangential.e_t,
         "spin_change": None if tangential is None else tangential.spin_change,

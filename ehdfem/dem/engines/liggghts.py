@@ -42,6 +42,8 @@ from .rebound import EngineRebound, read_rebound, run_binary
 SCRIPT = "in.collision"
 LOG = "log.liggghts"
 LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 (+ 10 Hertz contact times): then stuck
+GAP_BY_ROUGHNESS = 3.0  # the smallest gap by sigma closest to the full model's impact model
+# (e_n within 0.05 for sigma / x0 = 0.01-0.1, St 10-170; docs/validation.md, "DEM engines")
 
 
 @dataclass(frozen=True)
@@ -52,6 +54,8 @@ class LiggghtsLaw:
     liggghts_min_separation: float = setting(
         0.01, help="minSeparationDistanceRatio: the smallest gap in the viscous force (1.01 "
         "is LIGGGHTS's recommended value)", unit="by R*", lower=0.0, upper=2.0, lower_open=True,
+        default_text="0.01 on smooth surfaces, 3 sigma / R* on rough ones (the surfaces' "
+        "combined rms roughness sigma)",
     )  # fmt: skip
     liggghts_max_separation: float | None = setting(
         None, help="maxSeparationDistanceRatio: the bridge breaks at the gap (ratio - 1) 2 R",
@@ -64,6 +68,13 @@ class LiggghtsLaw:
 
     def __post_init__(self):
         validate(self)
+
+
+def min_separation_of(collision: PhysicalCollision, factor: float = GAP_BY_ROUGHNESS) -> float:
+    """minSeparationDistanceRatio of the surfaces' combined rms roughness sigma [m]: the viscous
+    force's smallest gap minSeparationDistanceRatio R* is ``factor`` sigma, the ratio
+    factor sigma / R* with R* = R / 2."""
+    return factor * collision.roughness / (collision.radius / 2.0)
 
 
 def hertz_contact_time(collision: PhysicalCollision) -> float:

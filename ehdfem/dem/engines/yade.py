@@ -10,7 +10,9 @@ moduli; the wall's box takes the sphere's radius),
 
 un the gap between the undeformed surfaces, a = (a1 + a2) / 2 the mean radius (the sphere's
 radius on a wall), eps the roughness (asperities touch at u = 2 eps a, then a spring keps kn in
-parallel), and tangential, rolling and twist lubrication forces. On a wall Yade treats the wall
+parallel), and tangential, rolling and twist lubrication forces; in the asperities' contact a
+tangential spring ks whose force Coulomb's law limits to tan(phi) times the contact's normal
+force, phi = atan(mu) of the collision's ``friction_coefficient`` mu. On a wall Yade treats the wall
 as a second sphere of the same radius: its rigid force (3/2) pi eta a^2 v / u is a quarter of
 the wall's exact 6 pi mu a^2 v / h; ``viscosity_factor`` = 4 (the default) gives Yade eta = 4 mu,
 the exact rigid wall force. The interaction starts when the gap is the layer's thickness x0
@@ -46,6 +48,8 @@ class YadeLaw:
     yade_roughness: float = setting(
         1e-3, help="Yade's eps: the asperities touch at the film u = 2 eps a", unit="by a",
         lower=0.0, upper=0.1, lower_open=True,
+        default_text="1e-3 on smooth surfaces, sigma / (2 a) on rough ones (the surfaces' "
+        "combined rms roughness sigma)",
     )  # fmt: skip
     yade_keps: float = setting(
         1.0, help="Yade's keps: the asperities' stiffness by the spring kn", lower=0.0,
@@ -69,6 +73,15 @@ class YadeLaw:
         validate(self)
 
 
+def roughness_of(collision: PhysicalCollision, factor: float = 1.0) -> float:
+    """Yade's eps of the surfaces' combined rms roughness sigma [m]: its asperities touch at the
+    film u = 2 eps a = ``factor`` sigma (a the sphere's radius [m]), eps = factor sigma / (2 a).
+    factor 1 (the asperities where the full model's touch) reproduces the full model's mixed
+    lubrication (Greenwood-Tripp), as Yade's asperity spring acts in parallel with its film
+    (docs/validation.md, "DEM engines")."""
+    return factor * collision.roughness / (2.0 * collision.radius)
+
+
 def contact_stiffness(collision: PhysicalCollision, law: YadeLaw) -> float:
     """Yade's spring kn = 2 E1 a E2 a / (E1 a + E2 a) [N/m] for the sphere (E1) on the wall
     (E2), both of radius a [m], the moduli times ``yade_stiffness``."""
@@ -78,8 +91,9 @@ def contact_stiffness(collision: PhysicalCollision, law: YadeLaw) -> float:
 
 
 def script_inputs(collision: PhysicalCollision, law: YadeLaw) -> dict:
-    """The numbers the script reads (SI): radius, mass, inertia, moduli, Poisson's ratios,
-    Yade's eta and eps, keps, layer x0, velocities, spin, time step and time limit."""
+    """The numbers the script reads (SI): radius, mass, inertia, moduli, Poisson's ratios, the
+    friction angle atan(mu) of the collision's friction coefficient, Yade's eta and eps, keps,
+    layer x0, velocities, spin, time step and time limit."""
     a, x0, v0 = collision.radius, collision.layer_thickness, collision.normal_speed
     mass = collision.mass
     dt = law.yade_time_step * math.sqrt(mass / contact_stiffness(collision, law))
@@ -91,6 +105,7 @@ def script_inputs(collision: PhysicalCollision, law: YadeLaw) -> dict:
         "sphere_poisson": collision.sphere.poisson_ratio,
         "wall_young": law.yade_stiffness * collision.wall.young_modulus,
         "wall_poisson": collision.wall.poisson_ratio,
+        "friction_angle": math.atan(collision.friction_coefficient),
         "eta": law.yade_viscosity_factor * collision.liquid.viscosity,
         "eps": law.yade_roughness,
         "keps": law.yade_keps,
@@ -111,10 +126,10 @@ from yade.utils import box, sphere
 p = INPUTS
 a, x0, v0, u0 = p["radius"], p["layer"], p["normal_speed"], p["tangential_speed"]
 wall_material = O.materials.append(FrictMat(young=p["wall_young"], poisson=p["wall_poisson"],
-                                            density=1000.0, frictionAngle=0.0))
+                                            density=1000.0, frictionAngle=p["friction_angle"]))
 sphere_material = O.materials.append(FrictMat(young=p["sphere_young"],
                                               poisson=p["sphere_poisson"], density=1000.0,
-                                              frictionAngle=0.0))
+                                              frictionAngle=p["friction_angle"]))
 O.bodies.append(box(center=(0, 0, -a), extents=(20 * a, 20 * a, a), fixed=True,
                     material=wall_material))
 ball = O.bodies[O.bodies.append(sphere(center=(0, 0, a + x0), radius=a,

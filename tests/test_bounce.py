@@ -175,7 +175,8 @@ def test_handover_joins_flight_and_film_both_ways():
     below 8 % for tolerances of 0.5 % and 5 %; without the flight's cap the exit jump was
     0.45-0.86 in docs/bounce.md's runs; the exit, above the cavity, misses the flight's
     remainder phi - 1, a few % of the force there), and the apex after the bounce hardly
-    depends on where the hand-over is: within 2 % for a tenfold change of the tolerance. The
+    depends on where the hand-over is: within 3 % for a tenfold change of the tolerance
+    (measured 2.3 % since the film's conductance is exact for a rigid squeeze, 1.6 % before). The
     film model hands back at h_cav = sqrt(3 mu a V0 / Delta p) (no cavity there at any speed
     up to V0), where the flight resumes."""
     inputs = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.97)
@@ -190,7 +191,7 @@ def test_handover_joins_flight_and_film_both_ways():
         after = np.flatnonzero(np.asarray(result.trajectory["phase"]) == "contact")[-1] + 1
         assert result.trajectory["gap"][after] == pytest.approx(contact.exit_gap, rel=1e-12)
         apexes.append(contact.apex_gap)
-    assert apexes[0] == pytest.approx(apexes[1], rel=0.02)
+    assert apexes[0] == pytest.approx(apexes[1], rel=0.03)
 
 
 @pytest.mark.serial
@@ -230,23 +231,21 @@ def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
         cavitation="none",
         **STEADY,
     )
-    far, errors = FarField(inputs), []
-    for nodes in (300, 600):
-        options = IntegratorOptions(rtol=1e-5, max_time=5.0)
-        result = bounce(inputs, model="rigid", nodes=nodes, options=options)
-        (contact,) = result.contacts
-        assert contact.status == "stalled" and "settling" in result.status
-        inside = np.asarray(result.trajectory["phase"]) == "contact"
-        x0, v0 = contact.handover_gap, contact.handover_speed
-        time = result.trajectory["time"][inside]
-        scaled_time = (time - time[0]) * v0 / x0
-        gap = result.trajectory["gap"][inside] / x0
-        velocity = result.trajectory["velocity"][inside] / v0
-        weight = far.net_weight * x0 / (far.stokes * inputs.radius * v0)
-        momentum = contact.contact_St * (velocity + 1) - np.log(1 / gap) + weight * scaled_time
-        errors.append(np.abs(momentum).max())
-        assert weight * scaled_time[-1] > 4 and gap[-1] < 0.02
-    assert errors[0] < 2e-2 and errors[1] < errors[0] / 3
+    far = FarField(inputs)
+    options = IntegratorOptions(rtol=1e-5, max_time=5.0)
+    result = bounce(inputs, model="rigid", nodes=300, options=options)
+    (contact,) = result.contacts
+    assert contact.status == "stalled" and "settling" in result.status
+    inside = np.asarray(result.trajectory["phase"]) == "contact"
+    x0, v0 = contact.handover_gap, contact.handover_speed
+    time = result.trajectory["time"][inside]
+    scaled_time = (time - time[0]) * v0 / x0
+    gap = result.trajectory["gap"][inside] / x0
+    velocity = result.trajectory["velocity"][inside] / v0
+    weight = far.net_weight * x0 / (far.stokes * inputs.radius * v0)
+    momentum = contact.contact_St * (velocity + 1) - np.log(1 / gap) + weight * scaled_time
+    assert weight * scaled_time[-1] > 4 and gap[-1] < 0.02
+    assert np.abs(momentum).max() < 5e-4
 
 
 @pytest.mark.serial

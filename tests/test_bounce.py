@@ -5,6 +5,7 @@ inputs."""
 
 import json
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -213,6 +214,59 @@ def test_rigid_immersed_sphere_sticks_where_the_rigid_theory_stops_it():
 
 
 @pytest.mark.serial
+def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_says():
+    """eps -> 0, no cavitation, no gravity in the contact, the sphere of the test above made
+    rough: sigma = h_c exp(-St/4) [m], so its asperities touch at X = sigma/x0 before the film
+    can stop it. The rigid immersed theory (St dV/dT = -V/X, scaled by the contact's x0 = h_c
+    and V0) gives the touch at V_c = -(1 - L/St), L = ln(x0/sigma) = St/4, the rebound at
+    e_dry |V_c| and the exit at X = 1 with V_exit = e_dry (1 - L/St) - L/St = 0.35 for
+    e_dry = 0.8; the collision's e_n = V_exit (e_dry acted at the touch, not again at exit) is
+    the bounce's rebound over V0. Tolerance 5e-3 on V_exit: the film's force is resolved to
+    about 0.5 %, which moves each ln term by that fraction (2 L/St 0.5 % = 2.5e-3). This checks
+    that each contact scales the SI roughness by its own x0."""
+    smooth = BounceInputs(
+        **OIL_BOUNCE, release_height=1e-4, cavitation="none", contact_gravity=False, e_dry=0.8
+    )
+    (first,) = bounce(smooth, model="rigid").contacts
+    sigma = first.handover_gap * math.exp(-first.contact_St / 4)
+    rough = replace(smooth, sphere_roughness=sigma, clear_exit=False)
+    contact = bounce(rough, model="rigid", max_bounces=1).contacts[0]
+    assert contact.handover_gap == pytest.approx(first.handover_gap, rel=1e-12)
+    assert contact.film["solid_impact_speed_m_s"] is not None and contact.status == "rebound"
+    share = 0.25  # L / St
+    exit_velocity = 0.8 * (1 - share) - share
+    assert contact.film["exit_velocity"] == pytest.approx(exit_velocity, abs=5e-3)
+    rebound = contact.e * contact.impact_speed / contact.handover_speed
+    assert rebound == pytest.approx(contact.film["exit_velocity"], rel=1e-9)
+
+
+@pytest.mark.serial
+def test_the_contact_impulses_switched_on_kick_the_rebound_and_keep_the_energy():
+    """``contact_history`` adds the history force's impulse J over the contact (recorded
+    without it, relative to M(h_c) V0) to the rebound's momentum at exit: the rebound speed
+    moves by exactly J / M(h_exit) (the same contact, to 1e-9), towards the wall (J < 0: the
+    memory of the approach and of the reversal); with both impulses on, the energy balance
+    still holds to 2e-3 (their kinetic energy is taken from the history force's and the drag's
+    work on the liquid), no cavitation as in the energy test above."""
+    base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.9, cavitation="none")
+    results = {
+        name: bounce(replace(base, **changes), max_bounces=1)
+        for name, changes in {
+            "off": {},
+            "history": {"contact_history": True},
+            "both": {"contact_history": True, "contact_drag": True},
+        }.items()
+    }
+    off, history = results["off"].contacts[0], results["history"].contacts[0]
+    far = FarField(base)
+    impulse = off.history_impulse * far.inertia(off.handover_gap)[0] * off.handover_speed
+    assert impulse < 0
+    kick = (history.e - off.e) * off.impact_speed
+    assert kick == pytest.approx(impulse / far.inertia(off.exit_gap)[0], rel=1e-9)
+    assert results["both"].energy_error() < 2e-3
+
+
+@pytest.mark.serial
 def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
     """A steel sphere reaching the wall slowly in a 100 cSt oil (St = 0.12, scaled buoyant
     weight W = 0.86 at the hand-over), rigid solids, no cavitation: the rigid immersed
@@ -276,6 +330,10 @@ def test_release_height_gives_the_wanted_impact_speed():
         ({"history": "bessel"}, "history"),
         ({"history_memory": "forever"}, "history_memory"),
         ({"wall_added_mass": "yes"}, "wall_added_mass"),
+        ({"contact_history": 1}, "contact_history"),
+        ({"sphere_roughness": -1e-7}, "sphere_roughness"),
+        ({"wall_roughness": 1e-4}, "wall_roughness"),
+        ({"asperities": "glue"}, "asperities"),
     ],
 )
 def test_bad_inputs_are_refused_by_name(changes, named):
@@ -328,6 +386,9 @@ def test_command_writes_trajectory_contacts_json_and_plot(tmp_path, capsys):
             "--history",
             "basset",
             "--no-clear-exit",
+            "--contact-history",
+            "--sphere-roughness",
+            "1.5e-7",
             "--out",
             str(out),
         ]
@@ -338,6 +399,8 @@ def test_command_writes_trajectory_contacts_json_and_plot(tmp_path, capsys):
     assert summary["inputs"]["e_dry"] == 0.97
     assert summary["inputs"]["history"] == "basset" and summary["inputs"]["clear_exit"] is False
     assert summary["inputs"]["contact_gravity"] is True
+    assert summary["inputs"]["contact_history"] and not summary["inputs"]["contact_drag"]
+    assert summary["inputs"]["sphere_roughness"] == 1.5e-7
     assert summary["provenance"]["command"][:2] == ["ehdfem", "bounce"]
     header = (out / "trajectory.csv").read_text().splitlines()[0]
     assert header.startswith("time,gap,velocity,phase")

@@ -30,11 +30,14 @@ h_EHD, h_EHD = (4 theta mu |v| a^(3/2))^(2/5) the gap at which the elasticity pa
 whichever comes first. The film model starts at X = 1 (x0 = h_c) with V0 = |v(h_c)|, the
 inertia M(h_c) (the sphere's mass, and the added mass not in the weight), gravity and buoyancy
 (``contact_gravity``), e_dry and the cavitation limit of the inputs; it ends at exit (X =
-h_exit / h_c, speed e_dry V_exit V0; :meth:`FarField.exit_gap`) or sticks. The flight's
+h_exit / h_c, speed e_n V0 with the collision's e_n: e_dry V_exit for smooth surfaces, V_exit
+for rough ones, whose asperities act inside the contact; :meth:`FarField.exit_gap`) or sticks.
+The surfaces' roughness [m] is the same at every contact, sigma / x0 is not. The flight's
 remainder (phi - 1 + lambda - a/h) and the history force are not applied during the contact;
-their impulses are measured (:class:`Contact`), and the contact's velocity change is carried
-into the history force's memory (``history_memory`` "keep") or the memory is emptied
-("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
+their impulses are measured (:class:`Contact`; ``contact_history`` and ``contact_drag`` add
+them to the rebound's momentum at exit, a first-order estimate), and the contact's velocity
+change is carried into the history force's memory (``history_memory`` "keep") or the memory is
+emptied ("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
 
 **Rest**: the sphere rests when a contact sticks or stalls, or when an apex is below
 ``rest_apex`` D or already inside the hand-over region; the computation also stops at the apex
@@ -55,6 +58,7 @@ from ..collision import collide, film_radii
 from ..config import DEFAULT_NODES, Numerics, RunConfig
 from ..dem.closedform import legendre
 from ..film import cavitation
+from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import (
     ATMOSPHERE,
@@ -82,6 +86,13 @@ SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry fo
 LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
 ENDINGS = {"stick": "sticks", "stalled": "stalled (settling through the film)"}
 HISTORY_MEMORIES = ("keep", "reset")  # the history force's memory across a contact
+SWITCHES = (  # the on/off modelling choices of BounceInputs
+    "wall_added_mass",
+    "contact_gravity",
+    "clear_exit",
+    "contact_history",
+    "contact_drag",
+)
 
 
 def drag_factor(law: str, reynolds):
@@ -180,9 +191,10 @@ class BounceInputs:
     preset name, a Material or Liquid, or a dict of values, as :func:`ehdfem.from_presets`);
     the start: ``release_height`` [m], the gap from which the sphere is released at rest, or
     ``start_gap`` [m] with ``start_speed`` [m/s] towards the wall; e_dry in (0, 1], applied at
-    each exit as in the collision model (e_n = e_dry V_exit); the drag law (:data:`DRAG_LAWS`);
-    the added-mass coefficient C_M in [0, 1] (far from the wall); gravity g [m/s^2]; the film's
-    cavitation model (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa]
+    each exit as in the collision model (e_n = e_dry V_exit; rough: at the asperities'
+    impact); the drag law (:data:`DRAG_LAWS`); the added-mass coefficient C_M in [0, 1] (far
+    from the wall); gravity g [m/s^2]; the film's cavitation model
+    (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa]
     (the cavitation pressure is the liquid's vapour pressure, as in
     :class:`ehdfem.PhysicalCollision`). The
     modelling choices of docs/bounce.md, each switchable: the history force's kernel
@@ -191,7 +203,13 @@ class BounceInputs:
     forgets everything at each exit); ``wall_added_mass``: C_M rises near the wall as the
     sphere's image says (C_M above is then its value far away); ``contact_gravity``: gravity
     and buoyancy act during the contacts; ``clear_exit``: the film model hands back above the
-    gap where a cavity can form (:meth:`FarField.exit_gap`)."""
+    gap where a cavity can form (:meth:`FarField.exit_gap`). The surfaces' rms roughness
+    ``sphere_roughness`` and ``wall_roughness`` [m] (0: smooth), the same at every contact
+    (scaled there by that contact's x0 = h_c), with the collision's ``asperities`` model
+    (:data:`ehdfem.film.asperities.MODELS`). The contact's omitted impulses, each switchable
+    (default off, docs/bounce.md "Testing the cause"): ``contact_history`` adds the history
+    force's impulse over the contact, ``contact_drag`` the flight's remainder's, to the
+    rebound's momentum at exit."""
 
     radius: float
     sphere: Material | str | dict
@@ -211,6 +229,11 @@ class BounceInputs:
     wall_added_mass: bool = True
     contact_gravity: bool = True
     clear_exit: bool = True
+    sphere_roughness: float = 0.0
+    wall_roughness: float = 0.0
+    asperities: str = "impact"
+    contact_history: bool = False
+    contact_drag: bool = False
 
     def __post_init__(self):
         for role in ("sphere", "wall", "liquid"):
@@ -246,7 +269,10 @@ class BounceInputs:
         check_vapour_pressure(self.liquid, self.ambient_pressure)
         checks.choice("history", self.history, HISTORY_KERNELS)
         checks.choice("history_memory", self.history_memory, HISTORY_MEMORIES)
-        for switch in ("wall_added_mass", "contact_gravity", "clear_exit"):
+        for surface in ("sphere_roughness", "wall_roughness"):
+            checks.number(surface, getattr(self, surface), lower=0.0, upper=0.01 * self.radius)
+        checks.choice("asperities", self.asperities, ASPERITY_MODELS)
+        for switch in SWITCHES:
             if not isinstance(getattr(self, switch), bool):
                 raise checks.InputError(f"{switch} must be True or False")
 
@@ -545,9 +571,9 @@ class Contact:
     ``remainder_impulse`` (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest
     film) and ``history_impulse`` (int F_H dt from the memory carried through the contact,
     signed, positive away from the wall; 0 without a history force). Energies [J]:
-    ``film_dissipated`` (the film's viscous dissipation up to exit), ``exit_loss`` (the dry
-    loss (1 - e_dry^2) times the exit's kinetic energy, plus the elastic energy left in the
-    solids)."""
+    ``film_dissipated`` (the film's viscous dissipation up to exit), ``exit_loss`` (the
+    exit's kinetic energy less the rebound's at e_n, the dry loss of smooth surfaces, plus
+    the elastic energy left in the solids)."""
 
     impact_speed: float
     St: float
@@ -785,8 +811,9 @@ class _Bounce:
         """The contact after the falling ``leg``: the film model from the hand-over state (its
         inertia M(h_c), handing back at :meth:`FarField.exit_gap`), its samples recorded;
         returns the Contact and the FlightState where flight resumes after a rebound (the
-        speed e_dry V_exit V0 sqrt(M(h_c) / M(h_exit)), which keeps the kinetic energy across
-        the added mass's change, as the flight's own equation does)."""
+        speed e_n V0 sqrt(M(h_c) / M(h_exit)), e_n the collision's restitution, which keeps
+        the kinetic energy across the added mass's change, as the flight's own equation does;
+        plus the omitted impulses switched on, :meth:`_exit_kick`)."""
         far, inputs = self.far, self.far.inputs
         start = leg.last()
         speed = -start.velocity
@@ -796,16 +823,22 @@ class _Bounce:
         energy_unit = mass * speed**2 / params.St
         at_end, times, velocities = self._record_contact(normal, start, scales, energy_unit)
         exit_speed = normal.exit_velocity * speed
-        rebound_speed = inputs.e_dry * exit_speed * math.sqrt(mass / far.inertia(exit_gap)[0])
+        rebound_speed = normal.e_n * speed * math.sqrt(mass / far.inertia(exit_gap)[0])
         film_dissipated = at_end["dissipated"] * energy_unit
-        exit_loss = (1.0 - inputs.e_dry**2) * 0.5 * mass * exit_speed**2
+        exit_loss = 0.5 * mass * (exit_speed**2 - (normal.e_n * speed) ** 2)
         exit_loss += at_end["elastic"] * energy_unit
         self.film_dissipated += film_dissipated
         self.exit_loss += exit_loss
         if normal.rebound:
             times, velocities = np.append(times, times[-1]), np.append(velocities, rebound_speed)
         memory, history_impulse = self._carry_memory(start.memory, times, velocities)
+        omitted = self._omitted(normal.history, normal.contact_time, scales, speed, mass)
         impact = float(np.max(np.abs(leg.velocity)))
+        exit_state = FlightState(
+            times[-1], exit_gap, rebound_speed, start.drag_work, start.history_work, memory
+        )
+        if normal.rebound:
+            exit_state = self._exit_kick(exit_state, history_impulse, omitted["drag_impulse"])
         contact = Contact(
             impact_speed=impact,
             St=inputs.stokes_number(impact),
@@ -815,31 +848,54 @@ class _Bounce:
             contact_St=params.St,
             eps=params.eps,
             p_cav=cavitation.suction_limit_output(params.p_cav),
-            e=rebound_speed / impact,
+            e=exit_state.velocity / impact,
             **self._jumps(normal.history, normal, scales),
-            **self._omitted(normal.history, normal.contact_time, scales, speed, mass),
+            gravity_impulse=omitted["gravity_impulse"],
+            remainder_impulse=omitted["remainder_impulse"],
             history_impulse=history_impulse / (mass * speed),
             film_dissipated=film_dissipated,
             exit_loss=exit_loss,
             film=outputs.in_si_where_possible(result),
         )
         self.contacts.append(contact)
-        exit_state = FlightState(
-            times[-1], exit_gap, rebound_speed, start.drag_work, start.history_work, memory
-        )
-        if normal.rebound:  # the exit's velocity jump (e_dry) as a second sample
+        if normal.rebound:  # the exit's velocity jump (e_dry, the kicks) as a second sample
             self._append(
                 time=[exit_state.time],
                 gap=[exit_gap],
-                velocity=[rebound_speed],
+                velocity=[exit_state.velocity],
                 phase=["flight"],
-                kinetic=[0.5 * far.inertia(exit_gap)[0] * rebound_speed**2],
+                kinetic=[0.5 * far.inertia(exit_gap)[0] * exit_state.velocity**2],
                 potential=[far.net_weight * exit_gap],
                 elastic=[0.0],
-                drag_dissipated=[start.drag_work],
-                history_dissipated=[start.history_work],
+                drag_dissipated=[exit_state.drag_work],
+                history_dissipated=[exit_state.history_work],
             )
         return contact, exit_state
+
+    def _exit_kick(self, state: FlightState, history_impulse, drag_impulse) -> FlightState:
+        """The exit ``state`` with the contact's omitted impulses [N s] switched on
+        (``contact_history``, ``contact_drag``) added to its momentum: v += J / M(h_exit), a
+        first-order estimate of their effect on the rebound (the contact lasts 30-160 us, the
+        impulses are a few % of the momentum), the kinetic energy they add taken from the
+        liquid (their work columns) and the velocity change carried into the memory as a
+        jump."""
+        inputs, inertia = self.far.inputs, self.far.inertia(state.gap)[0]
+        kicks = {"history": inputs.contact_history * history_impulse}
+        kicks["drag"] = inputs.contact_drag * drag_impulse
+        velocity, works = state.velocity, {}
+        for name, impulse in kicks.items():
+            kicked = velocity + impulse / inertia
+            works[name] = 0.5 * inertia * (velocity**2 - kicked**2)
+            velocity = kicked
+        memory = state.memory + (velocity - state.velocity) if len(state.memory) else state.memory
+        return FlightState(
+            state.time,
+            state.gap,
+            velocity,
+            state.drag_work + works["drag"],
+            state.history_work + works["history"],
+            memory,
+        )
 
     def _carry_memory(self, memory, times, velocities) -> tuple[np.ndarray, float]:
         """The history force's memory after the contact whose velocity ``velocities`` [m/s] at
@@ -861,8 +917,9 @@ class _Bounce:
         """The immersed EHD collision from the hand-over at ``gap`` (m, the contact's layer
         thickness x0) and approach ``speed`` (m/s, its V0), with the inertia ``mass`` [kg]
         (the sphere's own mass plus its added mass there), gravity and buoyancy if
-        ``contact_gravity``, leaving at ``exit_gap`` [m]; returns the collision result
-        (scaled) and its SI scales."""
+        ``contact_gravity``, the surfaces' roughness (SI, scaled by the collision by this
+        contact's x0) and asperity model, leaving at ``exit_gap`` [m]; returns the collision
+        result (scaled) and its SI scales."""
         far, inputs = self.far, self.far.inputs
         physical = PhysicalCollision(
             radius=inputs.radius,
@@ -877,10 +934,12 @@ class _Bounce:
             added_mass=mass - far.mass,
             cavitation=inputs.cavitation,
             gravity=inputs.gravity if inputs.contact_gravity else 0.0,
-            **self._surface_roughness(gap),
+            sphere_roughness=inputs.sphere_roughness,  # sigma / x0 differs between contacts
+            wall_roughness=inputs.wall_roughness,
         )
         options = replace(self.options, exit_gap=exit_gap / gap)
-        config = RunConfig(numerics=Numerics(nodes=self.nodes, integrator=options))  # half-space
+        numerics = Numerics(nodes=self.nodes, integrator=options)
+        config = RunConfig(asperities=inputs.asperities, numerics=numerics)  # half-space
         if self.model == "rigid":
             params = physical.dimensionless()
             solids = RigidSolids(film_radii(params, self.nodes))
@@ -888,13 +947,6 @@ class _Bounce:
         else:
             result = collide(physical, config)
         return result, physical.scales()
-
-    def _surface_roughness(self, gap: float) -> dict:
-        """The surfaces' roughness of the contact handed over at ``gap`` [m], as inputs of its
-        collision: the place where each contact will pass the roughness sigma (SI), scaled by
-        its own x0 = ``gap`` (sigma / x0 differs from contact to contact). The collision has
-        no roughness input yet: smooth surfaces, no inputs."""
-        return {}
 
     def _record_contact(self, normal, start: FlightState, scales, energy_unit) -> tuple:
         """Append the contact's samples (SI) to the trajectory, from the hand-over ``start``
@@ -949,7 +1001,10 @@ class _Bounce:
 
     def _omitted(self, hist, end, scales, speed, mass) -> dict:
         """Impulses of gravity-buoyancy (0 when it acts in the contact) and of the flight's
-        remainder over the contact, relative to the hand-over momentum M V0."""
+        remainder over the contact, relative to the hand-over momentum M V0 (the remainder's
+        of its magnitude), and ``drag_impulse`` [N s], the remainder's signed impulse (positive
+        away from the wall): int -6 pi mu a v (phi - 1 + lambda - a/h) dt, h the thinnest
+        film."""
         far = self.far
         shown = hist.time <= end
         time = hist.time[shown] * scales.time
@@ -957,12 +1012,13 @@ class _Bounce:
         velocity = hist.velocity[shown] * speed
         phi = drag_factor(far.inputs.drag, far.reynolds(velocity))
         lam = brenner_factor(gap / far.inputs.radius)
-        remainder = far.stokes * np.abs(velocity * (phi - 1.0 + lam - far.inputs.radius / gap))
+        remainder = -far.stokes * velocity * (phi - 1.0 + lam - far.inputs.radius / gap)
         momentum = mass * speed
         weight = 0.0 if far.inputs.contact_gravity else far.net_weight
         return {
             "gravity_impulse": weight * end * scales.time / momentum,
-            "remainder_impulse": float(trapezoid(remainder, time)) / momentum,
+            "remainder_impulse": float(trapezoid(np.abs(remainder), time)) / momentum,
+            "drag_impulse": float(trapezoid(remainder, time)),
         }
 
     def arrays(self) -> dict:

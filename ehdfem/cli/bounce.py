@@ -12,6 +12,7 @@ from ..bounce.trajectory import MODELS as BOUNCE_MODELS
 from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation
+from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..inputs.scales import ATMOSPHERE
 from ..outputs import plots
 from ..study.sweep import write_csv
@@ -117,6 +118,27 @@ def _add_flight_choices(model) -> None:
         model.add_argument(
             f"--{name}", action=BooleanOptionalAction, default=True, help=f"{text} (default on)"
         )
+    kicks = {
+        "contact-history": "the history force's impulse over each contact added at exit",
+        "contact-drag": "the flight's remainder drag's impulse over each contact added at exit",
+    }
+    for name, text in kicks.items():
+        model.add_argument(
+            f"--{name}", action=BooleanOptionalAction, default=False, help=f"{text} (default off)"
+        )
+    for surface in ("sphere", "wall"):
+        model.add_argument(
+            f"--{surface}-roughness",
+            type=float,
+            default=0.0,
+            help=f"rms roughness of the {surface}'s surface [m], [0, 0.01 a]; 0: smooth",
+        )
+    model.add_argument(
+        "--asperities",
+        choices=ASPERITY_MODELS,
+        default=ASPERITY_MODELS[0],
+        help="asperity contact of rough surfaces at each contact (docs/model.md)",
+    )
 
 
 def _bounce_inputs(args) -> BounceInputs:
@@ -144,6 +166,11 @@ def _bounce_inputs(args) -> BounceInputs:
         wall_added_mass=args.wall_added_mass,
         contact_gravity=args.contact_gravity,
         clear_exit=args.clear_exit,
+        sphere_roughness=args.sphere_roughness,
+        wall_roughness=args.wall_roughness,
+        asperities=args.asperities,
+        contact_history=args.contact_history,
+        contact_drag=args.contact_drag,
     )
 
 

@@ -254,3 +254,17 @@ def physical_inputs() -> dict:
         "speed": 0.3,
         "layer_thickness": 5e-4,
     }
+
+
+def test_a_film_thinner_than_the_roughness_after_a_rebound_is_no_impact():
+    """Impact model: a sphere the film turned back without a touch (immersed, St 5, eps 1e-3,
+    pulled back by its weight W = 1) whose film then thins below sigma at the rim of its
+    contact has no solid impact: when it turns to approach again it has stopped (stick), as a
+    smooth one does; sigma lies between the thinnest film before the turn and after it."""
+    params = CollisionParameters(St=5.0, eps=1e-3, layer="immersed", buoyant_weight=1.0)
+    smooth = collide(params, nodes=80).normal
+    turn = int(np.argmax(smooth.history.velocity > 0))
+    before, after = smooth.history.min_film[:turn].min(), smooth.history.min_film[turn:].min()
+    assert after < 0.5 * before and smooth.status == "stick"
+    rough = collide(replace(params, roughness=0.5 * (before + after)), nodes=80).normal
+    assert rough.status == "stick" and rough.solid_impact is None

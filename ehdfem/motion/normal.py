@@ -401,8 +401,10 @@ class _NormalIntegration:
             ) from failure
 
     def _overshoots(self, thinnest, velocity) -> bool:
-        """Impact model: the step's thinnest film went below sigma while approaching."""
-        return self.touch is not None and velocity < 0 and thinnest < self.touch * (1 - TOUCH_TOL)
+        """Impact model: the step's thinnest film went below sigma while approaching, before
+        any rebound (once the sphere has rebounded, V back to 0 is the stop)."""
+        approaching = self.touch is not None and not self.rebounding and velocity < 0
+        return approaching and thinnest < self.touch * (1 - TOUCH_TOL)
 
     def _step_to_touch(self, t_new, t_old, thinnest):
         """Retry the step shortened to where the thinnest film reaches sigma, on the dense output
@@ -413,6 +415,11 @@ class _NormalIntegration:
         touch_time = crossing(times, films, self.touch)
         self.rejected += 1
         self.stepper.step = touch_time - t_old if touch_time > t_old else 0.5 * self.stepper.step
+        if self.stepper.step < 1e-14 * max(1.0, t_old):
+            raise NormalSolverError(
+                f"time step underflow at T = {t_old:.6g}: the thinnest film {thinnest:.4g} is "
+                f"below the roughness {self.touch:.4g} and no step reaches it"
+            )
 
     def _dissipated(self, t_new, rate) -> float:
         """The dissipation up to t_new: the rate integrated over the step on the quadratic
@@ -439,8 +446,9 @@ class _NormalIntegration:
             self.full, self.full_changed_at = full, len(self.hist.time)
         thinnest = float(np.min(thickness[0]))
         self.thinnest = min(self.thinnest, thinnest)
-        touches = self.touch is not None and self.velocity < 0  # (not after the impact: the
-        touches = touches and thinnest <= self.touch * (1 + TOUCH_TOL)  # stop comes first)
+        touches = self.touch is not None and not self.rebounding and self.velocity < 0
+        touches = touches and thinnest <= self.touch * (1 + TOUCH_TOL)  # (after a rebound, the
+        # film reaching sigma off the axis is no impact: V back to 0 is the stop, which comes first)
         if touches:
             dissipated += self._solid_impact(t_new)
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)

@@ -30,19 +30,12 @@ from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.film.asperities import GreenwoodTripp, gaussian_integral, stiffness
 from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.scales import CollisionParameters, from_presets
+from ehdfem.inputs.scales import CollisionParameters, from_presets, rigid_velocity_loss
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.outputs import histories, registry
 from ehdfem.solids.compliance import RigidSolids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
-
-
-def rigid_loss(gap, layer):
-    """L(X): the velocity a rigid sphere loses between X and 1, times St (module docstring)."""
-    immersed = np.log(1.0 / gap)
-    return immersed if layer == "immersed" else immersed - 0.5 * (1 - gap) * (3 - gap)
-
 
 OUTER = {"thin": 1.05 * np.sqrt(2.0), "immersed": 30.0}
 
@@ -60,7 +53,7 @@ def test_rigid_sphere_impact_matches_the_closed_form(layer, St):
     grid = radial_grid(200, np.sqrt(sigma), OUTER[layer])
     result = solve_normal(params, RigidSolids(grid), IntegratorOptions(rtol=1e-5))
     impact, hist = result.solid_impact, result.history
-    loss = rigid_loss(sigma, layer)
+    loss = rigid_velocity_loss(sigma, layer)
     speed = 1 - loss / St
     assert result.status == "rebound" and impact is not None
     assert -impact.approach_velocity == pytest.approx(speed, rel=1e-3)
@@ -69,8 +62,8 @@ def test_rigid_sphere_impact_matches_the_closed_form(layer, St):
     assert result.e_n == result.exit_velocity == pytest.approx(e_dry * speed - loss / St, rel=2e-3)
     k = impact.index
     approach = -hist.velocity[:k]
-    assert np.abs(approach - (1 - rigid_loss(hist.gap[:k], layer) / St)).max() < 5e-3 / St
-    rebound = e_dry * speed - (loss - rigid_loss(hist.gap[k:], layer)) / St
+    assert np.abs(approach - (1 - rigid_velocity_loss(hist.gap[:k], layer) / St)).max() < 5e-3 / St
+    rebound = e_dry * speed - (loss - rigid_velocity_loss(hist.gap[k:], layer)) / St
     assert np.abs(hist.velocity[k:] - rebound).max() < 5e-3 / St
     assert np.all(result.asperity_force == 0.0)
     assert result.max_rebound_velocity == pytest.approx(e_dry * speed, rel=1e-3)
@@ -85,9 +78,9 @@ def test_nearly_rigid_half_spaces_reach_sigma_at_the_rigid_speed():
     St, sigma, e_dry = 10.0, 0.01, 0.9
     params = CollisionParameters(St=St, eps=1e-9, roughness=sigma, e_dry=e_dry)
     normal = collide(params, rtol=1e-5).normal
-    speed = 1 - rigid_loss(sigma, "thin") / St
+    speed = 1 - rigid_velocity_loss(sigma, "thin") / St
     assert -normal.solid_impact.approach_velocity == pytest.approx(speed, rel=1e-3)
-    exact = e_dry * speed - rigid_loss(sigma, "thin") / St
+    exact = e_dry * speed - rigid_velocity_loss(sigma, "thin") / St
     assert normal.e_n == pytest.approx(exact, rel=5e-3)
 
 

@@ -85,7 +85,11 @@ def rigid_stopping_gap(St: float, layer: str) -> float:
         return math.exp(-St)
     if St > 700.0:
         return 0.0
-    log_gap = brentq(lambda u: float(rigid_velocity_loss(math.exp(u), layer)) - St, -St - 2.0, 0.0)
+
+    def excess(log_gap):
+        return float(rigid_velocity_loss(math.exp(log_gap), layer)) - St
+
+    log_gap = brentq(excess, -St - 2.0, 0.0, xtol=1e-15, rtol=1e-15)
     return math.exp(log_gap)
 
 

@@ -38,9 +38,8 @@ from __future__ import annotations
 
 import math
 
-from scipy.optimize import brentq
-
 from .. import checks
+from ..inputs import scales
 from ..solids.halfspace import IDENTICAL_SOLIDS, shear_coefficient
 
 EFFECTS = ("opening", "velocity", "both")
@@ -49,22 +48,17 @@ EFFECTS = ("opening", "velocity", "both")
 
 def rigid_velocity(gap: float, St: float) -> float:
     """V0(X) = -1 + (ln(1/X) - 3/2 + 2X - X^2/2) / St: the rigid sphere's velocity (by V0) at
-    the gap X (by x0, 0 < X <= 1) in a thin layer."""
+    the gap X (by x0, 0 < X <= 1) in a thin layer
+    (:func:`ehdfem.inputs.scales.rigid_velocity_loss`)."""
     x = checks.number("gap", gap, lower=0.0, upper=1.0, lower_open=True)
     St = checks.positive("St", St)
-    return -1.0 + (math.log(1.0 / x) - 1.5 + 2.0 * x - 0.5 * x * x) / St
+    return -1.0 + float(scales.rigid_velocity_loss(x, "thin")) / St
 
 
 def rigid_stopping_gap(St: float) -> float:
     """X_s (by x0), where the rigid sphere stops in a thin layer: G(X_s) = St (module
-    docstring), solved for ln(1/X_s) in (0, St + 2]."""
-    St = checks.positive("St", St)
-
-    def excess(u):
-        x = math.exp(-u)
-        return u - 1.5 + 2.0 * x - 0.5 * x * x - St
-
-    return math.exp(-brentq(excess, 0.0, St + 2.0, xtol=1e-15, rtol=1e-15))
+    docstring; :func:`ehdfem.inputs.scales.rigid_stopping_gap`)."""
+    return scales.rigid_stopping_gap(checks.positive("St", St), "thin")
 
 
 def surface_force_coefficients(gap: float, effect: str = "both") -> tuple[float, float]:

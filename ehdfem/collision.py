@@ -70,7 +70,6 @@ def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.nd
     return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
 
 
-@one_blas_thread
 def elasticity(
     params: CollisionParameters,
     radii,
@@ -92,23 +91,24 @@ def elasticity(
     sphere, wall = _materials(physical) if materials is None else materials
     shear = params.shear_traction
     shear = config.model == "fem" if shear is None else shear
-    if config.model == "halfspace":
-        return HalfSpaceCompliance(
-            radii, params.eps, (params.delta, (sphere, wall)) if shear else None, (sphere, wall)
-        )
-    from .solids.fe.solids import FESolids
+    with one_blas_thread():
+        if config.model == "halfspace":
+            return HalfSpaceCompliance(
+                radii, params.eps, (params.delta, (sphere, wall)) if shear else None, (sphere, wall)
+            )
+        from .solids.fe.solids import FESolids
 
-    lower = config.lower
-    fe = FESolids(
-        params.delta,
-        radii,
-        sphere=sphere,
-        wall=wall,
-        lower=lower.kind,
-        comm=comm,
-        **lower.solids(wall[0]),
-    )
-    return fe.compliance(params.eps, shear=shear)
+        lower = config.lower
+        fe = FESolids(
+            params.delta,
+            radii,
+            sphere=sphere,
+            wall=wall,
+            lower=lower.kind,
+            comm=comm,
+            **lower.solids(wall[0]),
+        )
+        return fe.compliance(params.eps, shear=shear)
 
 
 def _materials(physical):
@@ -224,7 +224,6 @@ class CollisionResult:
         }
 
 
-@one_blas_thread
 def collide(
     params: CollisionParameters | PhysicalCollision,
     config: RunConfig | None = None,
@@ -273,17 +272,19 @@ def collide(
     if not isinstance(config, RunConfig):
         raise checks.InputError(f"config must be a RunConfig, got {config!r}", "config")
     mode_one = _mode_one_at(mode_one, compliance, params.eps)
-    if compliance is not None:
-        return _collide_on(params, compliance.with_eps(params.eps), config, physical, mode_one)
-    numerics = config.numerics
-    for attempt in range(numerics.refinements + 1):
-        radii = film_radii(params, numerics.nodes * 2**attempt)
-        try:
-            solids = elasticity(params, radii, config, physical)
-            return _collide_on(params, solids, config, physical)
-        except FilmClosedError:
-            if attempt == numerics.refinements:
-                raise
+    with one_blas_thread():
+        if compliance is not None:
+            eps_compliance = compliance.with_eps(params.eps)
+            return _collide_on(params, eps_compliance, config, physical, mode_one)
+        numerics = config.numerics
+        for attempt in range(numerics.refinements + 1):
+            radii = film_radii(params, numerics.nodes * 2**attempt)
+            try:
+                solids = elasticity(params, radii, config, physical)
+                return _collide_on(params, solids, config, physical)
+            except FilmClosedError:
+                if attempt == numerics.refinements:
+                    raise
 
 
 def _mode_one_at(mode_one, compliance, eps):

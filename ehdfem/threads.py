@@ -23,12 +23,7 @@ def _blas() -> ThreadpoolController:
     return ThreadpoolController()
 
 
-def one_blas_thread(function):
-    """``function`` run with every loaded BLAS limited to one thread (restored after)."""
-
-    @functools.wraps(function)
-    def on_one_thread(*args, **kwargs):
-        with _blas().limit(limits=1, user_api="blas"):
-            return function(*args, **kwargs)
-
-    return on_one_thread
+def one_blas_thread():
+    """A context in which every loaded BLAS runs on one thread (its thread count restored
+    after); a ``with`` block, so that warnings raised inside still name the caller's line."""
+    return _blas().limit(limits=1, user_api="blas")

@@ -271,6 +271,7 @@ def collide(
     config = RunConfig.from_settings(**settings) if config is None else config
     if not isinstance(config, RunConfig):
         raise checks.InputError(f"config must be a RunConfig, got {config!r}", "config")
+    config.check_inputs(params)
     mode_one = _mode_one_at(mode_one, compliance, params.eps)
     with one_blas_thread():
         if compliance is not None:

@@ -21,6 +21,7 @@ from typing import ClassVar
 
 from . import checks
 from .film import cavitation
+from .film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
 from .film.asperities import MODELS as ASPERITY_MODELS
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
@@ -169,6 +170,29 @@ class RunConfig:
             )
         if self.tangential == "lubrication" and self.lower.kind == "sphere":
             raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
+
+    def check_inputs(self, params: CollisionParameters) -> None:
+        """Refuse a setting that does not apply to ``params`` (scaled inputs): asperities =
+        'greenwood-tripp' on smooth surfaces, and asperities other than the defaults with the
+        impact model, which has no asperity pressure."""
+        if self.asperities == "greenwood-tripp" and params.roughness == 0.0:
+            raise checks.InputError(
+                "asperities = 'greenwood-tripp' needs roughness > 0 (sphere_roughness or "
+                "wall_roughness): smooth surfaces have no asperities",
+                "asperities",
+            )
+        if self.asperities != "impact":
+            return
+        for name, default in (
+            ("asperity_density", ASPERITY_DENSITY),
+            ("asperity_slope", ASPERITY_SLOPE),
+        ):
+            if getattr(params, name) != default:
+                raise checks.InputError(
+                    f"{name} = {getattr(params, name)!r} acts only with asperities = "
+                    "'greenwood-tripp' (the impact model has no asperity pressure)",
+                    name,
+                )
 
     @property
     def options(self) -> IntegratorOptions:

@@ -87,7 +87,7 @@ def outcome(angle, model, friction):
 
 def angle_row(angle):
     """One angle: the outputs of the smooth sphere, and of each rough model with mu and without."""
-    params, smooth = outcome(angle, "smooth", FRICTION)
+    params, smooth = outcome(angle, "smooth", 0.0)  # smooth: mu never acts, refused
     row = {
         "angle": angle,
         "St": params.St,

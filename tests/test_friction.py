@@ -48,14 +48,16 @@ def roughened(normal, e_dry=0.8, asperity_share=None):
     """``normal`` with a solid impact where its thinnest film first falls below twice its
     minimum (as a roughness sigma = 2 H_min would end the approach), at the approach velocity
     there with N = St (1 + e_dry) |V|; ``asperity_share``: an asperity load of that share of
-    the film force at every step (the mixed model's), None: none."""
+    the film force at every step (the mixed model's), None: none (zero, the impact model's)."""
     hist = normal.history
     index = int(np.argmax(hist.min_film <= 2.0 * normal.min_film_thickness))
     velocity = float(hist.velocity[index])
     impulse = normal.params.St * (1.0 + e_dry) * abs(velocity)
     impact = SolidImpact(index, float(hist.time[index]), velocity, impulse)
-    load = None if asperity_share is None else asperity_share * np.maximum(hist.force, 0.0)
-    return replace(normal, solid_impact=impact, asperity_force=load)
+    share = 0.0 if asperity_share is None else asperity_share
+    load = share * np.maximum(hist.force, 0.0)
+    params = replace(normal.params, roughness=2.0 * normal.min_film_thickness)
+    return replace(normal, params=params, solid_impact=impact, asperity_force=load)
 
 
 def with_friction(result, normal, model, **changes):
@@ -80,8 +82,26 @@ def test_friction_coefficient_is_checked():
 def test_physical_inputs_carry_the_friction_coefficient():
     from ehdfem.inputs.presets import EXAMPLE
 
-    physical = from_presets(**EXAMPLE, friction_coefficient=0.3)
+    physical = from_presets(**EXAMPLE, friction_coefficient=0.3, sphere_roughness=1e-7)
     assert physical.dimensionless().friction_coefficient == 0.3
+
+
+def test_inputs_that_never_act_are_refused_by_name():
+    """Friction and asperities on smooth surfaces, asperities other than the defaults with the
+    impact model, and Greenwood-Tripp on smooth surfaces: refused before any work, by name."""
+    from ehdfem.inputs.presets import EXAMPLE
+
+    base = dict(St=10.0, eps=1e-3, angle=30.0, **THIN)
+    for name, value in (("friction_coefficient", 0.2), ("asperity_density", 0.1)):
+        with pytest.raises(InputError, match=f"{name} = .* needs roughness > 0"):
+            CollisionParameters(**base, **{name: value})
+    with pytest.raises(InputError, match="asperity_slope = .* needs roughness > 0"):
+        from_presets(**EXAMPLE, asperity_slope=1e-2).dimensionless()
+    rough = CollisionParameters(**base, roughness=0.05, asperity_slope=1e-2)
+    with pytest.raises(InputError, match="asperity_slope = 0.01 acts only with asperities"):
+        collide(rough, asperities="impact")
+    with pytest.raises(InputError, match="asperities = 'greenwood-tripp' needs roughness > 0"):
+        collide(CollisionParameters(**base), asperities="greenwood-tripp")
 
 
 @pytest.mark.parametrize("k", [0.4, 2 / 3])
@@ -106,7 +126,13 @@ def test_constant_asperity_load_stops_the_slip_linearly():
     """With no film, a constant asperity load F_a slows the slip linearly, du_s/dT =
     -(1 + 1/k) (mu / tan(angle)) F_a / St, and holds it at 0 from T* = u_s0 St tan(angle) /
     ((1 + 1/k) mu F_a): the per-step projection reproduces it exactly (rounding)."""
-    params = CollisionParameters(St=4.0, eps=1e-3, angle=40.0, friction_coefficient=0.3)
+    params = CollisionParameters(
+        St=4.0,
+        eps=1e-3,
+        angle=40.0,
+        friction_coefficient=0.3,
+        roughness=0.05,
+    )
     time = np.linspace(0.0, 4.0, 81)
     load = np.full(time.shape, 1.5)
     normal = SimpleNamespace(

@@ -239,12 +239,35 @@ class CollisionParameters:
                 "spin",
             )
         self.viscosity_law()  # validates the Roelands constants together
+        self._check_solid_contact()
         if self.gap == "exact" and self.layer == "immersed":
             raise checks.InputError(
                 "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
                 "sphere and its far-field closure assumes the paraboloid",
                 "gap",
             )
+
+    def _check_solid_contact(self) -> None:
+        """Refuse the solid contact's inputs on smooth surfaces (roughness 0), where they never
+        act: a friction coefficient > 0, asperities other than the defaults."""
+        if self.roughness > 0.0:
+            return
+        if self.friction_coefficient > 0.0:
+            raise checks.InputError(
+                f"friction_coefficient = {self.friction_coefficient!r} needs roughness > 0: "
+                "smooth surfaces never touch through the film, so Coulomb friction never acts",
+                "friction_coefficient",
+            )
+        for name, default in (
+            ("asperity_density", ASPERITY_DENSITY),
+            ("asperity_slope", ASPERITY_SLOPE),
+        ):
+            if getattr(self, name) != default:
+                raise checks.InputError(
+                    f"{name} = {getattr(self, name)!r} needs roughness > 0: smooth surfaces "
+                    "have no asperities",
+                    name,
+                )
 
     def cavitation_model(self):
         """The film's cavitation model with its limit P_cav (:mod:`ehdfem.film.cavitation`)."""

@@ -120,7 +120,7 @@ class Study:
             inputs = self.inputs(point)
             scaled = inputs.dimensionless() if self.physical is not None else inputs
             self.stokes_numbers.append(scaled.St)
-            self.config(point)
+            self.config(point).check_inputs(scaled)
 
     @property
     def point_dir(self) -> Path:

@@ -75,18 +75,18 @@ def test_dissipation_equals_work_of_the_film():
 
 @pytest.mark.parametrize("rim, outer, node_at", [(0.42, 1.61, None), (0.685, 30.0, 10.0)])
 def test_contact_grid_follows_its_spacing_law(rim, outer, node_at):
-    """The nodes sit at equal steps of int dR / s(R / R_c): 0.7 of the contact's spacing on the
-    axis, 0.3 of it at the rim, smooth (no spacing jumps by more than 10 % between neighbours:
-    the far field grows by 7.4 % per node, and the node at ``node_at``, placed to 1e-12, moves
-    its neighbours' spacing by up to 9 %)."""
+    """The nodes sit at equal steps of int dR / s(R / R_c): 0.2 of the contact's spacing on the
+    axis, 0.3 of it at the rim, smooth (no spacing jumps by more than 17 % between neighbours:
+    the far field grows by 14.6 % per node, and the node at ``node_at``, placed to 1e-12, moves
+    its neighbours' spacing by up to 16 %)."""
     radii = contact_grid(240, rim, outer, node_at)
     spacing = np.diff(radii)
     assert radii[0] == 0.0 and radii[-1] == outer and np.all(spacing > 0)
     at_rim = spacing[np.searchsorted(radii, rim) - 1]
     in_contact = spacing[np.searchsorted(radii, 0.6 * rim)]
-    assert spacing[0] / in_contact == pytest.approx(0.7, rel=0.02)
+    assert spacing[0] / in_contact == pytest.approx(0.2, rel=0.02)
     assert at_rim / in_contact == pytest.approx(0.3, rel=0.02)
-    assert np.all(np.abs(spacing[1:] / spacing[:-1] - 1) < 0.10)
+    assert np.all(np.abs(spacing[1:] / spacing[:-1] - 1) < 0.17)
     if node_at is not None:
         assert np.min(np.abs(radii - node_at)) < 1e-12
 

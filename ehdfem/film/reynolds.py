@@ -71,8 +71,8 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
 
 # The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
 # contact_grid): knots (rho, spacing) and the slope beyond the last knot.
-_CONTACT_SPACING_KNOTS = ((0.0, 0.7), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
-_CONTACT_SPACING_SLOPE = 8.0
+_CONTACT_SPACING_KNOTS = ((0.0, 0.2), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
+_CONTACT_SPACING_SLOPE = 16.0
 
 
 def contact_grid(
@@ -80,9 +80,9 @@ def contact_grid(
 ) -> np.ndarray:
     """Film nodes graded to a contact rim R_c, by sqrt(a x0).
 
-    The spacing is c s(R/R_c), s piecewise linear: 0.7 on the axis (where a soft rebound's film
+    The spacing is c s(R/R_c), s piecewise linear: 0.2 on the axis (where a soft rebound's film
     is thinnest), 1 from 0.4 R_c to 0.78 R_c, down to 0.3 at the rim (where a hard impact's exit
-    constriction makes the film thinnest), up to 4.35 at 1.5 R_c and growing by 8 per R_c
+    constriction makes the film thinnest), up to 4.35 at 1.5 R_c and growing by 16 per R_c
     beyond, so the far field grows geometrically and costs a logarithmic number of nodes. The
     nodes sit at equal steps of int dR / s(R/R_c), with c set by n. ``node_at``: a radius given
     a node of its own if it lies inside the grid (the sphere's radius, where the immersed film's

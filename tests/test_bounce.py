@@ -241,13 +241,16 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
 
 
 @pytest.mark.serial
-def test_the_contact_impulses_switched_on_kick_the_rebound_and_keep_the_energy():
-    """``contact_history`` adds the history force's impulse J over the contact (recorded
-    without it, relative to M(h_c) V0) to the rebound's momentum at exit: the rebound speed
-    moves by exactly J / M(h_exit) (the same contact, to 1e-9), towards the wall (J < 0: the
-    memory of the approach and of the reversal); with both impulses on, the energy balance
-    still holds to 2e-3 (their kinetic energy is taken from the history force's and the drag's
-    work on the liquid), no cavitation as in the energy test above."""
+def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
+    """``contact_history`` applies the history force in the film model's time stepping, from
+    the flight's memory and the contact's own velocity change (the force's exactness is in
+    tests/test_sphere_motion.py). Its impulse over the contact is the one measured without it
+    to 1e-2 (measured 3e-4: the contact hardly changes), towards the wall (J < 0); the rebound
+    slows, by less than the first-order kick J / M(h_exit) (measured 62 % of it: the impulse
+    of the approach pushes the sphere into the film, whose force takes part of it back). With
+    the drag's kick too, the bounce's energy balance holds to 2e-3 (measured 5.5e-4; the
+    history force's work in the contact is in its work column), no cavitation as in the energy
+    test above."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.9, cavitation="none")
     results = {
         name: bounce(replace(base, **changes), max_bounces=1)
@@ -258,11 +261,12 @@ def test_the_contact_impulses_switched_on_kick_the_rebound_and_keep_the_energy()
         }.items()
     }
     off, history = results["off"].contacts[0], results["history"].contacts[0]
+    assert history.history_impulse == pytest.approx(off.history_impulse, rel=1e-2)
     far = FarField(base)
     impulse = off.history_impulse * far.inertia(off.handover_gap)[0] * off.handover_speed
     assert impulse < 0
-    kick = (history.e - off.e) * off.impact_speed
-    assert kick == pytest.approx(impulse / far.inertia(off.exit_gap)[0], rel=1e-9)
+    kick = impulse / far.inertia(off.exit_gap)[0]
+    assert kick < (history.e - off.e) * off.impact_speed < 0
     assert results["both"].energy_error() < 2e-3
 
 

@@ -118,11 +118,11 @@ def _add_flight_choices(model) -> None:
         model.add_argument(
             f"--{name}", action=BooleanOptionalAction, default=True, help=f"{text} (default on)"
         )
-    kicks = {
-        "contact-history": "the history force's impulse over each contact added at exit",
+    variations = {
+        "contact-history": "the history force acts in each contact's time stepping",
         "contact-drag": "the flight's remainder drag's impulse over each contact added at exit",
     }
-    for name, text in kicks.items():
+    for name, text in variations.items():
         model.add_argument(
             f"--{name}", action=BooleanOptionalAction, default=False, help=f"{text} (default off)"
         )

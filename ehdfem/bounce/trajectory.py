@@ -33,10 +33,10 @@ inertia M(h_c) (the sphere's mass, and the added mass not in the weight), gravit
 h_exit / h_c, speed e_n V0 with the collision's e_n: e_dry V_exit for smooth surfaces, V_exit
 for rough ones, whose asperities act inside the contact; :meth:`FarField.exit_gap`) or sticks.
 The surfaces' roughness [m] is the same at every contact, sigma / x0 is not. With
-``contact_history`` the history force acts in the film model's time stepping
+``contact_history`` (the default) the history force acts in the film model's time stepping
 (:class:`ehdfem.motion.forces.HistoryForce`, from the flight's memory, in the contact's
-scales: :meth:`FarField.contact_history_force`); without it (the default) its impulse over
-the contact is measured only. The flight's remainder (phi - 1 + lambda - a/h) is not applied
+scales: :meth:`FarField.contact_history_force`); without it its impulse over the contact is
+measured only. The flight's remainder (phi - 1 + lambda - a/h) is not applied
 during the contact; its impulse is measured (:class:`Contact`; ``contact_drag`` adds it to the
 rebound's momentum at exit, a first-order estimate). The contact's velocity change is carried
 into the history force's memory (``history_memory`` "keep") or the memory is emptied
@@ -210,10 +210,11 @@ class BounceInputs:
     gap where a cavity can form (:meth:`FarField.exit_gap`). The surfaces' rms roughness
     ``sphere_roughness`` and ``wall_roughness`` [m] (0: smooth), the same at every contact
     (scaled there by that contact's x0 = h_c), with the collision's ``asperities`` model
-    (:data:`ehdfem.film.asperities.MODELS`). The contact's omitted forces, each switchable
-    (default off, docs/bounce.md "Testing the cause"): ``contact_history`` applies the history
-    force in the contact's time stepping, ``contact_drag`` adds the flight's remainder's
-    impulse over the contact to the rebound's momentum at exit."""
+    (:data:`ehdfem.film.asperities.MODELS`). ``contact_history`` (default on): the history force
+    acts in the contact's time stepping, so that the memory the flight carries on and the
+    contact's motion are one (off: only its impulse is measured). ``contact_drag`` (default
+    off, a variation, docs/bounce.md "Testing the cause") adds the flight's remainder's impulse
+    over the contact to the rebound's momentum at exit."""
 
     radius: float
     sphere: Material | str | dict
@@ -236,7 +237,7 @@ class BounceInputs:
     sphere_roughness: float = 0.0
     wall_roughness: float = 0.0
     asperities: str = "impact"
-    contact_history: bool = False
+    contact_history: bool = True
     contact_drag: bool = False
 
     def __post_init__(self):

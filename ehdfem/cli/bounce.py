@@ -110,21 +110,21 @@ def _add_flight_choices(model) -> None:
         "or reset it at each exit",
     )
     switches = {
-        "wall-added-mass": "the added mass rises near the wall (the sphere's image)",
-        "contact-gravity": "gravity and buoyancy act during the contacts",
-        "clear-exit": "the film model hands back above the gap where a cavity can form",
+        "wall-added-mass": ("the added mass rises near the wall (the sphere's image)", True),
+        "contact-gravity": ("gravity and buoyancy act during the contacts", True),
+        "clear-exit": ("the film model hands back above the gap where a cavity can form", True),
+        "contact-history": ("the history force acts in each contact's time stepping", True),
+        "contact-drag": (
+            "the flight's remainder drag's impulse over each contact added at exit",
+            False,
+        ),
     }
-    for name, text in switches.items():
+    for name, (text, default) in switches.items():
         model.add_argument(
-            f"--{name}", action=BooleanOptionalAction, default=True, help=f"{text} (default on)"
-        )
-    variations = {
-        "contact-history": "the history force acts in each contact's time stepping",
-        "contact-drag": "the flight's remainder drag's impulse over each contact added at exit",
-    }
-    for name, text in variations.items():
-        model.add_argument(
-            f"--{name}", action=BooleanOptionalAction, default=False, help=f"{text} (default off)"
+            f"--{name}",
+            action=BooleanOptionalAction,
+            default=default,
+            help=f"{text} (default {'on' if default else 'off'})",
         )
     for surface in ("sphere", "wall"):
         model.add_argument(

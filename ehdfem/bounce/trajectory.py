@@ -213,8 +213,8 @@ class BounceInputs:
     (:data:`ehdfem.film.asperities.MODELS`). ``contact_history`` (default on): the history force
     acts in the contact's time stepping, so that the memory the flight carries on and the
     contact's motion are one (off: only its impulse is measured). ``contact_drag`` (default
-    off, a variation, docs/bounce.md "Testing the cause") adds the flight's remainder's impulse
-    over the contact to the rebound's momentum at exit."""
+    off, a variation, docs/bounce.md "The forces of the contact") adds the flight's
+    remainder's impulse over the contact to the rebound's momentum at exit."""
 
     radius: float
     sphere: Material | str | dict

@@ -10,7 +10,8 @@ gap S(R) (R^2/2 in the asymptotic theory, the true spheres with ``gap = "exact"`
     St dV/dT = (1/3) int P R dR + sum_i F_i,     dX/dT = V,     X(0) = 1, V(0) = -1,
 
 force by 6 pi mu V0 a^2 / x0, the F_i the forces applied to the sphere (an external force, the
-buoyant weight; positive away from the wall). The sphere's equation, its rows of the implicit
+buoyant weight, a force with memory such as the history force of the liquid around the film;
+positive away from the wall). The sphere's equation, its rows of the implicit
 step and its energies are :class:`ehdfem.motion.sphere.Sphere`; its forces
 :mod:`ehdfem.motion.forces`.
 

@@ -81,6 +81,7 @@ CHOICES = {  # name: (BounceInputs changes, bounce() options); each choice alone
 CAUSES = {  # the history force and the drag of the contact, from the base
     "history force in flight only": ({"contact_history": False}, {}),
     "+ drag in contact": ({"contact_drag": True}, {}),
+    "memory of the approach only": ({"history_memory": "approach"}, {}),
 }
 SENSITIVITY = {  # the assumed surface inputs over their plausible ranges, from the base
     "roughness 0.3e-4 a": ({"roughness_by_radius": 0.3e-4}, {}),

@@ -282,6 +282,27 @@ def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
 
 
 @pytest.mark.serial
+def test_the_memory_across_a_contact_changes_only_the_flight_after_it():
+    """The three readings of the history force's memory across a contact (kept; emptied at
+    exit; the approach's memory only, faded over the contact) share the contact itself: the
+    same e and history impulse (to 1e-12: the memory after the exit does not act before it);
+    the rise differs, and the energy balance holds for each to 2e-3 (the energy test above:
+    the history force's work is integrated in flight whatever its memory holds)."""
+    base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, cavitation="none")
+    results = {
+        memory: bounce(replace(base, history_memory=memory), max_bounces=1)
+        for memory in ("keep", "reset", "approach")
+    }
+    kept = results["keep"].contacts[0]
+    for memory in ("reset", "approach"):
+        contact = results[memory].contacts[0]
+        assert contact.e == pytest.approx(kept.e, rel=1e-12)
+        assert contact.history_impulse == pytest.approx(kept.history_impulse, rel=1e-12)
+        assert contact.apex_gap != pytest.approx(kept.apex_gap, rel=1e-3)
+    assert all(result.energy_error() < 2e-3 for result in results.values())
+
+
+@pytest.mark.serial
 def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
     """A steel sphere reaching the wall slowly in a 100 cSt oil (St = 0.12, scaled buoyant
     weight W = 0.86 at the hand-over), rigid solids, no cavitation: the rigid immersed

@@ -39,8 +39,9 @@ scales: :meth:`FarField.contact_history_force`); without it its impulse over the
 measured only. The flight's remainder (phi - 1 + lambda - a/h) is not applied
 during the contact; its impulse is measured (:class:`Contact`; ``contact_drag`` adds it to the
 rebound's momentum at exit, a first-order estimate). The contact's velocity change is carried
-into the history force's memory (``history_memory`` "keep") or the memory is emptied
-("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
+into the history force's memory (``history_memory`` "keep"), or the memory is emptied
+("reset") or keeps only the flight before the contact ("approach"). Flight resumes at h_exit
+with the kinetic energy of the exit.
 
 **Rest**: the sphere rests when a contact sticks or stalls, or when an apex is below
 ``rest_apex`` D or already inside the hand-over region; the computation also stops at the apex
@@ -89,7 +90,7 @@ FLIGHT_SAMPLES = 200  # trajectory samples per flight leg (besides the integrato
 SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry force jump)
 LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
 ENDINGS = {"stick": "sticks", "stalled": "stalled (settling through the film)"}
-HISTORY_MEMORIES = ("keep", "reset")  # the history force's memory across a contact
+HISTORY_MEMORIES = ("keep", "reset", "approach")  # the history force's memory across a contact
 SWITCHES = (  # the on/off modelling choices of BounceInputs
     "wall_added_mass",
     "contact_gravity",
@@ -204,8 +205,10 @@ class BounceInputs:
     modelling choices of docs/bounce.md, each switchable: the history force's kernel
     (:data:`ehdfem.bounce.unsteady.HISTORY_KERNELS`) and its memory across a contact
     (:data:`HISTORY_MEMORIES`: "keep" carries the contact's velocity change into it, "reset"
-    forgets everything at each exit); ``wall_added_mass``: C_M rises near the wall as the
-    sphere's image says (C_M above is then its value far away); ``contact_gravity``: gravity
+    forgets everything at each exit, "approach" forgets the contact's velocity change at each
+    exit and keeps the memory of the flight before it, faded over the contact);
+    ``wall_added_mass``: C_M rises near the wall as the sphere's image says (C_M above is then
+    its value far away); ``contact_gravity``: gravity
     and buoyancy act during the contacts; ``clear_exit``: the film model hands back above the
     gap where a cavity can form (:meth:`FarField.exit_gap`). The surfaces' rms roughness
     ``sphere_roughness`` and ``wall_roughness`` [m] (0: smooth), the same at every contact
@@ -919,7 +922,9 @@ class _Bounce:
         ``contact_history``, else only measured) and its work on the liquid from the hand-over
         at each sample, -int F_H v dt [J] (trapezoidal rule, as the film model's
         :class:`ehdfem.motion.forces.HistoryForce` integrates it). With ``history_memory``
-        "reset" the memory is emptied at exit."""
+        "reset" the memory is emptied at exit; with "approach" it is the hand-over's memory
+        faded over the contact, z_i e^(-duration / tau_i), without the contact's velocity
+        change (variations that isolate the memory of the contact's reversal)."""
         far = self.far
         if not len(memory):
             return memory, 0.0, np.zeros(len(times))
@@ -930,6 +935,9 @@ class _Bounce:
         work = -cumulative_trapezoid(force * velocities, times, initial=0.0)
         if far.inputs.history_memory == "reset":
             return np.zeros_like(memory), impulse, work
+        if far.inputs.history_memory == "approach":
+            faded = memory * np.exp(-(times[-1] - times[0]) / far.relaxation_times)
+            return faded, impulse, work
         return carried[-1], impulse, work
 
     def _film_collision(self, start: FlightState, speed: float, mass: float, exit_gap: float):

@@ -107,7 +107,8 @@ def _add_flight_choices(model) -> None:
         choices=HISTORY_MEMORIES,
         default=HISTORY_MEMORIES[0],
         help="the history force's memory across a contact: keep the contact's velocity change, "
-        "or reset it at each exit",
+        "reset it at each exit, or keep only the approach's memory (the contact's velocity "
+        "change forgotten at exit)",
     )
     switches = {
         "wall-added-mass": ("the added mass rises near the wall (the sphere's image)", True),

@@ -19,6 +19,7 @@ from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
 from .film.reynolds import contact_grid
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import provenance
 from .outputs import registry as outputs
@@ -229,6 +230,7 @@ def collide(
     config: RunConfig | None = None,
     compliance: Compliance | None = None,
     mode_one: ModeOneCompliance | None = None,
+    forces: tuple[SphereForce, ...] = (),
     **settings,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs, computed as ``config``
@@ -253,7 +255,9 @@ def collide(
     (pressure by mu V0 a / x0^2, shear tractions by sqrt(delta) times that, at the film nodes
     by sqrt(a x0)) to the faces' displacements (by x0). Without it the collision builds one,
     which for FE solids is a factorisation of tens of seconds. The caller owns it: ``collide``
-    does not close it.
+    does not close it. ``forces``: forces on the sphere besides those of ``params``, scaled by
+    this collision's force scale (:func:`ehdfem.motion.normal.solve_normal`; e.g. the history
+    force of the liquid around the film, :class:`ehdfem.motion.forces.HistoryForce`).
     """
     physical = params if isinstance(params, PhysicalCollision) else None
     if physical is not None:
@@ -276,13 +280,13 @@ def collide(
     with one_blas_thread():
         if compliance is not None:
             eps_compliance = compliance.with_eps(params.eps)
-            return _collide_on(params, eps_compliance, config, physical, mode_one)
+            return _collide_on(params, eps_compliance, config, physical, mode_one, forces)
         numerics = config.numerics
         for attempt in range(numerics.refinements + 1):
             radii = film_radii(params, numerics.nodes * 2**attempt)
             try:
                 solids = elasticity(params, radii, config, physical)
-                return _collide_on(params, solids, config, physical)
+                return _collide_on(params, solids, config, physical, forces=forces)
             except FilmClosedError:
                 if attempt == numerics.refinements:
                     raise
@@ -313,12 +317,12 @@ def _mode_one_at(mode_one, compliance, eps):
     return mode_one.with_eps(eps)
 
 
-def _collide_on(params, compliance, config, physical, given_mode_one=None):
+def _collide_on(params, compliance, config, physical, given_mode_one=None, forces=()):
     """The normal and (oblique impacts) tangential motion on a given compliance, with the
     tangential model, mode-1 deformation and time integration of ``config``;
     ``given_mode_one``: a mode-1 compliance at params.eps that is not closed here (None: built
-    here when needed, and closed)."""
-    normal = solve_normal(params, compliance, config.options, config.asperities)
+    here when needed, and closed); ``forces``: the further forces on the sphere."""
+    normal = solve_normal(params, compliance, config.options, config.asperities, forces)
     result = CollisionResult(
         params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )

@@ -10,11 +10,14 @@ have: the spheres' elastic constants (the steel preset), a glass plate, e_dry = 
 Biegert, Vowinckel & Meiburg 2017 use for these runs) and a vapour pressure of 0.
 
 The modelling choices are varied one at a time on St 27 and St 152, the two runs whose
-trajectories have been digitised from the paper's figures: the four choices of the flight and
-the contacts (history force, the wall's added mass, gravity in the contacts, the exit above
-the cavity), each switched on alone on the steady flight without them, and from the base
-(all four on) the history kernel and its memory, e_dry, cavitation and hand-over tolerance
-(the drag law and the added mass were varied on the steady flight before, docs/bounce.md).
+trajectories have been digitised from the paper's figures: the five choices of the flight and
+the contacts (the history force, in flight and in the contacts; the wall's added mass, gravity
+in the contacts, the exit above the cavity, the roughness), each switched on alone on the
+steady flight without them, and from the base (all five on) the history kernel and its memory,
+the history force left out of the contacts, the drag in the contacts, the assumed roughness
+and e_dry over their plausible ranges, cavitation and the hand-over tolerance (the drag law
+and the added mass were varied on the steady flight before, docs/bounce.md). Every run is
+followed until the sphere rests.
 Nothing is fitted to the trajectories. The digitised points are not shipped (third-party data,
 see docs/bounce.md); given as a CSV file (comment lines starting with #, columns case, time_s
 [s, 0 at the first impact], gap_m [m]) they are compared with the model and drawn in the
@@ -56,12 +59,8 @@ E_DRY = 0.97
 ROUGHNESS = 1e-4  # the spheres' rms roughness by their radius (not confirmed in the paper)
 RELEASE_FAR = 60.0  # diameters: release height when the published speed is not reachable
 MAX_BOUNCES = 30
-# St 27 has one bounce: its second impact (St 5) sticks. With rough surfaces the asperities'
-# impact model does not end a sphere that comes to rest on them under gravity (it chatters at
-# the roughness, docs/bounce.md), so St 27 stops at its first apex.
-BOUNCES = {"St27": 1}
 SMOOTH = {"sphere_roughness": 0.0}
-STEADY = {  # the flight and contacts before the five choices
+STEADY = {  # the flight and contacts before the choices
     "history": "none",
     "wall_added_mass": False,
     "contact_gravity": False,
@@ -79,15 +78,22 @@ CHOICES = {  # name: (BounceInputs changes, bounce() options); each choice alone
     "Basset kernel": ({"history": "basset"}, {}),
     "memory reset at exit": ({"history_memory": "reset"}, {}),
 }
-CAUSES = {  # the omitted forces of the contact, each added alone to the base
-    "+ history force in contact": ({"contact_history": True}, {}),
+CAUSES = {  # the history force and the drag of the contact, from the base
+    "history force in flight only": ({"contact_history": False}, {}),
     "+ drag in contact": ({"contact_drag": True}, {}),
+    "memory of the approach only": ({"history_memory": "approach"}, {}),
+}
+SENSITIVITY = {  # the assumed surface inputs over their plausible ranges, from the base
+    "roughness 0.3e-4 a": ({"roughness_by_radius": 0.3e-4}, {}),
+    "roughness 3e-4 a": ({"roughness_by_radius": 3e-4}, {}),
+    "e_dry = 0.9": ({"e_dry": 0.9}, {}),
+    "e_dry = 1": ({"e_dry": 1.0}, {}),
 }
 VARIANTS = {  # the choices, then the other modelling variations from the base
     **CHOICES,
     **CAUSES,
+    **SENSITIVITY,
     "smooth": (SMOOTH, {}),
-    "e_dry = 1": ({"e_dry": 1.0}, {}),
     "no cavitation": ({"cavitation": "none"}, {}),
     "hand-over 0.5 %": ({}, {"handover_jump": 0.005}),
     "hand-over 5 %": ({}, {"handover_jump": 0.05}),
@@ -130,9 +136,12 @@ def run_case(table, run, variant):
     if row is not None and path.exists():
         return row
     changes, options = VARIANTS[variant]
+    changes = dict(changes)
+    if "roughness_by_radius" in changes:
+        changes["sphere_roughness"] = changes.pop("roughness_by_radius") * run.diameter / 2
     inputs = released(replace(case_inputs(run), **changes), run.speed)
     start = time.perf_counter()
-    result = bounce(inputs, max_bounces=BOUNCES.get(run.label, MAX_BOUNCES), **options)
+    result = bounce(inputs, max_bounces=MAX_BOUNCES, **options)
     seconds = time.perf_counter() - start
     write_csv(path, result.trajectory_rows())
     write_csv(RESULTS / f"{run.label}_{slug(variant)}_contacts.csv", result.contact_rows())
@@ -386,12 +395,15 @@ def main():
     for run in GONDRET_RUNS:
         row = next(r for r in rows if r["case"] == run.label and r["variant"] == "base")
         print(f"wrote {plot_case(run, row, data)}")
-    others = ["base", *(v for v in VARIANTS if v not in CHOICES and v not in CAUSES)]
+    grouped = {**CHOICES, **CAUSES, **SENSITIVITY}
+    others = ["base", *(v for v in VARIANTS if v not in grouped)]
     for label in VARIED:
         run = next(r for r in GONDRET_RUNS if r.label == label)
         print(f"wrote {plot_choices(run, rows, data, CHOICES, 'choices')}")
         print(f"wrote {plot_choices(run, rows, data, others, 'variations')}")
         print(f"wrote {plot_choices(run, rows, data, ['base', *CAUSES], 'causes')}")
+        sensitivity = ["base", *SENSITIVITY]
+        print(f"wrote {plot_choices(run, rows, data, sensitivity, 'sensitivity')}")
     print(f"wrote {plot_restitution(rows)}")
     far = {run.label: FarField(case_inputs(run)).terminal_velocity() for run in GONDRET_RUNS}
     print("terminal velocities [m/s]:", {k: round(v, 4) for k, v in far.items()})

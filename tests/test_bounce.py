@@ -197,13 +197,17 @@ def test_handover_joins_flight_and_film_both_ways():
 
 @pytest.mark.serial
 def test_rigid_immersed_sphere_sticks_where_the_rigid_theory_stops_it():
-    """eps -> 0 (rigid solids), no cavitation, no gravity in the contact: the sphere cannot
-    rebound. It stops at the gap exp(-St) x0 of the rigid immersed theory
+    """eps -> 0 (rigid solids), no cavitation, no gravity nor history force in the contact:
+    the sphere cannot rebound. It stops at the gap exp(-St) x0 of the rigid immersed theory
     (|V| = 1 - ln(1/X)/St; St and x0 = h_c of the film model): ln(stop / h_c) = -St to 1 % (the
     film's force is resolved to about 0.5 % at 240 nodes, and the stopping gap's log moves by
     St times a relative force error)."""
     inputs = BounceInputs(
-        **OIL_BOUNCE, release_height=1e-4, cavitation="none", contact_gravity=False
+        **OIL_BOUNCE,
+        release_height=1e-4,
+        cavitation="none",
+        contact_gravity=False,
+        contact_history=False,
     )
     result = bounce(inputs, model="rigid")
     (contact,) = result.contacts
@@ -215,7 +219,8 @@ def test_rigid_immersed_sphere_sticks_where_the_rigid_theory_stops_it():
 
 @pytest.mark.serial
 def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_says():
-    """eps -> 0, no cavitation, no gravity in the contact, the sphere of the test above made
+    """eps -> 0, no cavitation, no gravity nor history force in the contact, the sphere of the
+    test above made
     rough: sigma = h_c exp(-St/4) [m], so its asperities touch at X = sigma/x0 before the film
     can stop it. The rigid immersed theory (St dV/dT = -V/X, scaled by the contact's x0 = h_c
     and V0) gives the touch at V_c = -(1 - L/St), L = ln(x0/sigma) = St/4, the rebound at
@@ -225,7 +230,12 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
     about 0.5 %, which moves each ln term by that fraction (2 L/St 0.5 % = 2.5e-3). This checks
     that each contact scales the SI roughness by its own x0."""
     smooth = BounceInputs(
-        **OIL_BOUNCE, release_height=1e-4, cavitation="none", contact_gravity=False, e_dry=0.8
+        **OIL_BOUNCE,
+        release_height=1e-4,
+        cavitation="none",
+        contact_gravity=False,
+        contact_history=False,
+        e_dry=0.8,
     )
     (first,) = bounce(smooth, model="rigid").contacts
     sigma = first.handover_gap * math.exp(-first.contact_St / 4)
@@ -241,29 +251,55 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
 
 
 @pytest.mark.serial
-def test_the_contact_impulses_switched_on_kick_the_rebound_and_keep_the_energy():
-    """``contact_history`` adds the history force's impulse J over the contact (recorded
-    without it, relative to M(h_c) V0) to the rebound's momentum at exit: the rebound speed
-    moves by exactly J / M(h_exit) (the same contact, to 1e-9), towards the wall (J < 0: the
-    memory of the approach and of the reversal); with both impulses on, the energy balance
-    still holds to 2e-3 (their kinetic energy is taken from the history force's and the drag's
-    work on the liquid), no cavitation as in the energy test above."""
+def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
+    """``contact_history`` (default on) applies the history force in the film model's time
+    stepping, from
+    the flight's memory and the contact's own velocity change (the force's exactness is in
+    tests/test_sphere_motion.py). Its impulse over the contact is the one measured without it
+    to 1e-2 (measured 3e-4: the contact hardly changes), towards the wall (J < 0); the rebound
+    slows, by less than the first-order kick J / M(h_exit) (measured 62 % of it: the impulse
+    of the approach pushes the sphere into the film, whose force takes part of it back). With
+    the drag's kick too, the bounce's energy balance holds to 2e-3 (measured 5.5e-4; the
+    history force's work in the contact is in its work column), no cavitation as in the energy
+    test above."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.9, cavitation="none")
     results = {
         name: bounce(replace(base, **changes), max_bounces=1)
         for name, changes in {
-            "off": {},
-            "history": {"contact_history": True},
-            "both": {"contact_history": True, "contact_drag": True},
+            "off": {"contact_history": False},
+            "history": {},
+            "both": {"contact_drag": True},
         }.items()
     }
     off, history = results["off"].contacts[0], results["history"].contacts[0]
+    assert history.history_impulse == pytest.approx(off.history_impulse, rel=1e-2)
     far = FarField(base)
     impulse = off.history_impulse * far.inertia(off.handover_gap)[0] * off.handover_speed
     assert impulse < 0
-    kick = (history.e - off.e) * off.impact_speed
-    assert kick == pytest.approx(impulse / far.inertia(off.exit_gap)[0], rel=1e-9)
+    kick = impulse / far.inertia(off.exit_gap)[0]
+    assert kick < (history.e - off.e) * off.impact_speed < 0
     assert results["both"].energy_error() < 2e-3
+
+
+@pytest.mark.serial
+def test_the_memory_across_a_contact_changes_only_the_flight_after_it():
+    """The three readings of the history force's memory across a contact (kept; emptied at
+    exit; the approach's memory only, faded over the contact) share the contact itself: the
+    same e and history impulse (to 1e-12: the memory after the exit does not act before it);
+    the rise differs, and the energy balance holds for each to 2e-3 (the energy test above:
+    the history force's work is integrated in flight whatever its memory holds)."""
+    base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, cavitation="none")
+    results = {
+        memory: bounce(replace(base, history_memory=memory), max_bounces=1)
+        for memory in ("keep", "reset", "approach")
+    }
+    kept = results["keep"].contacts[0]
+    for memory in ("reset", "approach"):
+        contact = results[memory].contacts[0]
+        assert contact.e == pytest.approx(kept.e, rel=1e-12)
+        assert contact.history_impulse == pytest.approx(kept.history_impulse, rel=1e-12)
+        assert contact.apex_gap != pytest.approx(kept.apex_gap, rel=1e-3)
+    assert all(result.energy_error() < 2e-3 for result in results.values())
 
 
 @pytest.mark.serial

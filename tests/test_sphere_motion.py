@@ -12,7 +12,7 @@ from ehdfem.config import RunConfig
 from ehdfem.film.reynolds import radial_grid
 from ehdfem.inputs.presets import Liquid, Material
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
-from ehdfem.motion.forces import BuoyantWeight, ConstantForce, SphereState
+from ehdfem.motion.forces import BuoyantWeight, ConstantForce, HistoryForce, SphereState
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.sphere import Sphere
 from ehdfem.motion.timestepping import IntegratorOptions
@@ -94,6 +94,48 @@ def test_energy_balance_with_the_work_of_a_constant_force(force):
         assert coarse.history.work[-1] > 0.1 * 0.5 * params.St
 
 
+RIGID_IMMERSED = RigidSolids(radial_grid(300, 0.05, OUTER["immersed"]))
+
+
+def test_history_force_of_unfading_memory_is_the_velocity_change_since_ever():
+    """With one mode of infinite relaxation time (T = 1e15) the history force's memory is the
+    velocity change since ever, Z = Z0 + V + 1 (Z0 = 0.2 brought from before the film, V = -1
+    at first touch), so F = -k w (Z0 + V + 1), and the rigid immersed sphere integrates exactly
+    to St (V + 1) = ln(1/X) - k w (Z0 + 1) T - k w (X - 1) (k w = 0.5, St = 3: the sphere does
+    not stop, it settles). To 5e-3 as the constant force above (measured 7e-5, 300 nodes, rtol
+    1e-5); leaving the memory's start out would be off by k w Z0 T = 0.6 at T = 6."""
+    St, k, w, start = 3.0, 1.0, 0.5, 0.2
+    force = HistoryForce(k, np.array([1e15]), constant_weights(w), np.array([start]))
+    params = CollisionParameters(St=St, eps=1.0, layer="immersed")
+    options = IntegratorOptions(rtol=1e-5, max_time=6.0)
+    result = solve_normal(params, RIGID_IMMERSED, options, forces=(force,))
+    hist = result.history
+    assert result.status == "stalled"
+    momentum = St * (hist.velocity + 1) - np.log(1 / hist.gap)
+    momentum += k * w * ((start + 1) * hist.time + hist.gap - 1)
+    assert np.abs(momentum).max() < 5e-3
+
+
+def test_history_force_of_short_memory_is_an_added_mass():
+    """A memory much shorter than the motion (one mode, T = 1e-4, weight k w = m_a / T) gives
+    Z = T dV/dT + O(T^2), F = -m_a dV/dT: an added mass m_a = 2, so the rigid immersed sphere
+    follows (St + m_a)(V + 1) = ln(1/X) and stops at exp(-(St + m_a)); the force's work is the
+    added mass's kinetic energy given back, m_a / 2 at the stop. Tolerances 5e-3 on the
+    momentum and 1e-2 relative on the work at rtol 1e-6 (measured 3.3e-3 and 2.2e-3; 1.2e-2
+    and 7.5e-3 at rtol 1e-5, 1.1e-3 and 8.5e-4 at 1e-7): a mode shorter than the step has the memory
+    of a velocity linear over the step, first order in the step; the O(T) correction is
+    2 T dV/dT, below 1e-3."""
+    St, added, relaxation = 3.0, 2.0, 1e-4
+    weights = constant_weights(added / relaxation)
+    force = HistoryForce(1.0, np.array([relaxation]), weights, np.zeros(1))
+    params = CollisionParameters(St=St, eps=1.0, layer="immersed")
+    result = solve_normal(params, RIGID_IMMERSED, IntegratorOptions(rtol=1e-6), forces=(force,))
+    hist = result.history
+    assert result.status == "stick"
+    assert np.abs((St + added) * (hist.velocity + 1) - np.log(1 / hist.gap)).max() < 5e-3
+    assert hist.work[-1] == pytest.approx(added / 2, rel=1e-2)
+
+
 @dataclass(frozen=True)
 class Spring:
     """A test force of the gap, F = k (1 - X) (a contact load pushing the sphere out as it goes
@@ -110,12 +152,27 @@ class Spring:
     def work(self, state):
         return -0.5 * self.stiffness * (1.0 - state.gap) ** 2
 
+    def advance(self, state):
+        return self
+
+
+def constant_weights(weight):
+    """The weights callable V -> (w,) of a one-mode history force with a weight of no V."""
+    return lambda velocity: np.array([weight])
+
+
+ONE_WEIGHT = constant_weights(1.0)
+
 
 def test_newton_rows_are_the_derivatives_of_the_sphere_residual():
     """The sphere's two Jacobian rows equal central differences of its residual in P (through
     the film force f . P), X and V, with a force of the gap (dF/dX) and a constant one; the
-    residual is linear in each, so the differences are exact to round-off (1e-9)."""
-    sphere = Sphere(2.5, (Spring(3.0), ConstantForce(-0.7), BuoyantWeight.of(0.2)))
+    residual is linear in each, so the differences are exact to round-off (1e-9); with a
+    history force whose weights do not depend on V, whose force at the step's end is linear in
+    V through the memory's update (dF/dV = -k w.gain)."""
+    memory = HistoryForce(0.8, np.array([0.05, 2.0]), lambda v: np.array([1.5, 0.4]), np.ones(2))
+    forces = (Spring(3.0), ConstantForce(-0.7), BuoyantWeight.of(0.2), memory)
+    sphere = Sphere(2.5, forces)
     weights = np.array([0.3, 0.2, 0.1])
     pressure, gap, velocity = np.array([1.0, 2.0, -0.5]), 0.4, -0.3
     step, a0, past = 0.01, 1.5, (-0.6, 0.45)
@@ -169,6 +226,10 @@ def test_buoyant_weight_from_physical_inputs():
         (lambda: BuoyantWeight.of(float("-inf")), "buoyant_weight"),
         (lambda: Sphere(0.0), "St"),
         (lambda: Sphere(1.0, [ConstantForce(1.0)]), "forces"),
+        (lambda: HistoryForce(1.0, np.ones(2), ONE_WEIGHT, np.ones(3)), "history_force"),
+        (lambda: HistoryForce(0.0, np.ones(1), ONE_WEIGHT, np.ones(1)), "history_force"),
+        (lambda: HistoryForce(1.0, -np.ones(1), ONE_WEIGHT, np.ones(1)), "history_force"),
+        (lambda: HistoryForce(1.0, np.ones(1), 1.0, np.ones(1)), "history_force"),
     ],
 )
 def test_bad_inputs_name_the_parameter(make, name):

@@ -32,12 +32,16 @@ inertia M(h_c) (the sphere's mass, and the added mass not in the weight), gravit
 (``contact_gravity``), e_dry and the cavitation limit of the inputs; it ends at exit (X =
 h_exit / h_c, speed e_n V0 with the collision's e_n: e_dry V_exit for smooth surfaces, V_exit
 for rough ones, whose asperities act inside the contact; :meth:`FarField.exit_gap`) or sticks.
-The surfaces' roughness [m] is the same at every contact, sigma / x0 is not. The flight's
-remainder (phi - 1 + lambda - a/h) and the history force are not applied during the contact;
-their impulses are measured (:class:`Contact`; ``contact_history`` and ``contact_drag`` add
-them to the rebound's momentum at exit, a first-order estimate), and the contact's velocity
-change is carried into the history force's memory (``history_memory`` "keep") or the memory is
-emptied ("reset"). Flight resumes at h_exit with the kinetic energy of the exit.
+The surfaces' roughness [m] is the same at every contact, sigma / x0 is not. With
+``contact_history`` (the default) the history force acts in the film model's time stepping
+(:class:`ehdfem.motion.forces.HistoryForce`, from the flight's memory, in the contact's
+scales: :meth:`FarField.contact_history_force`); without it its impulse over the contact is
+measured only. The flight's remainder (phi - 1 + lambda - a/h) is not applied
+during the contact; its impulse is measured (:class:`Contact`; ``contact_drag`` adds it to the
+rebound's momentum at exit, a first-order estimate). The contact's velocity change is carried
+into the history force's memory (``history_memory`` "keep"), or the memory is emptied
+("reset") or keeps only the flight before the contact ("approach"). Flight resumes at h_exit
+with the kinetic energy of the exit.
 
 **Rest**: the sphere rests when a contact sticks or stalls, or when an apex is below
 ``rest_apex`` D or already inside the hand-over region; the computation also stops at the apex
@@ -50,7 +54,7 @@ import math
 from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
-from scipy.integrate import solve_ivp, trapezoid
+from scipy.integrate import cumulative_trapezoid, solve_ivp, trapezoid
 from scipy.optimize import brentq
 
 from .. import checks
@@ -67,6 +71,7 @@ from ..inputs.scales import (
     elasticity_parameter,
     stokes_number,
 )
+from ..motion.forces import HistoryForce
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
 from ..outputs import registry as outputs
@@ -85,7 +90,7 @@ FLIGHT_SAMPLES = 200  # trajectory samples per flight leg (besides the integrato
 SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry force jump)
 LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
 ENDINGS = {"stick": "sticks", "stalled": "stalled (settling through the film)"}
-HISTORY_MEMORIES = ("keep", "reset")  # the history force's memory across a contact
+HISTORY_MEMORIES = ("keep", "reset", "approach")  # the history force's memory across a contact
 SWITCHES = (  # the on/off modelling choices of BounceInputs
     "wall_added_mass",
     "contact_gravity",
@@ -200,16 +205,19 @@ class BounceInputs:
     modelling choices of docs/bounce.md, each switchable: the history force's kernel
     (:data:`ehdfem.bounce.unsteady.HISTORY_KERNELS`) and its memory across a contact
     (:data:`HISTORY_MEMORIES`: "keep" carries the contact's velocity change into it, "reset"
-    forgets everything at each exit); ``wall_added_mass``: C_M rises near the wall as the
-    sphere's image says (C_M above is then its value far away); ``contact_gravity``: gravity
+    forgets everything at each exit, "approach" forgets the contact's velocity change at each
+    exit and keeps the memory of the flight before it, faded over the contact);
+    ``wall_added_mass``: C_M rises near the wall as the sphere's image says (C_M above is then
+    its value far away); ``contact_gravity``: gravity
     and buoyancy act during the contacts; ``clear_exit``: the film model hands back above the
     gap where a cavity can form (:meth:`FarField.exit_gap`). The surfaces' rms roughness
     ``sphere_roughness`` and ``wall_roughness`` [m] (0: smooth), the same at every contact
     (scaled there by that contact's x0 = h_c), with the collision's ``asperities`` model
-    (:data:`ehdfem.film.asperities.MODELS`). The contact's omitted impulses, each switchable
-    (default off, docs/bounce.md "Testing the cause"): ``contact_history`` adds the history
-    force's impulse over the contact, ``contact_drag`` the flight's remainder's, to the
-    rebound's momentum at exit."""
+    (:data:`ehdfem.film.asperities.MODELS`). ``contact_history`` (default on): the history force
+    acts in the contact's time stepping, so that the memory the flight carries on and the
+    contact's motion are one (off: only its impulse is measured). ``contact_drag`` (default
+    off, a variation, docs/bounce.md "The forces of the contact") adds the flight's
+    remainder's impulse over the contact to the rebound's momentum at exit."""
 
     radius: float
     sphere: Material | str | dict
@@ -232,7 +240,7 @@ class BounceInputs:
     sphere_roughness: float = 0.0
     wall_roughness: float = 0.0
     asperities: str = "impact"
-    contact_history: bool = False
+    contact_history: bool = True
     contact_drag: bool = False
 
     def __post_init__(self):
@@ -481,6 +489,18 @@ class FarField:
             return 0.0
         return -self.stokes * float(self.history_weights(velocity) @ memory)
 
+    def contact_history_force(self, gap: float, speed: float, memory) -> HistoryForce:
+        """The history force in the film model of a contact handed over at ``gap`` [m] (its x0)
+        and ``speed`` [m/s] (its V0), from the flight's memory z_i [m/s], in the contact's
+        scales (:class:`ehdfem.motion.forces.HistoryForce`: k = x0 / a, T_i = tau_i V0 / x0,
+        Z_i = z_i / V0, the weights at the Reynolds number of V V0)."""
+        return HistoryForce(
+            gap / self.inputs.radius,
+            self.relaxation_times * speed / gap,
+            lambda velocity: self.history_weights(velocity * speed),
+            np.asarray(memory, dtype=float) / speed,
+        )
+
     def fly(self, start: FlightState, rising: bool, duration: float | None = None) -> Flight:
         """Integrate a flight leg from ``start`` until the apex (``rising``) or the hand-over
         (falling), or at most for ``duration`` [s] (None: until the event). LSODA, relative
@@ -566,7 +586,8 @@ class Contact:
     model's relative balance error, None with a cavitation limit). Force jumps (relative,
     flight to film, both at the same h and v): ``entry_jump`` once the film pressure has built
     up (the first step with X <= SETTLED_FILM), ``exit_jump`` at the last step before exit.
-    Impulses not applied during the contact, relative to the hand-over momentum M(h_c) V0:
+    Impulses over the contact, relative to the hand-over momentum M(h_c) V0 (not applied during
+    it, but the history force's with ``contact_history``):
     ``gravity_impulse`` ((m - m_f) g duration; 0 when gravity acts in the contact),
     ``remainder_impulse`` (int 6 pi mu a |v| |phi - 1 + lambda - a/h| dt, with h the thinnest
     film) and ``history_impulse`` (int F_H dt from the memory carried through the contact,
@@ -809,36 +830,41 @@ class _Bounce:
 
     def _collide(self, leg: Flight):
         """The contact after the falling ``leg``: the film model from the hand-over state (its
-        inertia M(h_c), handing back at :meth:`FarField.exit_gap`), its samples recorded;
-        returns the Contact and the FlightState where flight resumes after a rebound (the
-        speed e_n V0 sqrt(M(h_c) / M(h_exit)), e_n the collision's restitution, which keeps
-        the kinetic energy across the added mass's change, as the flight's own equation does;
-        plus the omitted impulses switched on, :meth:`_exit_kick`)."""
+        inertia M(h_c), handing back at :meth:`FarField.exit_gap`, with the history force when
+        ``contact_history``), its samples recorded; returns the Contact and the FlightState
+        where flight resumes after a rebound (the speed e_n V0 sqrt(M(h_c) / M(h_exit)), e_n the
+        collision's restitution, which keeps the kinetic energy across the added mass's change,
+        as the flight's own equation does; plus the drag's kick with ``contact_drag``,
+        :meth:`_exit_kick`)."""
         far, inputs = self.far, self.far.inputs
         start = leg.last()
         speed = -start.velocity
         mass, exit_gap = far.inertia(start.gap)[0], far.exit_gap(start.gap, speed)
-        result, scales = self._film_collision(start.gap, speed, mass, exit_gap)
+        result, scales = self._film_collision(start, speed, mass, exit_gap)
         normal, params = result.normal, result.params
         energy_unit = mass * speed**2 / params.St
-        at_end, times, velocities = self._record_contact(normal, start, scales, energy_unit)
+        at_end, times, samples = self._contact_samples(normal, start, scales)
+        velocities = samples["velocity"] * speed
         exit_speed = normal.exit_velocity * speed
         rebound_speed = normal.e_n * speed * math.sqrt(mass / far.inertia(exit_gap)[0])
+        jump = (np.append(times, times[-1]), np.append(velocities, rebound_speed))
+        memory, history_impulse, history_work = self._carry_memory(
+            start.memory, *(jump if normal.rebound else (times, velocities))
+        )
+        history_work = start.history_work + inputs.contact_history * history_work
+        self._record_contact(start, times, samples, energy_unit, history_work[: len(times)])
         film_dissipated = at_end["dissipated"] * energy_unit
         exit_loss = 0.5 * mass * (exit_speed**2 - (normal.e_n * speed) ** 2)
         exit_loss += at_end["elastic"] * energy_unit
         self.film_dissipated += film_dissipated
         self.exit_loss += exit_loss
-        if normal.rebound:
-            times, velocities = np.append(times, times[-1]), np.append(velocities, rebound_speed)
-        memory, history_impulse = self._carry_memory(start.memory, times, velocities)
         omitted = self._omitted(normal.history, normal.contact_time, scales, speed, mass)
-        impact = float(np.max(np.abs(leg.velocity)))
         exit_state = FlightState(
-            times[-1], exit_gap, rebound_speed, start.drag_work, start.history_work, memory
+            times[-1], exit_gap, rebound_speed, start.drag_work, history_work[-1], memory
         )
         if normal.rebound:
-            exit_state = self._exit_kick(exit_state, history_impulse, omitted["drag_impulse"])
+            exit_state = self._exit_kick(exit_state, omitted["drag_impulse"])
+        impact = float(np.max(np.abs(leg.velocity)))
         contact = Contact(
             impact_speed=impact,
             St=inputs.stokes_number(impact),
@@ -858,69 +884,71 @@ class _Bounce:
             film=outputs.in_si_where_possible(result),
         )
         self.contacts.append(contact)
-        if normal.rebound:  # the exit's velocity jump (e_dry, the kicks) as a second sample
-            self._append(
-                time=[exit_state.time],
-                gap=[exit_gap],
-                velocity=[exit_state.velocity],
-                phase=["flight"],
-                kinetic=[0.5 * far.inertia(exit_gap)[0] * exit_state.velocity**2],
-                potential=[far.net_weight * exit_gap],
-                elastic=[0.0],
-                drag_dissipated=[exit_state.drag_work],
-                history_dissipated=[exit_state.history_work],
-            )
+        if normal.rebound:  # the exit's velocity jump (e_dry, the kick) as a second sample
+            self._append_exit(exit_state)
         return contact, exit_state
 
-    def _exit_kick(self, state: FlightState, history_impulse, drag_impulse) -> FlightState:
-        """The exit ``state`` with the contact's omitted impulses [N s] switched on
-        (``contact_history``, ``contact_drag``) added to its momentum: v += J / M(h_exit), a
-        first-order estimate of their effect on the rebound (the contact lasts 30-160 us, the
-        impulses are a few % of the momentum), the kinetic energy they add taken from the
-        liquid (their work columns) and the velocity change carried into the memory as a
-        jump."""
-        inputs, inertia = self.far.inputs, self.far.inertia(state.gap)[0]
-        kicks = {"history": inputs.contact_history * history_impulse}
-        kicks["drag"] = inputs.contact_drag * drag_impulse
-        velocity, works = state.velocity, {}
-        for name, impulse in kicks.items():
-            kicked = velocity + impulse / inertia
-            works[name] = 0.5 * inertia * (velocity**2 - kicked**2)
-            velocity = kicked
-        memory = state.memory + (velocity - state.velocity) if len(state.memory) else state.memory
-        return FlightState(
-            state.time,
-            state.gap,
-            velocity,
-            state.drag_work + works["drag"],
-            state.history_work + works["history"],
-            memory,
+    def _append_exit(self, state: FlightState):
+        """The sample of the flight's start after a contact (the exit's velocity jump)."""
+        inertia = self.far.inertia(state.gap)[0]
+        self._append(
+            time=[state.time],
+            gap=[state.gap],
+            velocity=[state.velocity],
+            phase=["flight"],
+            kinetic=[0.5 * inertia * state.velocity**2],
+            potential=[self.far.net_weight * state.gap],
+            elastic=[0.0],
+            drag_dissipated=[state.drag_work],
+            history_dissipated=[state.history_work],
         )
 
-    def _carry_memory(self, memory, times, velocities) -> tuple[np.ndarray, float]:
+    def _exit_kick(self, state: FlightState, drag_impulse) -> FlightState:
+        """The exit ``state`` with the flight's remainder's impulse over the contact [N s]
+        added to its momentum when ``contact_drag``: v += J / M(h_exit), a first-order estimate
+        of its effect on the rebound (the contact lasts 30-160 us, the impulse is below 1 % of
+        the momentum), the kinetic energy it adds taken from the liquid (the drag's work
+        column) and the velocity change carried into the memory as a jump."""
+        inertia = self.far.inertia(state.gap)[0]
+        velocity = state.velocity + self.far.inputs.contact_drag * drag_impulse / inertia
+        work = 0.5 * inertia * (state.velocity**2 - velocity**2)
+        memory = state.memory + (velocity - state.velocity) if len(state.memory) else state.memory
+        return replace(state, velocity=velocity, drag_work=state.drag_work + work, memory=memory)
+
+    def _carry_memory(self, memory, times, velocities) -> tuple[np.ndarray, float, np.ndarray]:
         """The history force's memory after the contact whose velocity ``velocities`` [m/s] at
-        ``times`` [s] it follows (the exit's jump included as the last sample), and the
-        impulse [N s] the history force would have had during it (not applied: the film model
-        has only the film's and gravity's forces). With ``history_memory`` "reset" the memory
-        is emptied at exit."""
+        ``times`` [s] it follows (the exit's jump included as the last sample), the impulse
+        [N s] of the history force during it (applied in the contact's time stepping with
+        ``contact_history``, else only measured) and its work on the liquid from the hand-over
+        at each sample, -int F_H v dt [J] (trapezoidal rule, as the film model's
+        :class:`ehdfem.motion.forces.HistoryForce` integrates it). With ``history_memory``
+        "reset" the memory is emptied at exit; with "approach" it is the hand-over's memory
+        faded over the contact, z_i e^(-duration / tau_i), without the contact's velocity
+        change (variations that isolate the memory of the contact's reversal)."""
         far = self.far
         if not len(memory):
-            return memory, 0.0
+            return memory, 0.0, np.zeros(len(times))
         carried = unsteady.carry_memory(memory, times, velocities, far.relaxation_times)
-        force = [far.history_force(v, z) for v, z in zip(velocities, carried, strict=True)]
+        pairs = zip(velocities, carried, strict=True)
+        force = np.array([far.history_force(v, z) for v, z in pairs])
         impulse = float(trapezoid(force, times))
+        work = -cumulative_trapezoid(force * velocities, times, initial=0.0)
         if far.inputs.history_memory == "reset":
-            return np.zeros_like(memory), impulse
-        return carried[-1], impulse
+            return np.zeros_like(memory), impulse, work
+        if far.inputs.history_memory == "approach":
+            faded = memory * np.exp(-(times[-1] - times[0]) / far.relaxation_times)
+            return faded, impulse, work
+        return carried[-1], impulse, work
 
-    def _film_collision(self, gap: float, speed: float, mass: float, exit_gap: float):
-        """The immersed EHD collision from the hand-over at ``gap`` (m, the contact's layer
+    def _film_collision(self, start: FlightState, speed: float, mass: float, exit_gap: float):
+        """The immersed EHD collision from the hand-over at ``start.gap`` (m, the contact's layer
         thickness x0) and approach ``speed`` (m/s, its V0), with the inertia ``mass`` [kg]
         (the sphere's own mass plus its added mass there), gravity and buoyancy if
-        ``contact_gravity``, the surfaces' roughness (SI, scaled by the collision by this
-        contact's x0) and asperity model, leaving at ``exit_gap`` [m]; returns the collision
-        result (scaled) and its SI scales."""
-        far, inputs = self.far, self.far.inputs
+        ``contact_gravity``, the history force from the flight's memory if ``contact_history``
+        (:meth:`contact_history_force`), the surfaces' roughness (SI, scaled by the collision
+        by this contact's x0) and asperity model, leaving at ``exit_gap`` [m]; returns the
+        collision result (scaled) and its SI scales."""
+        far, inputs, gap = self.far, self.far.inputs, start.gap
         physical = PhysicalCollision(
             radius=inputs.radius,
             sphere=inputs.sphere,
@@ -940,23 +968,21 @@ class _Bounce:
         options = replace(self.options, exit_gap=exit_gap / gap)
         numerics = Numerics(nodes=self.nodes, integrator=options)
         config = RunConfig(asperities=inputs.asperities, numerics=numerics)  # half-space
+        forces = ()
+        if inputs.contact_history and len(start.memory):
+            forces = (far.contact_history_force(gap, speed, start.memory),)
+        solids = None
         if self.model == "rigid":
-            params = physical.dimensionless()
-            solids = RigidSolids(film_radii(params, self.nodes))
-            result = collide(physical, config, compliance=solids)
-        else:
-            result = collide(physical, config)
+            solids = RigidSolids(film_radii(physical.dimensionless(), self.nodes))
+        result = collide(physical, config, compliance=solids, forces=forces)
         return result, physical.scales()
 
-    def _record_contact(self, normal, start: FlightState, scales, energy_unit) -> tuple:
-        """Append the contact's samples (SI) to the trajectory, from the hand-over ``start``
-        to the exit or the stop, the exit interpolated between the last two steps; returns the
-        scaled gap, velocity, dissipated and elastic energy there (energies by ``energy_unit``
-        = M V0^2 / St, in J), and the samples' times [s] and velocities [m/s]. The potential
-        energy follows the gap when gravity acts in the contact, else it is held at its
-        hand-over value."""
-        far, hist, end = self.far, normal.history, normal.contact_time
-        gap, speed = start.gap, -start.velocity
+    def _contact_samples(self, normal, start: FlightState, scales) -> tuple:
+        """The contact's samples from the hand-over ``start`` to the exit or the stop, the exit
+        interpolated between the last two steps: the scaled gap, velocity, dissipated and
+        elastic energy at the end (a dict), the samples' times [s] and the scaled samples of
+        the same four (a dict)."""
+        hist, end = normal.history, normal.contact_time
         names = ("gap", "velocity", "dissipated", "elastic")
         at_end = {name: float(np.interp(end, hist.time, getattr(hist, name))) for name in names}
         shown = hist.time <= end
@@ -965,8 +991,15 @@ class _Bounce:
         if normal.rebound:
             times = np.append(times, end)
             samples = {name: np.append(samples[name], at_end[name]) for name in names}
-        times, velocities = start.time + times * scales.time, samples["velocity"] * speed
-        gaps = samples["gap"] * gap
+        return at_end, start.time + times * scales.time, samples
+
+    def _record_contact(self, start: FlightState, times, samples, energy_unit, history_work):
+        """Append the contact's samples (SI; ``samples`` scaled as :meth:`_contact_samples`
+        gives them, energies by ``energy_unit`` = M V0^2 / St, in J) to the trajectory, with the
+        history force's work on the liquid so far [J] at each. The potential energy follows
+        the gap when gravity acts in the contact, else it is held at its hand-over value."""
+        far, gap, speed = self.far, start.gap, -start.velocity
+        velocities, gaps = samples["velocity"] * speed, samples["gap"] * gap
         height = gaps if far.inputs.contact_gravity else np.full(len(times), gap)
         self._append(
             time=times,
@@ -978,10 +1011,9 @@ class _Bounce:
             potential=far.net_weight * height,
             elastic=samples["elastic"] * energy_unit,
             drag_dissipated=np.full(len(times), start.drag_work),
-            history_dissipated=np.full(len(times), start.history_work),
+            history_dissipated=history_work,
             film_dissipated=self.film_dissipated + samples["dissipated"] * energy_unit,
         )
-        return at_end, times, velocities
 
     def _jumps(self, hist, normal, scales) -> dict:
         """Relative force jumps flight -> film at entry (X <= SETTLED_FILM) and before exit."""

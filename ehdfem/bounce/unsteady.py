@@ -48,6 +48,7 @@ from functools import cache
 import numpy as np
 
 from .. import checks
+from ..motion.forces import memory_gains
 
 HISTORY_KERNELS = ("mei-adrian", "basset", "none")
 RELAXATION_TIMES = np.logspace(-8.0, 4.0, 49)  # sigma_i by a^2 / nu
@@ -133,15 +134,13 @@ def carry_memory(memory, times, velocities, relaxation_times) -> np.ndarray:
 
         z_i(t_k+1) = z_i(t_k) e^(-dt/tau_i) + (v_k+1 - v_k) (tau_i / dt)(1 - e^(-dt/tau_i)),
 
-    a jump (dt = 0) adding v_k+1 - v_k. ``relaxation_times``: tau_i [s]. Returns an array
+    a jump (dt = 0) adding v_k+1 - v_k (:func:`ehdfem.motion.forces.memory_gains`, which the
+    film model's history force uses too). ``relaxation_times``: tau_i [s]. Returns an array
     (len(times), len(memory)); the history force is -6 pi mu a sum_i w_i z_i."""
     z = np.array(memory, dtype=float)
-    tau = np.asarray(relaxation_times, dtype=float)
     out = [z.copy()]
     for k in range(len(times) - 1):
-        step = times[k + 1] - times[k]
-        decay = np.exp(-step / tau)
-        gain = np.where(step > 0, -np.expm1(-step / tau) * tau / max(step, 1e-300), 1.0)
+        decay, gain = memory_gains(times[k + 1] - times[k], relaxation_times)
         z = z * decay + (velocities[k + 1] - velocities[k]) * gain
         out.append(z.copy())
     return np.array(out)

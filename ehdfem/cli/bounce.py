@@ -107,24 +107,25 @@ def _add_flight_choices(model) -> None:
         choices=HISTORY_MEMORIES,
         default=HISTORY_MEMORIES[0],
         help="the history force's memory across a contact: keep the contact's velocity change, "
-        "or reset it at each exit",
+        "reset it at each exit, or keep only the approach's memory (the contact's velocity "
+        "change forgotten at exit)",
     )
     switches = {
-        "wall-added-mass": "the added mass rises near the wall (the sphere's image)",
-        "contact-gravity": "gravity and buoyancy act during the contacts",
-        "clear-exit": "the film model hands back above the gap where a cavity can form",
+        "wall-added-mass": ("the added mass rises near the wall (the sphere's image)", True),
+        "contact-gravity": ("gravity and buoyancy act during the contacts", True),
+        "clear-exit": ("the film model hands back above the gap where a cavity can form", True),
+        "contact-history": ("the history force acts in each contact's time stepping", True),
+        "contact-drag": (
+            "the flight's remainder drag's impulse over each contact added at exit",
+            False,
+        ),
     }
-    for name, text in switches.items():
+    for name, (text, default) in switches.items():
         model.add_argument(
-            f"--{name}", action=BooleanOptionalAction, default=True, help=f"{text} (default on)"
-        )
-    kicks = {
-        "contact-history": "the history force's impulse over each contact added at exit",
-        "contact-drag": "the flight's remainder drag's impulse over each contact added at exit",
-    }
-    for name, text in kicks.items():
-        model.add_argument(
-            f"--{name}", action=BooleanOptionalAction, default=False, help=f"{text} (default off)"
+            f"--{name}",
+            action=BooleanOptionalAction,
+            default=default,
+            help=f"{text} (default {'on' if default else 'off'})",
         )
     for surface in ("sphere", "wall"):
         model.add_argument(

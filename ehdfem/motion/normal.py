@@ -10,7 +10,8 @@ gap S(R) (R^2/2 in the asymptotic theory, the true spheres with ``gap = "exact"`
     St dV/dT = (1/3) int P R dR + sum_i F_i,     dX/dT = V,     X(0) = 1, V(0) = -1,
 
 force by 6 pi mu V0 a^2 / x0, the F_i the forces applied to the sphere (an external force, the
-buoyant weight; positive away from the wall). The sphere's equation, its rows of the implicit
+buoyant weight, a force with memory such as the history force of the liquid around the film;
+positive away from the wall). The sphere's equation, its rows of the implicit
 step and its energies are :class:`ehdfem.motion.sphere.Sphere`; its forces
 :mod:`ehdfem.motion.forces`.
 
@@ -55,7 +56,7 @@ from .. import checks
 from ..film.asperities import GreenwoodTripp
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
-from .forces import LAYER_SURFACE
+from .forces import LAYER_SURFACE, SphereForce, SphereState
 from .history import NormalHistory
 from .implicit_step import ImplicitStep, StepFailed, SurfaceMotion
 from .sphere import IMPACT_VELOCITY, Sphere
@@ -182,6 +183,7 @@ def solve_normal(
     compliance: Compliance,
     options: IntegratorOptions | None = None,
     asperities: str = "impact",
+    forces: tuple[SphereForce, ...] = (),
 ) -> NormalResult:
     """Integrate the normal collision from first touch of the layer to exit or sticking.
 
@@ -190,16 +192,20 @@ def solve_normal(
     ``compliance``: the elasticity, W = matrix @ P at the film nodes ``radii`` (by x0, P by
     mu V0 a / x0^2, R by sqrt(a x0)). ``asperities``: the asperity model of rough surfaces,
     "impact" or "greenwood-tripp" (module docstring; unused when params.roughness is 0).
+    ``forces``: forces on the sphere besides those of ``params`` (the external force, the
+    buoyant weight), such as the history force of the liquid around the film
+    (:class:`ehdfem.motion.forces.HistoryForce`), advanced at every accepted step.
     Returns a :class:`NormalResult`.
     """
-    integration = _NormalIntegration(params, compliance, options or IntegratorOptions(), asperities)
+    options = options or IntegratorOptions()
+    integration = _NormalIntegration(params, compliance, options, asperities, forces)
     return integration.run()
 
 
 class _NormalIntegration:
     """The time loop of :func:`solve_normal`: steps, events and the result."""
 
-    def __init__(self, params, compliance, options, asperities):
+    def __init__(self, params, compliance, options, asperities, forces=()):
         if options.exit_gap > LAYER_SURFACE and params.layer != "immersed":
             raise checks.InputError(
                 f"exit_gap = {options.exit_gap!r} needs an immersed layer: a sphere leaves a "
@@ -215,7 +221,7 @@ class _NormalIntegration:
         self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
         self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
         self.cavitation = params.cavitation_model()
-        self.sphere = Sphere.of(params)
+        self.sphere = Sphere.of(params, forces)
         self.step_solver = ImplicitStep(
             self.film,
             compliance.matrix,
@@ -446,17 +452,25 @@ class _NormalIntegration:
             self.full, self.full_changed_at = full, len(self.hist.time)
         thinnest = float(np.min(thickness[0]))
         self.thinnest = min(self.thinnest, thinnest)
+        self._advance_sphere(t_new, thickness[0])
         touches = self.touch is not None and not self.rebounding and self.velocity < 0
         touches = touches and thinnest <= self.touch * (1 + TOUCH_TOL)  # (after a rebound, the
         # film reaching sigma off the axis is no impact: V back to 0 is the stop, which comes first)
         if touches:
             dissipated += self._solid_impact(t_new)
+            self._advance_sphere(t_new, thickness[0])  # the velocity's jump, into any memory
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
         if touches:
             self.restart = len(self.hist.time)
             self.stepper.restart(self.options.first_step * self.touch)
         self.rebounding = self.rebounding or self.velocity > 0
         return self._event(t_new)
+
+    def _advance_sphere(self, time, film_thickness):
+        """The sphere (its forces' memory) moved on to the accepted state, in the step solver
+        too (:meth:`ehdfem.motion.sphere.Sphere.advanced`)."""
+        state = SphereState(time, self.gap, self.velocity, film_thickness)
+        self.sphere = self.step_solver.sphere = self.sphere.advanced(state)
 
     def _solid_impact(self, t_new) -> float:
         """The asperities' solid collision at the latest state: V_c -> -e_dry V_c; returns the

@@ -19,7 +19,7 @@ work of the applied forces (:mod:`ehdfem.motion.history`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -47,15 +47,27 @@ class Sphere:
             raise checks.InputError(f"forces must be a tuple of forces, got {self.forces!r}")
 
     @classmethod
-    def of(cls, params: CollisionParameters) -> Sphere:
+    def of(cls, params: CollisionParameters, forces: tuple[SphereForce, ...] = ()) -> Sphere:
         """The sphere of the collision ``params``: St, the external force and the buoyant
-        weight (each only when not zero)."""
-        forces = []
+        weight (each only when not zero), then the further ``forces`` (e.g. a
+        :class:`ehdfem.motion.forces.HistoryForce` built by the caller)."""
+        if not isinstance(forces, tuple):
+            raise checks.InputError(f"forces must be a tuple of forces, got {forces!r}")
+        applied = []
         if params.external_force != 0.0:
-            forces.append(ConstantForce(params.external_force))
+            applied.append(ConstantForce(params.external_force))
         if params.buoyant_weight != 0.0:
-            forces.append(BuoyantWeight.of(params.buoyant_weight))
-        return cls(params.St, tuple(forces))
+            applied.append(BuoyantWeight.of(params.buoyant_weight))
+        return cls(params.St, (*applied, *forces))
+
+    def advanced(self, state: SphereState) -> Sphere:
+        """The sphere for the steps after the accepted ``state``: each force's
+        :meth:`ehdfem.motion.forces.SphereForce.advance` (a force of the past motion moves its
+        memory on; the others stay)."""
+        forces = tuple(force.advance(state) for force in self.forces)
+        if all(new is old for new, old in zip(forces, self.forces, strict=True)):
+            return self
+        return replace(self, forces=forces)
 
     def applied_force(self, state: SphereState) -> float:
         """sum_i F_i at the state (by 6 pi mu V0 a^2 / x0)."""

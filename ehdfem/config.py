@@ -21,7 +21,6 @@ from typing import ClassVar
 
 from . import checks
 from .film import cavitation
-from .film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
 from .film.asperities import MODELS as ASPERITY_MODELS
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
@@ -183,16 +182,12 @@ class RunConfig:
             )
         if self.asperities != "impact":
             return
-        for name, default in (
-            ("asperity_density", ASPERITY_DENSITY),
-            ("asperity_slope", ASPERITY_SLOPE),
-        ):
-            if getattr(params, name) != default:
-                raise checks.InputError(
-                    f"{name} = {getattr(params, name)!r} acts only with asperities = "
-                    "'greenwood-tripp' (the impact model has no asperity pressure)",
-                    name,
-                )
+        for name in params.asperities_given():
+            raise checks.InputError(
+                f"{name} = {getattr(params, name)!r} acts only with asperities = "
+                "'greenwood-tripp' (the impact model has no asperity pressure)",
+                name,
+            )
 
     @property
     def options(self) -> IntegratorOptions:

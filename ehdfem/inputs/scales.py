@@ -258,16 +258,17 @@ class CollisionParameters:
                 "smooth surfaces never touch through the film, so Coulomb friction never acts",
                 "friction_coefficient",
             )
-        for name, default in (
-            ("asperity_density", ASPERITY_DENSITY),
-            ("asperity_slope", ASPERITY_SLOPE),
-        ):
-            if getattr(self, name) != default:
-                raise checks.InputError(
-                    f"{name} = {getattr(self, name)!r} needs roughness > 0: smooth surfaces "
-                    "have no asperities",
-                    name,
-                )
+        for name in self.asperities_given():
+            raise checks.InputError(
+                f"{name} = {getattr(self, name)!r} needs roughness > 0: smooth surfaces "
+                "have no asperities",
+                name,
+            )
+
+    def asperities_given(self) -> list[str]:
+        """The names of the asperity inputs (Greenwood-Tripp's) that differ from their defaults."""
+        defaults = {"asperity_density": ASPERITY_DENSITY, "asperity_slope": ASPERITY_SLOPE}
+        return [name for name, value in defaults.items() if getattr(self, name) != value]
 
     def cavitation_model(self):
         """The film's cavitation model with its limit P_cav (:mod:`ehdfem.film.cavitation`)."""

@@ -93,15 +93,23 @@ def normal_restitution(St, eps, p_cav, layer="thin"):
 
 
 def tangential_restitution(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
-    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), I = A (thin), A + B D, D =
-    ln((1 + delta)/(2 delta)) (immersed), A, B = exp(Q(x, v, h)); for rebounds (e_n >= {clear})."""
+    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), 3 St I = P R + eps^(2/5) St E (thin),
+    P (1 + D) R + eps^(2/5) St E + 2.94 C D T (immersed), P = 1 + 1/(e_n + 1/St), D =
+    (1 + c) ln(1 + c) - c ln c - 1 with c = 1/(2 delta), C = (13.88 eps St)^(2/5), R, E, T =
+    exp(Q(x, v, h)); stated errors for rebounds (e_n >= {clear})."""
+    e_n = normal_restitution(St, eps, p_cav, layer)
     _check(St, eps, delta, p_cav, layer, inertia_factor)
     f = _features(St, eps, p_cav)
-    integral = math.exp(_q(FORMS[layer]["A"], f))
+    forms = FORMS[layer]
+    passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * math.exp(_q(forms["R"], f))
+    total = passes + eps**0.4 * St * math.exp(_q(forms["E"], f))
     if layer == "immersed":
-        integral += math.exp(_q(FORMS[layer]["B"], f)) * math.log((1.0 + delta) / (2.0 * delta))
+        c = 0.5 / delta
+        far = math.log1p(c) + c * math.log1p(1.0 / c) - 1.0
+        contact = {contact_time!r} * ({hertz!r} * eps * St) ** 0.4
+        total += far * (passes + contact * math.exp(_q(forms["T"], f)))
     k = inertia_factor
-    return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * integral)
+    return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St))
 
 
 def spin_change(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
@@ -175,6 +183,7 @@ def python_source(fits: dict, table: str, version: str, held_back: dict | None =
         slope=shape.CRITICAL_SLOPE,
         clear=CLEAR_REBOUND,
         hertz=HERTZ,
+        contact_time=shape.HERTZ_TIME,
     )
 
 
@@ -275,12 +284,19 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     double St_c = ({slope!r} + f[4]) * L + ehd_q_(&forms[0], f);
     double ratio = St_c / St;
     ratio = ratio < 0.0 ? 0.0 : (ratio > 1.0 ? 1.0 : ratio);
-    double integral = exp(ehd_q_(&forms[2], f));
-    if (layer == EHD_IMMERSED)
-        integral += exp(ehd_q_(&forms[3], f)) * log((1.0 + delta) / (2.0 * delta));
+    double e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
+    /* 3 St I: the rigid passes, the elastic contact and (immersed) the far field */
+    double passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * exp(ehd_q_(&forms[2], f));
+    double total = passes + pow(eps, 0.4) * St * exp(ehd_q_(&forms[3], f));
+    if (layer == EHD_IMMERSED) {{
+        double c = 0.5 / delta;
+        double far = log1p(c) + c * log1p(1.0 / c) - 1.0;
+        double contact = {contact_time!r} * pow({hertz!r} * eps * St, 0.4);
+        total += far * (passes + contact * exp(ehd_q_(&forms[4], f)));
+    }}
     out->St_c = St_c;
-    out->e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
-    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * integral);
+    out->e_n = e_n;
+    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St));
     out->spin_change = (1.0 - out->e_t) / k;
     return 0;
 }}
@@ -318,9 +334,9 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
     parts, tables = [], []
     for layer in LAYERS:
         inits = []
-        for name in ("St_c", "m", "A", "B"):
+        for name in shape.NAMES:
             form = fits.get(layer, {}).get(name)
-            if form is None:  # a layer not fitted, or B of the thin layer: unused
+            if form is None:  # a layer not fitted, or T of the thin layer: unused
                 inits.append("{0, 0, 0, 0, 0}")
                 continue
             arrays, init = _c_form(f"ehd_{layer}_{name}_", form)
@@ -335,12 +351,16 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
         errors=describe_errors(held_back),
         clear=CLEAR_REBOUND,
     )
-    forms = "static const ehd_form_t ehd_forms_[2][4] = {\n    " + ",\n    ".join(tables) + "};\n"
+    forms = (
+        f"static const ehd_form_t ehd_forms_[2][{len(shape.NAMES)}] = {{\n    "
+        + ",\n    ".join(tables)
+        + "};\n"
+    )
     tail = _C_TAIL.format(
         St_lo=box["St"][0], St_hi=box["St"][1], eps_lo=box["eps"][0], eps_hi=box["eps"][1],
         delta_lo=box["delta"][0], delta_hi=box["delta"][1], p_lo=box["p_cav"][0],
         p_hi=box["p_cav"][1], no_limit=int(box["no_limit"]), has_thin=int("thin" in fits),
         has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP,
-        slope=shape.CRITICAL_SLOPE, hertz=HERTZ,
+        slope=shape.CRITICAL_SLOPE, hertz=HERTZ, contact_time=shape.HERTZ_TIME,
     )  # fmt: skip
     return head + "\n" + "".join(parts) + "\n" + forms + tail

@@ -26,7 +26,7 @@ from scipy.optimize import least_squares
 
 from .. import checks
 from . import forms as shape
-from .box import LAYERS, check_inside
+from .box import LAYERS, check_inside, wetted_reach
 
 CLEAR_REBOUND = 0.3
 """The smallest e_n of the rebounds the tangential forms are fitted to: just above St_c the
@@ -64,7 +64,8 @@ def fit_forms(rows: list[dict]) -> dict:
     for layer in LAYERS:
         select = np.array([value == layer for value in data["layer"]])
         if select.any():
-            out[layer] = {**_fit_normal(data, select), **_fit_tangential(data, select, layer)}
+            normal = _fit_normal(data, select)
+            out[layer] = {**normal, **_fit_tangential(data, select, layer, normal)}
     return out
 
 
@@ -158,51 +159,44 @@ def _fit_normal(data: dict, select) -> dict:
     return _least_squares(shape.NORMAL, forms, residual)
 
 
-def _fit_tangential(data: dict, select, layer: str) -> dict:
-    """Q_A (and Q_B immersed) of one layer (the module docstring)."""
-    clear = select & (data["e_n"] >= CLEAR_REBOUND)
+def _fit_tangential(data: dict, select, layer: str, normal: dict) -> dict:
+    """Q_R, Q_E (and Q_T immersed) of one layer (:mod:`ehdfem.dem.forms`), by least squares
+    on ln of 3 St I at the rebounds with e_n >= CLEAR_REBOUND inside the box's reach (the
+    film or the contact inside r = a) where the ``normal`` forms rebound too, from R = T = 1,
+    E = 5."""
+    reach = np.array([wetted_reach(*(data[n][i] for n in ("St", "eps", "delta")),
+                                   data["layer"][i]) for i in range(len(data["St"]))])  # fmt: skip
+    clear = select & (data["e_n"] >= CLEAR_REBOUND) & (reach <= 1.0)
+    e_n = np.array([_value({layer: normal}, data, i, "e_n") if clear[i] else 0.0
+                    for i in range(len(clear))])  # fmt: skip
+    clear &= e_n > 0.0
     if not clear.any():
         raise checks.InputError(f"the tangential forms need rebounds with e_n >= {CLEAR_REBOUND}")
-    integral = shape.sliding_integral_of(data["e_t"], data["delta"], data["k"])
-    values = feature_values(data, clear)
-    if layer == "thin":
-        smallest = data["delta"][clear] == data["delta"][clear].min()
-        return {"A": _linear_form("A", values, np.log(integral[clear]), smallest)}
-    return _fit_immersed(data, clear, integral, values)
-
-
-def _fit_immersed(data: dict, clear, integral, values: dict) -> dict:
-    """A and B of I = A + B D(delta), immersed (:func:`ehdfem.dem.forms.far_field`), first
-    per (St, eps, P_cav) point."""
-    index = np.flatnonzero(clear)
-    points = defaultdict(list)
-    for j, i in enumerate(index):
-        points[(data["St"][i], data["eps"][i], data["p_cav"][i])].append(j)
-    A, B = np.full(len(index), np.nan), np.full(len(index), np.nan)
-    for members in points.values():
-        logs = shape.far_field(data["delta"][index[members]])
-        if len(np.unique(logs)) < 2:
-            continue
-        design = np.column_stack([np.ones(len(members)), logs])
-        (A[members], B[members]), *_ = np.linalg.lstsq(design, integral[index[members]], None)
-    usable = (A > 0) & (B > 0)
-    if not usable.any():
+    if layer == "immersed" and len(np.unique(data["delta"][clear])) < 2:
         raise checks.InputError(
-            "the immersed tangential forms need each rebound (St, eps, P_cav) at two values "
-            "of delta (I = A + B D(delta))"
+            "the immersed tangential forms need rebounds at two values of delta (to tell the "
+            "far field's share D(delta) from the near field's)"
         )
-    forms = {
-        name: _linear_form(name, values, np.log(np.where(usable, c, 1.0)), usable)
-        for name, c in (("A", A), ("B", B))
-    }
-    logs = shape.far_field(data["delta"][index])
+    integral = shape.sliding_integral_of(data["e_t"], data["delta"], data["k"])[clear]
+    values = feature_values(data, clear)
+    names = shape.TANGENTIAL[layer]
+    forms = {**normal}
+    for name in names:
+        form = {"features": list(shape.FEATURES[name]),
+                "powers": shape.powers(shape.FEATURES[name], shape.DEGREE[name])}  # fmt: skip
+        start = np.zeros(len(form["powers"]))
+        start[0] = np.log(START[name])
+        forms[name] = {**form, "coefficients": list(start)}
+    at = [data[n][clear] for n in ("St", "eps", "delta")]
 
     def residual(trial):
-        fitted = np.exp(shape.polynomial(trial["A"], values))
-        fitted = fitted + np.exp(shape.polynomial(trial["B"], values)) * logs
-        return fitted / integral[index] - 1.0
+        return np.log(shape.integral_of(trial, layer, values, e_n[clear], *at) / integral)
 
-    return _least_squares(("A", "B"), forms, residual)
+    fitted = _least_squares(names, forms, residual)
+    return {name: fitted[name] for name in names}
+
+
+START = {"R": 1.0, "E": 5.0, "T": 1.0}  # the tangential factors' starting values
 
 
 def errors(forms: dict, rows: list[dict]) -> dict:

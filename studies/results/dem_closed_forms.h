@@ -13,7 +13,7 @@
  * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
- * Largest errors on points held back from the fit: thin: e_n 0.067, e_t 0.0021 (1 - e_t 36%, 81% just above St_c), spin change 0.0052; immersed: e_n 0.037, e_t 0.0033 (1 - e_t 31%, 88% just above St_c), spin change 0.0081.
+ * Largest errors on points held back from the fit: thin: e_n 0.067, e_t 0.00056 (1 - e_t 4%, 36% just above St_c), spin change 0.0014; immersed: e_n 0.037, e_t 0.00083 (1 - e_t 6%, 57% just above St_c), spin change 0.0021.
  */
 #ifndef EHDFEM_CLOSED_FORMS_H
 #define EHDFEM_CLOSED_FORMS_H
@@ -66,44 +66,32 @@ static const double ehd_thin_m__coefficients[] = {
     7.243147923180116,
     1.1263559097824303,
     -10.070775782465185};
-static const int ehd_thin_A__feature[] = {0, 2, 4};
-static const int ehd_thin_A__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_thin_A__coefficients[] = {
-    5.622955647039954,
-    2.894463970615483,
-    -8.506721876535428,
-    23.942705455876094,
-    -20.26356926767839,
-    -79.03168404539497,
-    -2.813698844795534,
-    8.86655433365315,
-    -13.123046244078804,
-    357.0650722529455,
-    -29.428454217867472,
-    17.010434366582505,
-    -378.1213592480783,
-    26.898620620376835,
-    -176.71310359866075,
-    -3.7917665423903437,
-    -0.9944649813581025,
-    1.0449680795248277,
-    -1.2999841281717357,
-    33.40773668194587,
-    1.6929725908106443,
-    -0.9621745896762471,
-    -122.02542030071405,
-    0.9340408691851444,
-    144.59174130890517,
-    0.3013692095253339,
-    0.10245850286191473,
-    -0.028777285297575762,
-    -0.9198342193232529,
-    -0.12474433076131278,
-    0.9455509725237805,
-    -0.018031454905878375,
-    -0.002969198065929754,
-    0.017972269775154516,
-    0.0005281339208260682};
+static const int ehd_thin_R__feature[] = {0, 2, 4};
+static const int ehd_thin_R__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_thin_R__coefficients[] = {
+    -0.2202952256310015,
+    -0.48365494574459095,
+    0.29865772500220306,
+    9.61093183694879,
+    4.133455722542304,
+    -47.32006785030662,
+    0.004067670618529788,
+    0.02816916201844204,
+    -0.5330067259220371,
+    0.0014019415890320957};
+static const int ehd_thin_E__feature[] = {0, 2, 4};
+static const int ehd_thin_E__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_thin_E__coefficients[] = {
+    3.253297056266974,
+    0.19773901901867186,
+    -0.07762168214422137,
+    -1.1245862655715935,
+    -0.19853944602546075,
+    1.051892672195397,
+    -0.2795308179999323,
+    -0.013451647710845874,
+    0.06796338973997167,
+    0.013282606730527485};
 static const int ehd_immersed_St_c__feature[] = {2, 4};
 static const int ehd_immersed_St_c__powers[] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0, 1, 1, 1, 2, 2, 0, 2, 1, 3, 0};
 static const double ehd_immersed_St_c__coefficients[] = {
@@ -130,92 +118,57 @@ static const double ehd_immersed_m__coefficients[] = {
     1.138210752851459,
     1.7585682460681111,
     -0.27797763927321195};
-static const int ehd_immersed_A__feature[] = {0, 2, 4};
-static const int ehd_immersed_A__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_immersed_A__coefficients[] = {
-    7.936816833188292,
-    2.6374028564724146,
-    -8.510577944759932,
-    23.311953956290566,
-    -17.636277181603973,
-    -107.19166778222954,
-    8.625692290191948,
-    5.670718919758936,
-    -11.922348537884549,
-    393.4025155354407,
-    -69.29864800854057,
-    19.167463375600928,
-    156.55681310787136,
-    65.1477159232398,
-    -1271.8787633706152,
-    -4.827087627801896,
-    -1.3164674257458988,
-    1.217513619483298,
-    -1.5394019655821525,
-    45.89590239429907,
-    1.5382029352111037,
-    -0.9449872211126035,
-    -192.41573133985946,
-    2.372305013448999,
-    233.02306993075044,
-    0.399589563936232,
-    0.17096167330053763,
-    -0.035994107648620835,
-    -0.7341390038252523,
-    -0.1990299146454378,
-    1.9343952942843727,
-    -0.024772242621276256,
-    -0.006504789135270536,
-    -0.051581181869699615,
-    0.0009419840787384414};
-static const int ehd_immersed_B__feature[] = {0, 2, 4};
-static const int ehd_immersed_B__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_immersed_B__coefficients[] = {
-    6.367660199814017,
-    4.8647910352507875,
-    4.432573102049153,
-    -6.922743983575871,
-    -3.6585205498253357,
-    -136.46629500540493,
-    -25.930760128026133,
-    -8.676604318552698,
-    0.7453742157815337,
-    1252.0014936001426,
-    65.73737944529991,
-    7.077206153994201,
-    -4477.531014297257,
-    -56.69147890395943,
-    5183.577854757129,
-    -2.3662338525164746,
-    -1.4409188208789179,
-    -0.6004427811081737,
-    1.2659946547471645,
-    6.756143359014586,
-    3.8136448171863666,
-    0.7952686510377955,
-    -22.642392128786152,
-    -3.8962654585683025,
-    32.89947392418091,
-    0.08594539673645928,
-    0.139094037318803,
-    -0.002521812099558964,
-    0.5708760116263386,
-    -0.15225797431105145,
-    -1.2124972441371236,
-    0.0031659131097970597,
-    -0.004306977432857271,
-    -0.0036844656329542477,
-    -0.0005662676798055147};
+static const int ehd_immersed_R__feature[] = {0, 2, 4};
+static const int ehd_immersed_R__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_immersed_R__coefficients[] = {
+    -0.08118446840590073,
+    -0.3277688355905111,
+    0.29005450928383264,
+    1.7340137821857888,
+    1.6068598170471653,
+    -2.2197981463395395,
+    0.021653178283117056,
+    0.01982210447152124,
+    -0.2298587652523906,
+    -0.0010740257719867555};
+static const int ehd_immersed_E__feature[] = {0, 2, 4};
+static const int ehd_immersed_E__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_immersed_E__coefficients[] = {
+    3.69975247085235,
+    0.31102141862357036,
+    -0.0054448613394127345,
+    -4.482238697700979,
+    0.07207406435282152,
+    -0.7195833169724063,
+    -0.35781084103880617,
+    -0.03446785595614854,
+    0.4265637526580231,
+    0.01671290239311411};
+static const int ehd_immersed_T__feature[] = {0, 2, 4};
+static const int ehd_immersed_T__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_immersed_T__coefficients[] = {
+    -0.7987628063772155,
+    -0.09183231193580266,
+    -0.16105710028449088,
+    4.124975717029931,
+    -0.0795376386805002,
+    -6.3969583699528005,
+    0.023654579641041413,
+    0.011076245182617137,
+    0.4548673463157343,
+    0.004343499000445477};
 
-static const ehd_form_t ehd_forms_[2][4] = {
+static const ehd_form_t ehd_forms_[2][5] = {
     {{10, 2, ehd_thin_St_c__feature, ehd_thin_St_c__powers, ehd_thin_St_c__coefficients},
      {10, 2, ehd_thin_m__feature, ehd_thin_m__powers, ehd_thin_m__coefficients},
-     {35, 3, ehd_thin_A__feature, ehd_thin_A__powers, ehd_thin_A__coefficients},
+     {10, 3, ehd_thin_R__feature, ehd_thin_R__powers, ehd_thin_R__coefficients},
+     {10, 3, ehd_thin_E__feature, ehd_thin_E__powers, ehd_thin_E__coefficients},
      {0, 0, 0, 0, 0}},
     {{10, 2, ehd_immersed_St_c__feature, ehd_immersed_St_c__powers, ehd_immersed_St_c__coefficients},
      {10, 2, ehd_immersed_m__feature, ehd_immersed_m__powers, ehd_immersed_m__coefficients},
-     {35, 3, ehd_immersed_A__feature, ehd_immersed_A__powers, ehd_immersed_A__coefficients},
-     {35, 3, ehd_immersed_B__feature, ehd_immersed_B__powers, ehd_immersed_B__coefficients}}};
+     {10, 3, ehd_immersed_R__feature, ehd_immersed_R__powers, ehd_immersed_R__coefficients},
+     {10, 3, ehd_immersed_E__feature, ehd_immersed_E__powers, ehd_immersed_E__coefficients},
+     {10, 3, ehd_immersed_T__feature, ehd_immersed_T__powers, ehd_immersed_T__coefficients}}};
 
 static inline double ehd_q_(const ehd_form_t *form, const double *f)
 {
@@ -270,12 +223,19 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     double St_c = (0.4 + f[4]) * L + ehd_q_(&forms[0], f);
     double ratio = St_c / St;
     ratio = ratio < 0.0 ? 0.0 : (ratio > 1.0 ? 1.0 : ratio);
-    double integral = exp(ehd_q_(&forms[2], f));
-    if (layer == EHD_IMMERSED)
-        integral += exp(ehd_q_(&forms[3], f)) * log((1.0 + delta) / (2.0 * delta));
+    double e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
+    /* 3 St I: the rigid passes, the elastic contact and (immersed) the far field */
+    double passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * exp(ehd_q_(&forms[2], f));
+    double total = passes + pow(eps, 0.4) * St * exp(ehd_q_(&forms[3], f));
+    if (layer == EHD_IMMERSED) {
+        double c = 0.5 / delta;
+        double far = log1p(c) + c * log1p(1.0 / c) - 1.0;
+        double contact = 2.94 * pow(13.87913118903191 * eps * St, 0.4);
+        total += far * (passes + contact * exp(ehd_q_(&forms[4], f)));
+    }
     out->St_c = St_c;
-    out->e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
-    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * integral);
+    out->e_n = e_n;
+    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St));
     out->spin_change = (1.0 - out->e_t) / k;
     return 0;
 }

@@ -156,8 +156,9 @@ def test_closed_forms_recover_known_coefficients():
 def test_closed_forms_carry_their_limits():
     """The shape's limits, whatever the coefficients: St_c / ln(1/eps) -> 2/5 with a
     cavitation limit and 4/5 without as eps -> 0 (the rigid approach to the elastic gap
-    eps^(2/5), and the same again on the way out when the suction is unlimited; to 1 % at eps
-    = 1e-300, where Q is O(1/ln(1/eps)) = 1/690 away); e_n -> 0 at fixed St as eps -> 0 and -> 1
+    eps^(2/5), and the same again on the way out when the suction is unlimited; to 2 % at eps
+    = 1e-300, where Q and the suction gap's ln(1/sqrt(0.3/|P_cav|)) = 2.9 at P_cav = -100 are
+    O(1/ln(1/eps)) = 1/690 away); e_n -> 0 at fixed St as eps -> 0 and -> 1
     as St -> inf; int J dT = 3 St I -> 2 R (a rigid sphere's two passes through the film at speed
     1, int_0^1 ln(1/X) dX each) at large St as eps -> 0, where the contact's eps^(2/5) St E
     vanishes (to 1e-6 at St 1e12, eps 1e-300), and -> (2 + St) R where e_n = 0 (the departure's
@@ -166,7 +167,7 @@ def test_closed_forms_carry_their_limits():
     forms = fitting.fit_forms(table_rows(_known_table(_known_forms())))
     for p_cav, slope in ((-100.0, 0.4), (None, 0.8)):
         St_c = shape.critical_stokes(forms, 1e-300, p_cav, "thin")[0]
-        assert St_c / (300 * math.log(10)) == pytest.approx(slope, rel=0.01)
+        assert St_c / (300 * math.log(10)) == pytest.approx(slope, rel=0.02)
         assert shape.normal_restitution(forms, 50.0, 1e-300, p_cav, "thin")[0] == 0.0
     assert shape.normal_restitution(forms, 1e300, 1e-3, -10.0, "thin")[0] == pytest.approx(1.0)
     for St, passes in ((1e12, 2.0), (2.0, 3.0)):
@@ -224,9 +225,10 @@ def _shipped():
 def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
     """The shipped module, evaluated on the held-back points (between the fit table's nodes in
     every input), is within the errors it states (those of the fit's JSON, to 1e-9), and those
-    are bounded here (docs/studies.md gives them; measured on the reduced grid 0.067 and 0.037,
-    5.6e-4 and 8.3e-4, 3.6 % and 6.3 %, thin and immersed): e_n within 0.08, e_t within 1e-3 and
-    1 - e_t within 10 % on the clear rebounds (e_n >= 0.3)."""
+    are bounded here (docs/studies.md gives them; measured on the reduced grid 0.018 and 0.023,
+    3.2e-4 and 6.4e-4, 2.7 % and 6.0 %, thin and immersed, and St_c within 2.7 %): e_n within
+    0.03, e_t within 1e-3 and 1 - e_t within 10 % on the clear rebounds (e_n >= 0.3), St_c
+    within 5 % of each held-back group's."""
     fits, module, held = _shipped()
     stated = fits["held_back"]
     for layer in ("thin", "immersed"):
@@ -242,7 +244,8 @@ def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
         assert error_n <= stated[layer]["e_n"] * (1 + 1e-9)
         assert error_t <= stated[layer]["e_t"] * (1 + 1e-9)
         assert relative <= stated[layer]["tangential_loss_relative"] * (1 + 1e-9)
-        assert error_n < 0.08 and error_t < 1e-3 and relative < 0.1
+        assert error_n < 0.03 and error_t < 1e-3 and relative < 0.1
+        assert stated[layer]["St_c_relative"] < 0.05
 
 
 def test_outside_the_box_is_refused_by_name():
@@ -390,7 +393,7 @@ def test_fit_command_writes_every_export(tmp_path, capsys):
         str(out["csv"]),
     ]
     assert main(argv) == 0  # fmt: skip
-    assert "largest errors on held-back points: thin: e_n" in capsys.readouterr().out
+    assert "largest errors on held-back points: thin: St_c" in capsys.readouterr().out
     fits = json.loads(out["json"].read_text())["closed_forms"]
     assert fits["held_back"]["immersed"]["e_t"] < 1e-8
     module = {}

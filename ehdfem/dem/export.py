@@ -60,8 +60,12 @@ def _check(St, eps, delta, p_cav, layer, k):
 
 def _features(St, eps, p_cav):
     L = -math.log(eps)
-    suction = 0.0 if p_cav is None or p_cav == -math.inf else math.sqrt({gap!r} / abs(p_cav))
-    w = -math.log(eps**0.4 + suction)
+    elastic = -0.4 * L  # ln of the elastic gap, and of the suction gap:
+    limited = p_cav is not None and p_cav != -math.inf
+    suction = 0.5 * math.log({gap!r} / -p_cav) if limited else -math.inf
+    top = max(elastic, suction)
+    n = {norm!r}
+    w = -(top + math.log(math.exp(n * (elastic - top)) + math.exp(n * (suction - top))) / n)
     return {{"x": math.log(St), "L": L, "v": 1.0 / L, "w": w, "h": w / L}}
 
 
@@ -160,7 +164,7 @@ def describe_errors(held_back: dict | None) -> str:
     if not held_back:
         return "none measured (no held-back table)."
     parts = [
-        f"{layer}: e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t "
+        f"{layer}: St_c {e['St_c_relative']:.1%}, e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t "
         f"{e['tangential_loss_relative']:.0%}, {e['near_threshold_relative']:.0%} just above "
         f"St_c), spin change {e['spin_change']:.2g}"
         for layer, e in held_back.items()
@@ -180,6 +184,7 @@ def python_source(fits: dict, table: str, version: str, held_back: dict | None =
         forms=_plain(fits),
         errors=describe_errors(held_back),
         gap=shape.SUCTION_GAP,
+        norm=shape.SUCTION_NORM,
         slope=shape.CRITICAL_SLOPE,
         clear=CLEAR_REBOUND,
         hertz=HERTZ,
@@ -279,7 +284,12 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     }}
     const ehd_form_t *forms = ehd_forms_[layer];
     double L = -log(eps);
-    double w = -log(pow(eps, 0.4) + (p_cav == -INFINITY ? 0.0 : sqrt({gap!r} / fabs(p_cav))));
+    /* w = -ln of the 4-norm of the elastic and the suction gaps, from their logarithms */
+    double elastic = -0.4 * L;
+    double suction = p_cav == -INFINITY ? -INFINITY : 0.5 * log({gap!r} / -p_cav);
+    double top = elastic > suction ? elastic : suction;
+    double n = {norm!r};
+    double w = -(top + log(exp(n * (elastic - top)) + exp(n * (suction - top))) / n);
     double f[5] = {{log(St), L, 1.0 / L, w, w / L}};
     double St_c = ({slope!r} + f[4]) * L + ehd_q_(&forms[0], f);
     double ratio = St_c / St;
@@ -360,7 +370,7 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
         St_lo=box["St"][0], St_hi=box["St"][1], eps_lo=box["eps"][0], eps_hi=box["eps"][1],
         delta_lo=box["delta"][0], delta_hi=box["delta"][1], p_lo=box["p_cav"][0],
         p_hi=box["p_cav"][1], no_limit=int(box["no_limit"]), has_thin=int("thin" in fits),
-        has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP,
+        has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP, norm=shape.SUCTION_NORM,
         slope=shape.CRITICAL_SLOPE, hertz=HERTZ, contact_time=shape.HERTZ_TIME,
     )  # fmt: skip
     return head + "\n" + "".join(parts) + "\n" + forms + tail

@@ -202,9 +202,10 @@ START = {"R": 1.0, "E": 5.0, "T": 1.0}  # the tangential factors' starting value
 def errors(forms: dict, rows: list[dict]) -> dict:
     """Per layer, the largest errors of the forms on ``rows``: e_n (absolute, every point),
     e_t and the spin change (absolute) and 1 - e_t (relative) over the rebounds with e_n >=
-    CLEAR_REBOUND, and 1 - e_t (relative) over the rebounds below it; with the numbers of
-    points. A row outside the forms' box is refused (InputError naming the input and the
-    line)."""
+    CLEAR_REBOUND, and 1 - e_t (relative) over the rebounds below it, St_c (relative) against
+    that of each (eps, P_cav) group with 3 rebounds (:func:`group_fit`; 0 without one); with
+    the numbers of points. A row outside the forms' box is refused (InputError naming the input
+    and the line)."""
     data = columns(rows)
     for line, i in enumerate(range(len(rows)), 2):
         try:
@@ -231,8 +232,24 @@ def errors(forms: dict, rows: list[dict]) -> dict:
             "spin_change": float((np.abs(e_t - found_t) / k)[clear].max(initial=0.0)),
             "tangential_loss_relative": float(relative[clear].max(initial=0.0)),
             "near_threshold_relative": float(relative[near].max(initial=0.0)),
+            "St_c_relative": _critical_error(forms, data, select, layer),
         }
     return out
+
+
+def _critical_error(forms: dict, data: dict, select, layer: str) -> float:
+    """The largest relative error of the forms' St_c against :func:`group_fit`'s on the
+    (eps, P_cav) groups of ``select`` with 3 rebounds (0 without such a group)."""
+    groups = defaultdict(list)
+    for i in select:
+        groups[(data["eps"][i], data["p_cav"][i])].append(i)
+    worst = 0.0
+    for (eps, p_cav), members in groups.items():
+        if (data["e_n"][members] > 0).sum() >= 3:
+            found = group_fit(data["St"][members], data["e_n"][members])[0]
+            form = shape.critical_stokes(forms, eps, p_cav, layer)[0]
+            worst = max(worst, abs(form / found - 1.0))
+    return float(worst)
 
 
 def _value(forms: dict, data: dict, i: int, name: str) -> float:

@@ -270,6 +270,11 @@ def test_outside_the_box_is_refused_by_name():
         )
     with pytest.raises(ValueError, match="^delta = 0.4 is outside the box of the closed forms"):
         shape.restitution(fits, 100.0, 1e-3, 0.4, -10.0, "thin")
+    # immersed: the flattened contact past the sphere's radius, 2 delta (13.88 eps St)^(2/5) > 1
+    with pytest.raises(ValueError, match="^delta = 0.4 is outside the box for an immersed layer"):
+        module["tangential_restitution"](1e4, 0.1, 0.4, -10.0, "immersed")
+    with pytest.raises(ValueError, match="^delta = 0.4 .* for an immersed layer .* contact"):
+        shape.restitution(fits, 1e4, 0.1, 0.4, -10.0, "immersed")
 
 
 def _compile(tmp_path, source: str, name: str) -> Path:
@@ -307,7 +312,8 @@ def test_c_header_equals_the_python_module(tmp_path):
     """The shipped C header, compiled with gcc (C99, -Wall -Wextra -pedantic -Werror), gives
     the shipped Python module's St_c, e_n, e_t and spin change to 1e-12 at 200 random points of
     the box (both layers, P_cav none among them), and outside the box (a thin layer wetted past
-    the sphere's radius included) NaN with the flag of the parameter."""
+    the sphere's radius and an immersed contact past it included) NaN with the flag of the
+    parameter."""
     fits, module, _ = _shipped()
     binary = _compile(tmp_path, DRIVER, "driver")
     rng = np.random.default_rng(1)
@@ -328,6 +334,7 @@ def test_c_header_equals_the_python_module(tmp_path):
                    for St, eps, d, p, layer, k in points)  # fmt: skip
     text += "0.5 1e-3 0.01 -10 0 0.4\n100 1e-3 0.01 -10 0 0.9\n100 1e-3 0.01 -10 7 0.4\n"
     text += "100 1e-3 0.4 -10 0 0.4\n"  # a thin layer wetted past the sphere's radius
+    text += "1e4 0.1 0.4 -10 1 0.4\n"  # an immersed contact past the sphere's radius
     lines = subprocess.run([str(binary)], input=text, capture_output=True, text=True, check=True)
     results = [line.split() for line in lines.stdout.splitlines()]
     for (St, eps, delta, p_cav, layer, k), (flags, *values) in zip(points, results, strict=False):
@@ -340,8 +347,8 @@ def test_c_header_equals_the_python_module(tmp_path):
         )
         assert flags == "0"
         assert [float(v) for v in values] == pytest.approx(expected, rel=1e-12, abs=1e-15)
-    assert [r[0] for r in results[-4:]] == ["1", "32", "16", "8"]
-    assert all(v == "nan" for r in results[-4:] for v in r[1:])
+    assert [r[0] for r in results[-5:]] == ["1", "32", "16", "8", "8"]
+    assert all(v == "nan" for r in results[-5:] for v in r[1:])
 
 
 def test_the_c_example_of_the_docs_compiles_and_runs(tmp_path):

@@ -27,7 +27,8 @@ mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a)
 cavitation limit), layer "thin" or "immersed", k = I/(m a^2) (2/5: solid sphere). e_n is the
 pure EHD value (multiply by the dry restitution); spin change = a DeltaOmega/U0.
 Box: {box}; for a thin layer also 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film
-inside the sphere's radius). Outside it every function raises ValueError naming the parameter.
+inside the sphere's radius), for an immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the
+flattened contact inside it). Outside it every function raises ValueError naming the parameter.
 Largest errors on points held back from the fit: {errors}
 """
 
@@ -51,10 +52,16 @@ def _check(St, eps, delta, p_cav, layer, k):
         low, high = BOX[name]
         if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
             raise ValueError(f"{{name}} = {{value!r}} is outside the box [{{low:g}}, {{high:g}}]")
-    if layer == "thin" and 2.0 * delta * (1.0 + ({hertz!r} * eps * St) ** 0.4) > 1.0:
+    compression = ({hertz!r} * eps * St) ** 0.4
+    if layer == "thin" and 2.0 * delta * (1.0 + compression) > 1.0:
         raise ValueError(
             f"delta = {{delta!r}} is outside the box for a thin layer: the wetted film would "
             "reach past the sphere's radius, 2 delta (1 + (13.88 eps St)^(2/5)) > 1"
+        )
+    if layer == "immersed" and 2.0 * delta * compression > 1.0:
+        raise ValueError(
+            f"delta = {{delta!r}} is outside the box for an immersed layer: the flattened "
+            "contact would reach past the sphere's radius, 2 delta (13.88 eps St)^(2/5) > 1"
         )
 
 
@@ -204,7 +211,8 @@ _C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid
  * solid sphere). e_n is the pure EHD value (multiply by the dry restitution); spin change =
  * a DeltaOmega/U0 (no initial spin).
  * Box: {box}; for a thin layer also
- * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
+ * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius), for an
+ * immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the flattened contact inside it).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
  * Largest errors on points held back from the fit: {errors}
@@ -266,9 +274,11 @@ static inline int ehd_check(double St, double eps, double delta, double p_cav, i
     if ((layer != EHD_THIN || !{has_thin}) && (layer != EHD_IMMERSED || !{has_immersed}))
         flags |= EHD_OUT_LAYER;
     if (!(k > 0.0 && k <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
-    /* a thin layer's wetted film would reach past the sphere's radius */
-    if (layer == EHD_THIN && 2.0 * delta * (1.0 + pow({hertz!r} * eps * St, 0.4)) > 1.0)
-        flags |= EHD_OUT_DELTA;
+    /* a thin layer's wetted film, an immersed layer's flattened contact would reach past the
+     * sphere's radius */
+    double compression = pow({hertz!r} * eps * St, 0.4);
+    if (layer == EHD_THIN && 2.0 * delta * (1.0 + compression) > 1.0) flags |= EHD_OUT_DELTA;
+    if (layer == EHD_IMMERSED && 2.0 * delta * compression > 1.0) flags |= EHD_OUT_DELTA;
     return flags;
 }}
 

@@ -7,14 +7,13 @@ half-spaces, the Couette tangential model, one inertia factor. For each layer in
   on the group's points, sticking ones included), then Q_c and Q_m by linear least squares on
   the groups, then every coefficient together on every point;
 - e_t: I = int J dT/(3 St) from each rebound with e_n >= CLEAR_REBOUND (exact inverse of the
-  Couette form); thin: ln I = Q_A by least squares at the table's smallest delta (I does not
-  depend on delta while the wetted edge lies inside the sphere's radius r = a, where the model's
-  J ends: R_edge ~ sqrt(2 (1 + compression)) < 1/sqrt(delta)); immersed: A and B from the points
-  of equal (St, eps, P_cav) at two or more delta, ln A and ln B by least squares, then both
-  together on the relative error of I.
+  Couette form) inside the box's reach (:func:`ehdfem.dem.box.wetted_reach`: a thin layer's
+  wetted film, an immersed layer's contact inside r = a); Q_R, Q_E (and Q_T immersed, which
+  needs rebounds at two delta) together by least squares on ln I, with the fitted e_n in the
+  rigid passes.
 
-Errors (:func:`errors`) are absolute in e_n, e_t and the spin change, relative in 1 - e_t; the
-stated ones are measured on a table held back from the fit.
+Errors (:func:`errors`) are absolute in e_n, e_t and the spin change, relative in 1 - e_t and
+St_c; the stated ones are measured on a table held back from the fit.
 """
 
 from __future__ import annotations

@@ -10,7 +10,8 @@
  * solid sphere). e_n is the pure EHD value (multiply by the dry restitution); spin change =
  * a DeltaOmega/U0 (no initial spin).
  * Box: St in [1, 10000], eps in [1e-12, 0.1], P_cav in [-100000, -1], delta in [0.001, 0.5] (P_cav also none); for a thin layer also
- * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
+ * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius), for an
+ * immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the flattened contact inside it).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
  * Largest errors on points held back from the fit: thin: St_c 2.7%, e_n 0.018, e_t 0.00032 (1 - e_t 3%, 53% just above St_c), spin change 0.00079; immersed: St_c 2.7%, e_n 0.023, e_t 0.00064 (1 - e_t 6%, 66% just above St_c), spin change 0.0016.
@@ -200,9 +201,11 @@ static inline int ehd_check(double St, double eps, double delta, double p_cav, i
     if ((layer != EHD_THIN || !1) && (layer != EHD_IMMERSED || !1))
         flags |= EHD_OUT_LAYER;
     if (!(k > 0.0 && k <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
-    /* a thin layer's wetted film would reach past the sphere's radius */
-    if (layer == EHD_THIN && 2.0 * delta * (1.0 + pow(13.87913118903191 * eps * St, 0.4)) > 1.0)
-        flags |= EHD_OUT_DELTA;
+    /* a thin layer's wetted film, an immersed layer's flattened contact would reach past the
+     * sphere's radius */
+    double compression = pow(13.87913118903191 * eps * St, 0.4);
+    if (layer == EHD_THIN && 2.0 * delta * (1.0 + compression) > 1.0) flags |= EHD_OUT_DELTA;
+    if (layer == EHD_IMMERSED && 2.0 * delta * compression > 1.0) flags |= EHD_OUT_DELTA;
     return flags;
 }
 

@@ -8,7 +8,8 @@ mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a)
 cavitation limit), layer "thin" or "immersed", k = I/(m a^2) (2/5: solid sphere). e_n is the
 pure EHD value (multiply by the dry restitution); spin change = a DeltaOmega/U0.
 Box: St in [1, 10000], eps in [1e-12, 0.1], P_cav in [-100000, -1], delta in [0.001, 0.5] (P_cav also none); for a thin layer also 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film
-inside the sphere's radius). Outside it every function raises ValueError naming the parameter.
+inside the sphere's radius), for an immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the
+flattened contact inside it). Outside it every function raises ValueError naming the parameter.
 Largest errors on points held back from the fit: thin: St_c 2.7%, e_n 0.018, e_t 0.00032 (1 - e_t 3%, 53% just above St_c), spin change 0.00079; immersed: St_c 2.7%, e_n 0.023, e_t 0.00064 (1 - e_t 6%, 66% just above St_c), spin change 0.0016.
 """
 
@@ -32,10 +33,16 @@ def _check(St, eps, delta, p_cav, layer, k):
         low, high = BOX[name]
         if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
             raise ValueError(f"{name} = {value!r} is outside the box [{low:g}, {high:g}]")
-    if layer == "thin" and 2.0 * delta * (1.0 + (13.87913118903191 * eps * St) ** 0.4) > 1.0:
+    compression = (13.87913118903191 * eps * St) ** 0.4
+    if layer == "thin" and 2.0 * delta * (1.0 + compression) > 1.0:
         raise ValueError(
             f"delta = {delta!r} is outside the box for a thin layer: the wetted film would "
             "reach past the sphere's radius, 2 delta (1 + (13.88 eps St)^(2/5)) > 1"
+        )
+    if layer == "immersed" and 2.0 * delta * compression > 1.0:
+        raise ValueError(
+            f"delta = {delta!r} is outside the box for an immersed layer: the flattened "
+            "contact would reach past the sphere's radius, 2 delta (13.88 eps St)^(2/5) > 1"
         )
 
 

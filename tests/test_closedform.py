@@ -109,8 +109,7 @@ def _known_forms() -> dict:
                   "coefficients": [0.1, -0.02, 1.0 + j]},
             "E": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [1, 0, 0]],
                   "coefficients": [2.0, -0.1]},
-            "T": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [0, 0, 1]],
-                  "coefficients": [-0.5, 0.3]},
+            "T": {"features": ["x", "v", "h"], "powers": [[0, 0, 0]], "coefficients": [-0.2]},
         }
         for j, layer in enumerate(("thin", "immersed"))
     }  # fmt: skip
@@ -226,8 +225,8 @@ def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
     """The shipped module, evaluated on the held-back points (between the fit table's nodes in
     every input), is within the errors it states (those of the fit's JSON, to 1e-9), and those
     are bounded here (docs/studies.md gives them; measured on the reduced grid 0.018 and 0.023,
-    3.2e-4 and 6.4e-4, 2.7 % and 6.0 %, thin and immersed, and St_c within 2.7 %): e_n within
-    0.03, e_t within 1e-3 and 1 - e_t within 10 % on the clear rebounds (e_n >= 0.3), St_c
+    3.2e-4 and 3.4e-4, 2.7 % and 2.2 %, thin and immersed, and St_c within 2.7 %): e_n within
+    0.03, e_t within 1e-3 and 1 - e_t within 5 % on the clear rebounds (e_n >= 0.3), St_c
     within 5 % of each held-back group's."""
     fits, module, held = _shipped()
     stated = fits["held_back"]
@@ -244,7 +243,7 @@ def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
         assert error_n <= stated[layer]["e_n"] * (1 + 1e-9)
         assert error_t <= stated[layer]["e_t"] * (1 + 1e-9)
         assert relative <= stated[layer]["tangential_loss_relative"] * (1 + 1e-9)
-        assert error_n < 0.03 and error_t < 1e-3 and relative < 0.1
+        assert error_n < 0.03 and error_t < 1e-3 and relative < 0.05
         assert stated[layer]["St_c_relative"] < 0.05
 
 

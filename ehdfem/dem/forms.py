@@ -51,13 +51,17 @@ The shape of 3 St I = int J dT (time by x0/V0) is that of its three parts:
   for small delta) per unit gap swept, and D times the contact time, that of dry Hertz
   2.94 C at C = (13.88 eps St)^(2/5).
 
-So, with R = exp(Q_R), E = exp(Q_E), T = exp(Q_T) quadratic in (x, v, h) and e_n the form's own,
+So, with R = exp(Q_R), E = exp(Q_E) quadratic in (x, v, h), T = exp(Q_T) a constant and e_n the
+form's own,
 
     thin:      3 St I = P R + eps^(2/5) St E,
     immersed:  3 St I = P (1 + D) R + eps^(2/5) St E + 2.94 C D T,      P = 1 + 1/(e_n + 1/St),
 
-R 0.99-1.17 where the rigid passes carry I (eps <= 1e-6), E 3-19, T 0.6-9.5 over the reduced
-table's rebounds, studies/dem_closed_forms_reduced.toml. Below St_c (e_n = 0) P = 2 + St: the
+R 0.99-1.17 where the rigid passes carry I (eps <= 1e-6), E 3-19 over the reduced table's
+rebounds (studies/dem_closed_forms_reduced.toml), and T fitted 1.02 against the 1 of the
+derivation (a quadratic Q_T was not determined: the table's immersed contacts at large eps St
+have one delta inside the box, where E and T cannot be told apart, and it missed 1 - e_t by 6 %
+at delta = 0.03 instead of 2 %). Below St_c (e_n = 0) P = 2 + St: the
 sphere followed until it stops in the film. I is the same for every k (the normal motion does
 not depend on the tangential one), so the forms hold for any k. In a thin layer I does not
 depend on delta while the wetted film stays inside r = a; immersed, it is A + B D with
@@ -79,7 +83,7 @@ CRITICAL_SLOPE = 0.4  # St_c / ln(1/eps) of the approach to the elastic gap eps^
 SUCTION_GAP = 0.3  # the receding sphere's suction 3 V/H^2 reaches P_cav at H = sqrt(3 V/|P_cav|)
 SUCTION_NORM = 4.0  # w = -ln of the 4-norm of the elastic and the suction gaps
 HERTZ_TIME = 2.94  # the dry Hertz contact time by the compression C/V0 (Johnson 1985, 11.2)
-DEGREE = {"St_c": 3, "m": 3, "R": 2, "E": 2, "T": 2}  # of the polynomials Q
+DEGREE = {"St_c": 3, "m": 3, "R": 2, "E": 2, "T": 0}  # of the polynomials Q
 NORMAL = ("St_c", "m")
 TANGENTIAL = {"thin": ("R", "E"), "immersed": ("R", "E", "T")}
 NAMES = ("St_c", "m", "R", "E", "T")  # every form, in the order of the C header's table

@@ -14,7 +14,7 @@
  * immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the flattened contact inside it).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
- * Largest errors on points held back from the fit: thin: St_c 2.7%, e_n 0.018, e_t 0.00032 (1 - e_t 3%, 53% just above St_c), spin change 0.00079; immersed: St_c 2.7%, e_n 0.023, e_t 0.00064 (1 - e_t 6%, 66% just above St_c), spin change 0.0016.
+ * Largest errors on points held back from the fit: thin: St_c 2.7%, e_n 0.018, e_t 0.00032 (1 - e_t 3%, 53% just above St_c), spin change 0.00079; immersed: St_c 2.7%, e_n 0.023, e_t 0.00034 (1 - e_t 2%, 65% just above St_c), spin change 0.00086.
  */
 #ifndef EHDFEM_CLOSED_FORMS_H
 #define EHDFEM_CLOSED_FORMS_H
@@ -122,42 +122,33 @@ static const double ehd_immersed_m__coefficients[] = {
 static const int ehd_immersed_R__feature[] = {0, 2, 4};
 static const int ehd_immersed_R__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
 static const double ehd_immersed_R__coefficients[] = {
-    -0.002667404962598332,
-    -0.15841712911381134,
-    0.11354679017672986,
-    1.0833135217516698,
-    0.02449992628186031,
-    -0.021484313866034964,
-    -0.0008011434834166698,
-    0.014893772574386484,
-    -0.1152755677453439,
-    0.00024185394813922465};
+    -0.010527251823575409,
+    -0.1873204970717953,
+    0.13962453230951985,
+    1.3547313923274122,
+    0.9256443258613962,
+    -5.252909383635597,
+    -0.00023983552631911712,
+    0.011626043600378933,
+    -0.05088728707338562,
+    -1.623797245397951e-05};
 static const int ehd_immersed_E__feature[] = {0, 2, 4};
 static const int ehd_immersed_E__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
 static const double ehd_immersed_E__coefficients[] = {
-    3.6860260466704697,
-    0.23743717530567468,
-    0.17937188405593738,
-    -4.739453740119816,
-    0.6654729188877082,
-    -1.220402734309347,
-    -0.35423036411458547,
-    -0.039427249406150215,
-    0.4528766707081986,
-    0.01658774968144227};
+    3.04638134900497,
+    0.13684074895605453,
+    0.250272517606479,
+    -1.264488498552739,
+    0.006394729058835703,
+    1.1291037199481544,
+    -0.23080485861712802,
+    -0.026008449999041908,
+    0.06817634092243183,
+    0.010742117892899453};
 static const int ehd_immersed_T__feature[] = {0, 2, 4};
-static const int ehd_immersed_T__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const int ehd_immersed_T__powers[] = {0, 0, 0};
 static const double ehd_immersed_T__coefficients[] = {
-    -0.7585967421562427,
-    -0.5594147623834355,
-    1.9761171306007235,
-    3.6091108692075933,
-    -0.9223980966811651,
-    -5.724611068879576,
-    0.040484786047935956,
-    -0.07680442193040538,
-    0.5514500327949972,
-    0.0026035917783652804};
+    0.017982415257110095};
 
 static const ehd_form_t ehd_forms_[2][5] = {
     {{10, 2, ehd_thin_St_c__feature, ehd_thin_St_c__powers, ehd_thin_St_c__coefficients},
@@ -169,7 +160,7 @@ static const ehd_form_t ehd_forms_[2][5] = {
      {10, 2, ehd_immersed_m__feature, ehd_immersed_m__powers, ehd_immersed_m__coefficients},
      {10, 3, ehd_immersed_R__feature, ehd_immersed_R__powers, ehd_immersed_R__coefficients},
      {10, 3, ehd_immersed_E__feature, ehd_immersed_E__powers, ehd_immersed_E__coefficients},
-     {10, 3, ehd_immersed_T__feature, ehd_immersed_T__powers, ehd_immersed_T__coefficients}}};
+     {1, 3, ehd_immersed_T__feature, ehd_immersed_T__powers, ehd_immersed_T__coefficients}}};
 
 static inline double ehd_q_(const ehd_form_t *form, const double *f)
 {

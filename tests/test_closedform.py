@@ -23,7 +23,12 @@ from ehdfem.dem import forms as shape
 from ehdfem.dem.box import wetted_reach
 from ehdfem.dem.table import table_rows
 from ehdfem.inputs.presets import EXAMPLE
-from ehdfem.inputs.scales import CollisionParameters, elastic_theta, from_presets
+from ehdfem.inputs.scales import (
+    CollisionParameters,
+    elastic_theta,
+    from_presets,
+    hertz_max_compression,
+)
 
 pytestmark = pytest.mark.serial
 
@@ -100,23 +105,26 @@ def _known_forms() -> dict:
             "St_c": {"features": ["v", "h"], "powers": [[0, 0], [1, 0], [0, 1]],
                      "coefficients": [1.0, 2.0, -1.0 - j]},
             "m": {"features": ["v", "h"], "powers": [[0, 0], [1, 0]], "coefficients": [0.1, -0.5]},
-            "A": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
-                  "coefficients": [-1.0, -0.3, 1.0 + j]},
-            "B": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [1, 0, 0]],
-                  "coefficients": [-2.0, -0.2]},
+            "R": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                  "coefficients": [0.1, -0.02, 1.0 + j]},
+            "E": {"features": ["x", "v", "h"], "powers": [[0, 0, 0], [1, 0, 0]],
+                  "coefficients": [2.0, -0.1]},
+            "T": {"features": ["x", "v", "h"], "powers": [[0, 0, 0]], "coefficients": [-0.2]},
         }
         for j, layer in enumerate(("thin", "immersed"))
     }  # fmt: skip
 
 
-def _known_table(known, deltas=(1e-3, 0.5)) -> list[dict]:
-    """A sweep table (as read from its CSV) of the forms ``known`` over a coarse box."""
+def _known_table(known, deltas=(1e-3, 0.5), held_back=False) -> list[dict]:
+    """A sweep table (as read from its CSV) of the forms ``known`` over a coarse box (a
+    held-back one only inside the forms' reach; a fit table keeps the immersed points past it,
+    as a sweep does)."""
     rows = []
     for layer, eps, p_cav, St, delta in product(
         ("thin", "immersed"), (1e-12, 1e-8, 1e-4, 0.1), (-1.0, -100.0, -1e5, None),
         np.geomspace(1, 1e4, 9), deltas,
     ):  # fmt: skip
-        if layer == "thin" and wetted_reach(St, eps, delta) > 1:
+        if (held_back or layer == "thin") and wetted_reach(St, eps, delta, layer) > 1:
             continue
         e_n = shape.normal_restitution(known, St, eps, p_cav, layer)[0]
         e_t = shape.tangential_restitution(known, St, eps, delta, p_cav, layer)[0]
@@ -128,14 +136,16 @@ def _known_table(known, deltas=(1e-3, 0.5)) -> list[dict]:
 
 def test_closed_forms_recover_known_coefficients():
     """A table made from forms of the closed forms' shape is fitted back with errors below
-    1e-8 in e_n (the joint least squares stops there) and 1e-12 in e_t; the fitted table's
+    1e-8 in e_n (the joint least squares stops there) and in e_t (which takes the fitted e_n
+    into its rigid passes 1 + 1/(e_n + 1/St)); the fitted table's
     recipe gives St_c within 3 % between its nodes (St_c is linear in v and h, not in ln eps)."""
     known = _known_forms()
     rows = table_rows(_known_table(known))
     forms = fitting.fit_forms(rows)
-    errors = fitting.errors(forms, rows)
+    inside = [r for r in rows if wetted_reach(r["St"], r["eps"], r["delta"], r["layer"]) <= 1]
+    errors = fitting.errors(forms, inside)
     for layer in ("thin", "immersed"):
-        assert errors[layer]["e_n"] < 1e-8 and errors[layer]["e_t"] < 1e-12
+        assert errors[layer]["e_n"] < 1e-8 and errors[layer]["e_t"] < 1e-8
     table = lookup.build(rows)
     found = lookup.interpolate(table, forms["box"], 40.0, 1e-6, 0.03, -10.0, "immersed")
     exact = shape.critical_stokes(known, 1e-6, -10.0, "immersed")[0]
@@ -145,16 +155,25 @@ def test_closed_forms_recover_known_coefficients():
 def test_closed_forms_carry_their_limits():
     """The shape's limits, whatever the coefficients: St_c / ln(1/eps) -> 2/5 with a
     cavitation limit and 4/5 without as eps -> 0 (the rigid approach to the elastic gap
-    eps^(2/5), and the same again on the way out when the suction is unlimited; to 1 % at eps
-    = 1e-300, where Q is O(1/ln(1/eps)) = 1/690 away); e_n -> 0 at fixed St as eps -> 0 and -> 1
-    as St -> inf; (1 - e_t)/delta -> (int J dT)/(3 St) as delta -> 0 (linear, to 1e-6 at delta =
-    1e-9) and e_t -> 1/(1 + k) (rolling) as delta I -> inf."""
+    eps^(2/5), and the same again on the way out when the suction is unlimited; to 2 % at eps
+    = 1e-300, where Q and the suction gap's ln(1/sqrt(0.3/|P_cav|)) = 2.9 at P_cav = -100 are
+    O(1/ln(1/eps)) = 1/690 away); e_n -> 0 at fixed St as eps -> 0 and -> 1
+    as St -> inf; int J dT = 3 St I -> 2 R (a rigid sphere's two passes through the film at speed
+    1, int_0^1 ln(1/X) dX each) at large St as eps -> 0, where the contact's eps^(2/5) St E
+    vanishes (to 1e-6 at St 1e12, eps 1e-300), and -> (2 + St) R where e_n = 0 (the departure's
+    time bounded by its suction); (1 - e_t)/delta -> (int J dT)/(3 St) as delta -> 0 (linear,
+    to 1e-6 at delta = 1e-9) and e_t -> 1/(1 + k) (rolling) as delta I -> inf."""
     forms = fitting.fit_forms(table_rows(_known_table(_known_forms())))
     for p_cav, slope in ((-100.0, 0.4), (None, 0.8)):
         St_c = shape.critical_stokes(forms, 1e-300, p_cav, "thin")[0]
-        assert St_c / (300 * math.log(10)) == pytest.approx(slope, rel=0.01)
+        assert St_c / (300 * math.log(10)) == pytest.approx(slope, rel=0.02)
         assert shape.normal_restitution(forms, 50.0, 1e-300, p_cav, "thin")[0] == 0.0
     assert shape.normal_restitution(forms, 1e300, 1e-3, -10.0, "thin")[0] == pytest.approx(1.0)
+    for St, passes in ((1e12, 2.0), (2.0, 3.0)):
+        f = shape.features(St, 1e-300, -10.0)
+        rigid = np.exp(shape.polynomial(forms["thin"]["R"], f))[0]
+        integral = shape.sliding_integral(forms, St, 1e-300, 1e-3, -10.0, "thin")[0]
+        assert 3 * St * integral / rigid == pytest.approx(passes, rel=1e-6)
     integral = shape.sliding_integral(forms, 50.0, 1e-3, 1e-9, -10.0, "thin")[0]
     loss = 1 - shape.tangential_restitution(forms, 50.0, 1e-3, 1e-9, -10.0, "thin", 0.4)[0]
     assert loss / 1e-9 == pytest.approx(integral, rel=1e-6)
@@ -205,9 +224,10 @@ def _shipped():
 def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
     """The shipped module, evaluated on the held-back points (between the fit table's nodes in
     every input), is within the errors it states (those of the fit's JSON, to 1e-9), and those
-    are bounded here (docs/studies.md gives them; measured on the reduced grid 0.067 and 0.037,
-    2.1e-3 and 3.3e-3, 36 % and 31 %, thin and immersed): e_n within 0.08, e_t within 4e-3 and
-    1 - e_t within 40 % on the clear rebounds (e_n >= 0.3)."""
+    are bounded here (docs/studies.md gives them; measured on the reduced grid 0.018 and 0.023,
+    3.2e-4 and 3.4e-4, 2.7 % and 2.2 %, thin and immersed, and St_c within 2.7 %): e_n within
+    0.03, e_t within 1e-3 and 1 - e_t within 5 % on the clear rebounds (e_n >= 0.3), St_c
+    within 5 % of each held-back group's."""
     fits, module, held = _shipped()
     stated = fits["held_back"]
     for layer in ("thin", "immersed"):
@@ -223,7 +243,8 @@ def test_shipped_closed_forms_within_their_stated_errors_on_held_back_points():
         assert error_n <= stated[layer]["e_n"] * (1 + 1e-9)
         assert error_t <= stated[layer]["e_t"] * (1 + 1e-9)
         assert relative <= stated[layer]["tangential_loss_relative"] * (1 + 1e-9)
-        assert error_n < 0.08 and error_t < 4e-3 and relative < 0.4
+        assert error_n < 0.03 and error_t < 1e-3 and relative < 0.05
+        assert stated[layer]["St_c_relative"] < 0.05
 
 
 def test_outside_the_box_is_refused_by_name():
@@ -248,6 +269,11 @@ def test_outside_the_box_is_refused_by_name():
         )
     with pytest.raises(ValueError, match="^delta = 0.4 is outside the box of the closed forms"):
         shape.restitution(fits, 100.0, 1e-3, 0.4, -10.0, "thin")
+    # immersed: the flattened contact past the sphere's radius, 2 delta (13.88 eps St)^(2/5) > 1
+    with pytest.raises(ValueError, match="^delta = 0.4 is outside the box for an immersed layer"):
+        module["tangential_restitution"](1e4, 0.1, 0.4, -10.0, "immersed")
+    with pytest.raises(ValueError, match="^delta = 0.4 .* for an immersed layer .* contact"):
+        shape.restitution(fits, 1e4, 0.1, 0.4, -10.0, "immersed")
 
 
 def _compile(tmp_path, source: str, name: str) -> Path:
@@ -285,7 +311,8 @@ def test_c_header_equals_the_python_module(tmp_path):
     """The shipped C header, compiled with gcc (C99, -Wall -Wextra -pedantic -Werror), gives
     the shipped Python module's St_c, e_n, e_t and spin change to 1e-12 at 200 random points of
     the box (both layers, P_cav none among them), and outside the box (a thin layer wetted past
-    the sphere's radius included) NaN with the flag of the parameter."""
+    the sphere's radius and an immersed contact past it included) NaN with the flag of the
+    parameter."""
     fits, module, _ = _shipped()
     binary = _compile(tmp_path, DRIVER, "driver")
     rng = np.random.default_rng(1)
@@ -298,12 +325,15 @@ def test_c_header_equals_the_python_module(tmp_path):
             if rng.random() < 0.2
             else -math.exp(rng.uniform(*sorted(np.log(np.abs(box["p_cav"])))))
         )
-        thin = rng.random() < 0.5 and wetted_reach(St, eps, delta) <= 1
-        points.append((St, eps, delta, p_cav, 0 if thin else 1, rng.uniform(0.2, 0.6)))
+        layer = int(rng.random() < 0.5)
+        if wetted_reach(St, eps, delta, ("thin", "immersed")[layer]) > 1:
+            delta = 0.4 / (1.0 + hertz_max_compression(eps, St))  # inside both layers' reach
+        points.append((St, eps, delta, p_cav, layer, rng.uniform(0.2, 0.6)))
     text = "".join(f"{St!r} {eps!r} {d!r} {'-inf' if p is None else repr(p)} {layer} {k!r}\n"
                    for St, eps, d, p, layer, k in points)  # fmt: skip
     text += "0.5 1e-3 0.01 -10 0 0.4\n100 1e-3 0.01 -10 0 0.9\n100 1e-3 0.01 -10 7 0.4\n"
     text += "100 1e-3 0.4 -10 0 0.4\n"  # a thin layer wetted past the sphere's radius
+    text += "1e4 0.1 0.4 -10 1 0.4\n"  # an immersed contact past the sphere's radius
     lines = subprocess.run([str(binary)], input=text, capture_output=True, text=True, check=True)
     results = [line.split() for line in lines.stdout.splitlines()]
     for (St, eps, delta, p_cav, layer, k), (flags, *values) in zip(points, results, strict=False):
@@ -316,8 +346,8 @@ def test_c_header_equals_the_python_module(tmp_path):
         )
         assert flags == "0"
         assert [float(v) for v in values] == pytest.approx(expected, rel=1e-12, abs=1e-15)
-    assert [r[0] for r in results[-4:]] == ["1", "32", "16", "8"]
-    assert all(v == "nan" for r in results[-4:] for v in r[1:])
+    assert [r[0] for r in results[-5:]] == ["1", "32", "16", "8", "8"]
+    assert all(v == "nan" for r in results[-5:] for v in r[1:])
 
 
 def test_the_c_example_of_the_docs_compiles_and_runs(tmp_path):
@@ -352,7 +382,7 @@ def test_fit_command_writes_every_export(tmp_path, capsys):
     known = _known_forms()
     table, held = tmp_path / "t.csv", tmp_path / "h.csv"
     _write_table(table, _known_table(known))
-    _write_table(held, _known_table(known, deltas=(0.03,)))
+    _write_table(held, _known_table(known, deltas=(0.03,), held_back=True))
     out = {k: tmp_path / f"forms.{k}" for k in ("json", "py", "h", "csv")}
     argv = [
         "fit",
@@ -369,9 +399,9 @@ def test_fit_command_writes_every_export(tmp_path, capsys):
         str(out["csv"]),
     ]
     assert main(argv) == 0  # fmt: skip
-    assert "largest errors on held-back points: thin: e_n" in capsys.readouterr().out
+    assert "largest errors on held-back points: thin: St_c" in capsys.readouterr().out
     fits = json.loads(out["json"].read_text())["closed_forms"]
-    assert fits["held_back"]["immersed"]["e_t"] < 1e-12
+    assert fits["held_back"]["immersed"]["e_t"] < 1e-8
     module = {}
     exec(compile(out["py"].read_text(), "forms.py", "exec"), module)  # noqa: S102
     expected = shape.restitution(fits, 300.0, 1e-7, 0.2, None, "immersed")

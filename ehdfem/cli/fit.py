@@ -10,6 +10,7 @@ from .. import checks
 from ..dem import export, fitting, lookup
 from ..dem.box import describe
 from ..dem.closedform import fit_table
+from ..dem.forms import NAMES
 from ..dem.forms import describe as describe_form
 from ..dem.table import GROUPED, table_rows
 from ..study.sweep import write_atomic
@@ -119,7 +120,7 @@ def print_fits(fits: dict, report) -> None:
     forms = fits.get("closed_forms")
     if forms is not None:
         print(f"closed forms for DEM over {describe(forms['box'])}:", file=report)
-        for name in ("St_c", "m", "A", "B"):
+        for name in NAMES:
             print(f"  {describe_form(name)}", file=report)
         held = forms.get("held_back")
         print(f"  largest errors on held-back points: {export.describe_errors(held)}", file=report)

@@ -9,7 +9,10 @@ carries the box of its own table, which may be smaller.
 A thin layer is also refused where its wetted film would reach past the sphere's radius r = a,
 2 delta (1 + C) > 1 (R_edge^2 = 2 (1 + C) against 1/delta, by a x0), C the dry Hertz
 compression (13.88 eps St)^(2/5) by x0, an upper bound of the compression: there the model's
-film is cut at r = a and its e_t is no longer that of a thin layer.
+film is cut at r = a and its e_t is no longer that of a thin layer. An immersed layer is
+refused where the flattened contact would: 2 delta C > 1 (its radius^2 2 C against 1/delta; the
+compression is then above a/2, far out of the half-spaces' range, and the film's cut at r = a
+caps the contact's share of the tangential integral).
 """
 
 from __future__ import annotations
@@ -60,21 +63,33 @@ def check_inside(box: dict, St, eps, delta, p_cav, layer, inertia_factor) -> Non
                 f"(fitted over {describe(box)}): they refuse to extrapolate",
                 name,
             )
-    reach = wetted_reach(St, eps, delta)
-    if layer == "thin" and reach > 1.0:
+    reach = wetted_reach(St, eps, delta, layer)
+    if reach > 1.0:
         raise checks.InputError(
-            f"delta = {delta!r} is outside the box of the closed forms for a thin layer at "
-            f"St = {St:g}, eps = {eps:g}: the wetted film would reach past the sphere's radius, "
-            f"2 delta (1 + (13.88 eps St)^(2/5)) = {reach:.3g} > 1",
+            f"delta = {delta!r} is outside the box of the closed forms for {REACH[layer][0]} "
+            f"at St = {St:g}, eps = {eps:g}: {REACH[layer][1]} = {reach:.3g} > 1",
             "delta",
         )
 
 
-def wetted_reach(St, eps, delta) -> float:
-    """2 delta (1 + C): a thin layer's wetted radius squared by a^2 at the dry Hertz
-    compression C = (13.88 eps St)^(2/5) (by x0), an upper bound; above 1 the film reaches past
-    the sphere's radius r = a."""
-    return 2.0 * float(delta) * (1.0 + hertz_max_compression(float(eps), float(St)))
+REACH = {  # what would reach past the sphere's radius r = a where wetted_reach > 1
+    "thin": (
+        "a thin layer (the wetted film would reach past the sphere's radius)",
+        "2 delta (1 + (13.88 eps St)^(2/5))",
+    ),
+    "immersed": (
+        "an immersed layer (the flattened contact would reach past the sphere's radius)",
+        "2 delta (13.88 eps St)^(2/5)",
+    ),
+}
+
+
+def wetted_reach(St, eps, delta, layer) -> float:
+    """The squared radius by a^2 of what must stay inside the sphere's radius r = a, at the dry
+    Hertz compression C = (13.88 eps St)^(2/5) (by x0), an upper bound: a thin layer's wetted
+    film, 2 delta (1 + C); an immersed layer's flattened contact, 2 delta C."""
+    compression = hertz_max_compression(float(eps), float(St))
+    return 2.0 * float(delta) * ((layer == "thin") + compression)
 
 
 def describe(box: dict) -> str:

@@ -27,7 +27,8 @@ mu V0 a^(3/2)/x0^(5/2), delta = x0/a, P_cav = (p_cav - p_ambient) x0^2/(mu V0 a)
 cavitation limit), layer "thin" or "immersed", k = I/(m a^2) (2/5: solid sphere). e_n is the
 pure EHD value (multiply by the dry restitution); spin change = a DeltaOmega/U0.
 Box: {box}; for a thin layer also 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film
-inside the sphere's radius). Outside it every function raises ValueError naming the parameter.
+inside the sphere's radius), for an immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the
+flattened contact inside it). Outside it every function raises ValueError naming the parameter.
 Largest errors on points held back from the fit: {errors}
 """
 
@@ -51,17 +52,27 @@ def _check(St, eps, delta, p_cav, layer, k):
         low, high = BOX[name]
         if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
             raise ValueError(f"{{name}} = {{value!r}} is outside the box [{{low:g}}, {{high:g}}]")
-    if layer == "thin" and 2.0 * delta * (1.0 + ({hertz!r} * eps * St) ** 0.4) > 1.0:
+    compression = ({hertz!r} * eps * St) ** 0.4
+    if layer == "thin" and 2.0 * delta * (1.0 + compression) > 1.0:
         raise ValueError(
             f"delta = {{delta!r}} is outside the box for a thin layer: the wetted film would "
             "reach past the sphere's radius, 2 delta (1 + (13.88 eps St)^(2/5)) > 1"
+        )
+    if layer == "immersed" and 2.0 * delta * compression > 1.0:
+        raise ValueError(
+            f"delta = {{delta!r}} is outside the box for an immersed layer: the flattened "
+            "contact would reach past the sphere's radius, 2 delta (13.88 eps St)^(2/5) > 1"
         )
 
 
 def _features(St, eps, p_cav):
     L = -math.log(eps)
-    suction = 0.0 if p_cav is None or p_cav == -math.inf else math.sqrt({gap!r} / abs(p_cav))
-    w = -math.log(eps**0.4 + suction)
+    elastic = -0.4 * L  # ln of the elastic gap, and of the suction gap:
+    limited = p_cav is not None and p_cav != -math.inf
+    suction = 0.5 * math.log({gap!r} / -p_cav) if limited else -math.inf
+    top = max(elastic, suction)
+    n = {norm!r}
+    w = -(top + math.log(math.exp(n * (elastic - top)) + math.exp(n * (suction - top))) / n)
     return {{"x": math.log(St), "L": L, "v": 1.0 / L, "w": w, "h": w / L}}
 
 
@@ -93,15 +104,23 @@ def normal_restitution(St, eps, p_cav, layer="thin"):
 
 
 def tangential_restitution(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
-    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), I = A (thin), A + B D, D =
-    ln((1 + delta)/(2 delta)) (immersed), A, B = exp(Q(x, v, h)); for rebounds (e_n >= {clear})."""
+    """e_t = 1 - k/(1 + k) (1 - exp(-(1 + 1/k) delta I)), 3 St I = P R + eps^(2/5) St E (thin),
+    P (1 + D) R + eps^(2/5) St E + 2.94 C D T (immersed), P = 1 + 1/(e_n + 1/St), D =
+    (1 + c) ln(1 + c) - c ln c - 1 with c = 1/(2 delta), C = (13.88 eps St)^(2/5), R, E, T =
+    exp(Q(x, v, h)); stated errors for rebounds (e_n >= {clear})."""
+    e_n = normal_restitution(St, eps, p_cav, layer)
     _check(St, eps, delta, p_cav, layer, inertia_factor)
     f = _features(St, eps, p_cav)
-    integral = math.exp(_q(FORMS[layer]["A"], f))
+    forms = FORMS[layer]
+    passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * math.exp(_q(forms["R"], f))
+    total = passes + eps**0.4 * St * math.exp(_q(forms["E"], f))
     if layer == "immersed":
-        integral += math.exp(_q(FORMS[layer]["B"], f)) * math.log((1.0 + delta) / (2.0 * delta))
+        c = 0.5 / delta
+        far = math.log1p(c) + c * math.log1p(1.0 / c) - 1.0
+        contact = {contact_time!r} * ({hertz!r} * eps * St) ** 0.4
+        total += far * (passes + contact * math.exp(_q(forms["T"], f)))
     k = inertia_factor
-    return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * integral)
+    return 1.0 - k / (1.0 + k) * -math.expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St))
 
 
 def spin_change(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
@@ -152,7 +171,7 @@ def describe_errors(held_back: dict | None) -> str:
     if not held_back:
         return "none measured (no held-back table)."
     parts = [
-        f"{layer}: e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t "
+        f"{layer}: St_c {e['St_c_relative']:.1%}, e_n {e['e_n']:.2g}, e_t {e['e_t']:.2g} (1 - e_t "
         f"{e['tangential_loss_relative']:.0%}, {e['near_threshold_relative']:.0%} just above "
         f"St_c), spin change {e['spin_change']:.2g}"
         for layer, e in held_back.items()
@@ -172,9 +191,11 @@ def python_source(fits: dict, table: str, version: str, held_back: dict | None =
         forms=_plain(fits),
         errors=describe_errors(held_back),
         gap=shape.SUCTION_GAP,
+        norm=shape.SUCTION_NORM,
         slope=shape.CRITICAL_SLOPE,
         clear=CLEAR_REBOUND,
         hertz=HERTZ,
+        contact_time=shape.HERTZ_TIME,
     )
 
 
@@ -190,7 +211,8 @@ _C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid
  * solid sphere). e_n is the pure EHD value (multiply by the dry restitution); spin change =
  * a DeltaOmega/U0 (no initial spin).
  * Box: {box}; for a thin layer also
- * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
+ * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius), for an
+ * immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the flattened contact inside it).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
  * Largest errors on points held back from the fit: {errors}
@@ -252,9 +274,11 @@ static inline int ehd_check(double St, double eps, double delta, double p_cav, i
     if ((layer != EHD_THIN || !{has_thin}) && (layer != EHD_IMMERSED || !{has_immersed}))
         flags |= EHD_OUT_LAYER;
     if (!(k > 0.0 && k <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
-    /* a thin layer's wetted film would reach past the sphere's radius */
-    if (layer == EHD_THIN && 2.0 * delta * (1.0 + pow({hertz!r} * eps * St, 0.4)) > 1.0)
-        flags |= EHD_OUT_DELTA;
+    /* a thin layer's wetted film, an immersed layer's flattened contact would reach past the
+     * sphere's radius */
+    double compression = pow({hertz!r} * eps * St, 0.4);
+    if (layer == EHD_THIN && 2.0 * delta * (1.0 + compression) > 1.0) flags |= EHD_OUT_DELTA;
+    if (layer == EHD_IMMERSED && 2.0 * delta * compression > 1.0) flags |= EHD_OUT_DELTA;
     return flags;
 }}
 
@@ -270,17 +294,29 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     }}
     const ehd_form_t *forms = ehd_forms_[layer];
     double L = -log(eps);
-    double w = -log(pow(eps, 0.4) + (p_cav == -INFINITY ? 0.0 : sqrt({gap!r} / fabs(p_cav))));
+    /* w = -ln of the 4-norm of the elastic and the suction gaps, from their logarithms */
+    double elastic = -0.4 * L;
+    double suction = p_cav == -INFINITY ? -INFINITY : 0.5 * log({gap!r} / -p_cav);
+    double top = elastic > suction ? elastic : suction;
+    double n = {norm!r};
+    double w = -(top + log(exp(n * (elastic - top)) + exp(n * (suction - top))) / n);
     double f[5] = {{log(St), L, 1.0 / L, w, w / L}};
     double St_c = ({slope!r} + f[4]) * L + ehd_q_(&forms[0], f);
     double ratio = St_c / St;
     ratio = ratio < 0.0 ? 0.0 : (ratio > 1.0 ? 1.0 : ratio);
-    double integral = exp(ehd_q_(&forms[2], f));
-    if (layer == EHD_IMMERSED)
-        integral += exp(ehd_q_(&forms[3], f)) * log((1.0 + delta) / (2.0 * delta));
+    double e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
+    /* 3 St I: the rigid passes, the elastic contact and (immersed) the far field */
+    double passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * exp(ehd_q_(&forms[2], f));
+    double total = passes + pow(eps, 0.4) * St * exp(ehd_q_(&forms[3], f));
+    if (layer == EHD_IMMERSED) {{
+        double c = 0.5 / delta;
+        double far = log1p(c) + c * log1p(1.0 / c) - 1.0;
+        double contact = {contact_time!r} * pow({hertz!r} * eps * St, 0.4);
+        total += far * (passes + contact * exp(ehd_q_(&forms[4], f)));
+    }}
     out->St_c = St_c;
-    out->e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
-    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * integral);
+    out->e_n = e_n;
+    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St));
     out->spin_change = (1.0 - out->e_t) / k;
     return 0;
 }}
@@ -318,9 +354,9 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
     parts, tables = [], []
     for layer in LAYERS:
         inits = []
-        for name in ("St_c", "m", "A", "B"):
+        for name in shape.NAMES:
             form = fits.get(layer, {}).get(name)
-            if form is None:  # a layer not fitted, or B of the thin layer: unused
+            if form is None:  # a layer not fitted, or T of the thin layer: unused
                 inits.append("{0, 0, 0, 0, 0}")
                 continue
             arrays, init = _c_form(f"ehd_{layer}_{name}_", form)
@@ -335,12 +371,16 @@ def c_header(fits: dict, table: str, version: str, held_back: dict | None = None
         errors=describe_errors(held_back),
         clear=CLEAR_REBOUND,
     )
-    forms = "static const ehd_form_t ehd_forms_[2][4] = {\n    " + ",\n    ".join(tables) + "};\n"
+    forms = (
+        f"static const ehd_form_t ehd_forms_[2][{len(shape.NAMES)}] = {{\n    "
+        + ",\n    ".join(tables)
+        + "};\n"
+    )
     tail = _C_TAIL.format(
         St_lo=box["St"][0], St_hi=box["St"][1], eps_lo=box["eps"][0], eps_hi=box["eps"][1],
         delta_lo=box["delta"][0], delta_hi=box["delta"][1], p_lo=box["p_cav"][0],
         p_hi=box["p_cav"][1], no_limit=int(box["no_limit"]), has_thin=int("thin" in fits),
-        has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP,
-        slope=shape.CRITICAL_SLOPE, hertz=HERTZ,
+        has_immersed=int("immersed" in fits), gap=shape.SUCTION_GAP, norm=shape.SUCTION_NORM,
+        slope=shape.CRITICAL_SLOPE, hertz=HERTZ, contact_time=shape.HERTZ_TIME,
     )  # fmt: skip
     return head + "\n" + "".join(parts) + "\n" + forms + tail

@@ -7,14 +7,13 @@ half-spaces, the Couette tangential model, one inertia factor. For each layer in
   on the group's points, sticking ones included), then Q_c and Q_m by linear least squares on
   the groups, then every coefficient together on every point;
 - e_t: I = int J dT/(3 St) from each rebound with e_n >= CLEAR_REBOUND (exact inverse of the
-  Couette form); thin: ln I = Q_A by least squares at the table's smallest delta (I does not
-  depend on delta while the wetted edge lies inside the sphere's radius r = a, where the model's
-  J ends: R_edge ~ sqrt(2 (1 + compression)) < 1/sqrt(delta)); immersed: A and B from the points
-  of equal (St, eps, P_cav) at two or more delta, ln A and ln B by least squares, then both
-  together on the relative error of I.
+  Couette form) inside the box's reach (:func:`ehdfem.dem.box.wetted_reach`: a thin layer's
+  wetted film, an immersed layer's contact inside r = a); Q_R, Q_E (and Q_T immersed, which
+  needs rebounds at two delta) together by least squares on ln I, with the fitted e_n in the
+  rigid passes.
 
-Errors (:func:`errors`) are absolute in e_n, e_t and the spin change, relative in 1 - e_t; the
-stated ones are measured on a table held back from the fit.
+Errors (:func:`errors`) are absolute in e_n, e_t and the spin change, relative in 1 - e_t and
+St_c; the stated ones are measured on a table held back from the fit.
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ from scipy.optimize import least_squares
 
 from .. import checks
 from . import forms as shape
-from .box import LAYERS, check_inside
+from .box import LAYERS, check_inside, wetted_reach
 
 CLEAR_REBOUND = 0.3
 """The smallest e_n of the rebounds the tangential forms are fitted to: just above St_c the
@@ -64,7 +63,8 @@ def fit_forms(rows: list[dict]) -> dict:
     for layer in LAYERS:
         select = np.array([value == layer for value in data["layer"]])
         if select.any():
-            out[layer] = {**_fit_normal(data, select), **_fit_tangential(data, select, layer)}
+            normal = _fit_normal(data, select)
+            out[layer] = {**normal, **_fit_tangential(data, select, layer, normal)}
     return out
 
 
@@ -158,59 +158,53 @@ def _fit_normal(data: dict, select) -> dict:
     return _least_squares(shape.NORMAL, forms, residual)
 
 
-def _fit_tangential(data: dict, select, layer: str) -> dict:
-    """Q_A (and Q_B immersed) of one layer (the module docstring)."""
-    clear = select & (data["e_n"] >= CLEAR_REBOUND)
+def _fit_tangential(data: dict, select, layer: str, normal: dict) -> dict:
+    """Q_R, Q_E (and Q_T immersed) of one layer (:mod:`ehdfem.dem.forms`), by least squares
+    on ln of 3 St I at the rebounds with e_n >= CLEAR_REBOUND inside the box's reach (the
+    film or the contact inside r = a) where the ``normal`` forms rebound too, from R = T = 1,
+    E = 5."""
+    reach = np.array([wetted_reach(*(data[n][i] for n in ("St", "eps", "delta")),
+                                   data["layer"][i]) for i in range(len(data["St"]))])  # fmt: skip
+    clear = select & (data["e_n"] >= CLEAR_REBOUND) & (reach <= 1.0)
+    e_n = np.array([_value({layer: normal}, data, i, "e_n") if clear[i] else 0.0
+                    for i in range(len(clear))])  # fmt: skip
+    clear &= e_n > 0.0
     if not clear.any():
         raise checks.InputError(f"the tangential forms need rebounds with e_n >= {CLEAR_REBOUND}")
-    integral = shape.sliding_integral_of(data["e_t"], data["delta"], data["k"])
-    values = feature_values(data, clear)
-    if layer == "thin":
-        smallest = data["delta"][clear] == data["delta"][clear].min()
-        return {"A": _linear_form("A", values, np.log(integral[clear]), smallest)}
-    return _fit_immersed(data, clear, integral, values)
-
-
-def _fit_immersed(data: dict, clear, integral, values: dict) -> dict:
-    """A and B of I = A + B D(delta), immersed (:func:`ehdfem.dem.forms.far_field`), first
-    per (St, eps, P_cav) point."""
-    index = np.flatnonzero(clear)
-    points = defaultdict(list)
-    for j, i in enumerate(index):
-        points[(data["St"][i], data["eps"][i], data["p_cav"][i])].append(j)
-    A, B = np.full(len(index), np.nan), np.full(len(index), np.nan)
-    for members in points.values():
-        logs = shape.far_field(data["delta"][index[members]])
-        if len(np.unique(logs)) < 2:
-            continue
-        design = np.column_stack([np.ones(len(members)), logs])
-        (A[members], B[members]), *_ = np.linalg.lstsq(design, integral[index[members]], None)
-    usable = (A > 0) & (B > 0)
-    if not usable.any():
+    if layer == "immersed" and len(np.unique(data["delta"][clear])) < 2:
         raise checks.InputError(
-            "the immersed tangential forms need each rebound (St, eps, P_cav) at two values "
-            "of delta (I = A + B D(delta))"
+            "the immersed tangential forms need rebounds at two values of delta (to tell the "
+            "far field's share D(delta) from the near field's)"
         )
-    forms = {
-        name: _linear_form(name, values, np.log(np.where(usable, c, 1.0)), usable)
-        for name, c in (("A", A), ("B", B))
-    }
-    logs = shape.far_field(data["delta"][index])
+    integral = shape.sliding_integral_of(data["e_t"], data["delta"], data["k"])[clear]
+    values = feature_values(data, clear)
+    names = shape.TANGENTIAL[layer]
+    forms = {**normal}
+    for name in names:
+        form = {"features": list(shape.FEATURES[name]),
+                "powers": shape.powers(shape.FEATURES[name], shape.DEGREE[name])}  # fmt: skip
+        start = np.zeros(len(form["powers"]))
+        start[0] = np.log(START[name])
+        forms[name] = {**form, "coefficients": list(start)}
+    at = [data[n][clear] for n in ("St", "eps", "delta")]
 
     def residual(trial):
-        fitted = np.exp(shape.polynomial(trial["A"], values))
-        fitted = fitted + np.exp(shape.polynomial(trial["B"], values)) * logs
-        return fitted / integral[index] - 1.0
+        return np.log(shape.integral_of(trial, layer, values, e_n[clear], *at) / integral)
 
-    return _least_squares(("A", "B"), forms, residual)
+    fitted = _least_squares(names, forms, residual)
+    return {name: fitted[name] for name in names}
+
+
+START = {"R": 1.0, "E": 5.0, "T": 1.0}  # the tangential factors' starting values
 
 
 def errors(forms: dict, rows: list[dict]) -> dict:
     """Per layer, the largest errors of the forms on ``rows``: e_n (absolute, every point),
     e_t and the spin change (absolute) and 1 - e_t (relative) over the rebounds with e_n >=
-    CLEAR_REBOUND, and 1 - e_t (relative) over the rebounds below it; with the numbers of
-    points. A row outside the forms' box is refused (InputError naming the input and the
-    line)."""
+    CLEAR_REBOUND, and 1 - e_t (relative) over the rebounds below it, St_c (relative) against
+    that of each (eps, P_cav) group with 3 rebounds (:func:`group_fit`; 0 without one); with
+    the numbers of points. A row outside the forms' box is refused (InputError naming the input
+    and the line)."""
     data = columns(rows)
     for line, i in enumerate(range(len(rows)), 2):
         try:
@@ -237,8 +231,24 @@ def errors(forms: dict, rows: list[dict]) -> dict:
             "spin_change": float((np.abs(e_t - found_t) / k)[clear].max(initial=0.0)),
             "tangential_loss_relative": float(relative[clear].max(initial=0.0)),
             "near_threshold_relative": float(relative[near].max(initial=0.0)),
+            "St_c_relative": _critical_error(forms, data, select, layer),
         }
     return out
+
+
+def _critical_error(forms: dict, data: dict, select, layer: str) -> float:
+    """The largest relative error of the forms' St_c against :func:`group_fit`'s on the
+    (eps, P_cav) groups of ``select`` with 3 rebounds (0 without such a group)."""
+    groups = defaultdict(list)
+    for i in select:
+        groups[(data["eps"][i], data["p_cav"][i])].append(i)
+    worst = 0.0
+    for (eps, p_cav), members in groups.items():
+        if (data["e_n"][members] > 0).sum() >= 3:
+            found = group_fit(data["St"][members], data["e_n"][members])[0]
+            form = shape.critical_stokes(forms, eps, p_cav, layer)[0]
+            worst = max(worst, abs(form / found - 1.0))
+    return float(worst)
 
 
 def _value(forms: dict, data: dict, i: int, name: str) -> float:

@@ -3,8 +3,9 @@
 One row per (layer, eps, P_cav, St) of a study table (dimensionless, DSH scales; P_cav empty:
 no cavitation limit), with the group's St_c and m (the e_n form 1 - (St_c/St)^m fitted to the
 group's points of equal eps and P_cav) and the point's A and B of I = A + B D,
-D = ln((1 + delta)/(2 delta)) (B = 0 in a thin layer; immersed, A and B solved from the points
-at two or more delta). The recipe (:func:`interpolate`):
+D = (1 + c) ln(1 + c) - c ln c - 1, c = 1/(2 delta) (:func:`ehdfem.dem.forms.far_field`; B = 0
+in a thin layer; immersed, A and B solved from the points at two or more delta). The recipe
+(:func:`interpolate`):
 
 - St_c and m: bilinear in (ln eps, ln |P_cav|) between the four nearest groups of the layer
   (P_cav none: linear in ln eps on the groups without a limit);

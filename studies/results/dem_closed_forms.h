@@ -10,10 +10,11 @@
  * solid sphere). e_n is the pure EHD value (multiply by the dry restitution); spin change =
  * a DeltaOmega/U0 (no initial spin).
  * Box: St in [1, 10000], eps in [1e-12, 0.1], P_cav in [-100000, -1], delta in [0.001, 0.5] (P_cav also none); for a thin layer also
- * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius).
+ * 2 delta (1 + (13.88 eps St)^(2/5)) <= 1 (the wetted film inside the sphere's radius), for an
+ * immersed one 2 delta (13.88 eps St)^(2/5) <= 1 (the flattened contact inside it).
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
- * Largest errors on points held back from the fit: thin: e_n 0.067, e_t 0.0021 (1 - e_t 36%, 81% just above St_c), spin change 0.0052; immersed: e_n 0.037, e_t 0.0033 (1 - e_t 31%, 88% just above St_c), spin change 0.0081.
+ * Largest errors on points held back from the fit: thin: St_c 2.7%, e_n 0.018, e_t 0.00032 (1 - e_t 3%, 53% just above St_c), spin change 0.00079; immersed: St_c 2.7%, e_n 0.023, e_t 0.00034 (1 - e_t 2%, 65% just above St_c), spin change 0.00086.
  */
 #ifndef EHDFEM_CLOSED_FORMS_H
 #define EHDFEM_CLOSED_FORMS_H
@@ -43,179 +44,123 @@ typedef struct {
 static const int ehd_thin_St_c__feature[] = {2, 4};
 static const int ehd_thin_St_c__powers[] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0, 1, 1, 1, 2, 2, 0, 2, 1, 3, 0};
 static const double ehd_thin_St_c__coefficients[] = {
-    0.7510783156674254,
-    12.035883464158356,
-    -19.48079989006516,
-    5.01161715525705,
-    -4.844877599463705,
-    -66.65448976092158,
-    39.61335440975715,
-    20.096436651150206,
-    77.83214917289511,
-    -31.550680529442467};
+    0.37546067112185794,
+    -0.013520886303938957,
+    -21.582846378886657,
+    124.17633850483637,
+    -19.896170231544936,
+    29.556409538954025,
+    -247.7762766150346,
+    62.547782093010014,
+    164.76775837304962,
+    -115.49637500115836};
 static const int ehd_thin_m__feature[] = {2, 4};
 static const int ehd_thin_m__powers[] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0, 1, 1, 1, 2, 2, 0, 2, 1, 3, 0};
 static const double ehd_thin_m__coefficients[] = {
-    -0.10745925644212502,
-    1.6678490693050982,
-    -7.568035226028594,
-    8.300324072687593,
-    -1.924592091444689,
-    -6.374520999073137,
-    13.180227221609872,
-    7.243147923180116,
-    1.1263559097824303,
-    -10.070775782465185};
-static const int ehd_thin_A__feature[] = {0, 2, 4};
-static const int ehd_thin_A__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_thin_A__coefficients[] = {
-    5.622955647039954,
-    2.894463970615483,
-    -8.506721876535428,
-    23.942705455876094,
-    -20.26356926767839,
-    -79.03168404539497,
-    -2.813698844795534,
-    8.86655433365315,
-    -13.123046244078804,
-    357.0650722529455,
-    -29.428454217867472,
-    17.010434366582505,
-    -378.1213592480783,
-    26.898620620376835,
-    -176.71310359866075,
-    -3.7917665423903437,
-    -0.9944649813581025,
-    1.0449680795248277,
-    -1.2999841281717357,
-    33.40773668194587,
-    1.6929725908106443,
-    -0.9621745896762471,
-    -122.02542030071405,
-    0.9340408691851444,
-    144.59174130890517,
-    0.3013692095253339,
-    0.10245850286191473,
-    -0.028777285297575762,
-    -0.9198342193232529,
-    -0.12474433076131278,
-    0.9455509725237805,
-    -0.018031454905878375,
-    -0.002969198065929754,
-    0.017972269775154516,
-    0.0005281339208260682};
+    -0.07137432473390733,
+    0.04808311922806654,
+    0.6866285934143147,
+    -2.122105146121393,
+    -2.80970360473612,
+    6.0772822958643395,
+    -9.506027347580272,
+    2.098056312298125,
+    2.8344472197710844,
+    -3.081852258114754};
+static const int ehd_thin_R__feature[] = {0, 2, 4};
+static const int ehd_thin_R__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_thin_R__coefficients[] = {
+    -0.1906889739509978,
+    -0.37562710171434227,
+    0.12991531722554595,
+    8.967063120877464,
+    1.7984407769100854,
+    -44.23653776475656,
+    -0.0030065110478233394,
+    0.03571419580355116,
+    -0.35502132907071965,
+    0.0012289890347302438};
+static const int ehd_thin_E__feature[] = {0, 2, 4};
+static const int ehd_thin_E__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_thin_E__coefficients[] = {
+    3.204231670472388,
+    0.16951486271543895,
+    0.406978312333508,
+    -1.251266981409145,
+    -0.1400099266782718,
+    1.1449185629280907,
+    -0.2712152695953694,
+    -0.03810698546722124,
+    0.0768050728790616,
+    0.013238965611813617};
 static const int ehd_immersed_St_c__feature[] = {2, 4};
 static const int ehd_immersed_St_c__powers[] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0, 1, 1, 1, 2, 2, 0, 2, 1, 3, 0};
 static const double ehd_immersed_St_c__coefficients[] = {
-    3.5728694766170825,
-    13.41367553024312,
-    -11.554488622489222,
-    -11.795379729533973,
-    1.0120527869556897,
-    -52.945021974679314,
-    24.53711205367503,
-    14.599041641629634,
-    55.07313653041078,
-    -39.77650703854035};
+    3.6199776453518626,
+    -2.3356843063183255,
+    -18.811024101353976,
+    120.34952585694373,
+    -23.503002334712246,
+    72.87729880721751,
+    -250.11371885870116,
+    78.92600617448639,
+    99.9065095764215,
+    -145.17802237060923};
 static const int ehd_immersed_m__feature[] = {2, 4};
 static const int ehd_immersed_m__powers[] = {0, 0, 0, 1, 0, 2, 0, 3, 1, 0, 1, 1, 1, 2, 2, 0, 2, 1, 3, 0};
 static const double ehd_immersed_m__coefficients[] = {
-    -0.08884395969475271,
-    0.7920185163698542,
-    -3.1510201647563805,
-    2.7352019970110026,
-    -0.9625270599447971,
-    -3.288306003140851,
-    6.097454635004669,
-    1.138210752851459,
-    1.7585682460681111,
-    -0.27797763927321195};
-static const int ehd_immersed_A__feature[] = {0, 2, 4};
-static const int ehd_immersed_A__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_immersed_A__coefficients[] = {
-    7.936816833188292,
-    2.6374028564724146,
-    -8.510577944759932,
-    23.311953956290566,
-    -17.636277181603973,
-    -107.19166778222954,
-    8.625692290191948,
-    5.670718919758936,
-    -11.922348537884549,
-    393.4025155354407,
-    -69.29864800854057,
-    19.167463375600928,
-    156.55681310787136,
-    65.1477159232398,
-    -1271.8787633706152,
-    -4.827087627801896,
-    -1.3164674257458988,
-    1.217513619483298,
-    -1.5394019655821525,
-    45.89590239429907,
-    1.5382029352111037,
-    -0.9449872211126035,
-    -192.41573133985946,
-    2.372305013448999,
-    233.02306993075044,
-    0.399589563936232,
-    0.17096167330053763,
-    -0.035994107648620835,
-    -0.7341390038252523,
-    -0.1990299146454378,
-    1.9343952942843727,
-    -0.024772242621276256,
-    -0.006504789135270536,
-    -0.051581181869699615,
-    0.0009419840787384414};
-static const int ehd_immersed_B__feature[] = {0, 2, 4};
-static const int ehd_immersed_B__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 1, 0, 0, 1, 1, 0, 1, 2, 0, 1, 3, 0, 2, 0, 0, 2, 1, 0, 2, 2, 0, 3, 0, 0, 3, 1, 0, 4, 0, 1, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 1, 0, 1, 1, 1, 1, 1, 2, 1, 2, 0, 1, 2, 1, 1, 3, 0, 2, 0, 0, 2, 0, 1, 2, 0, 2, 2, 1, 0, 2, 1, 1, 2, 2, 0, 3, 0, 0, 3, 0, 1, 3, 1, 0, 4, 0, 0};
-static const double ehd_immersed_B__coefficients[] = {
-    6.367660199814017,
-    4.8647910352507875,
-    4.432573102049153,
-    -6.922743983575871,
-    -3.6585205498253357,
-    -136.46629500540493,
-    -25.930760128026133,
-    -8.676604318552698,
-    0.7453742157815337,
-    1252.0014936001426,
-    65.73737944529991,
-    7.077206153994201,
-    -4477.531014297257,
-    -56.69147890395943,
-    5183.577854757129,
-    -2.3662338525164746,
-    -1.4409188208789179,
-    -0.6004427811081737,
-    1.2659946547471645,
-    6.756143359014586,
-    3.8136448171863666,
-    0.7952686510377955,
-    -22.642392128786152,
-    -3.8962654585683025,
-    32.89947392418091,
-    0.08594539673645928,
-    0.139094037318803,
-    -0.002521812099558964,
-    0.5708760116263386,
-    -0.15225797431105145,
-    -1.2124972441371236,
-    0.0031659131097970597,
-    -0.004306977432857271,
-    -0.0036844656329542477,
-    -0.0005662676798055147};
+    -0.0540615519077936,
+    -0.4749669693131344,
+    3.404832570078362,
+    -5.90556871122985,
+    -1.5797968876649298,
+    -0.07383520340975902,
+    -0.6224586661606556,
+    3.1791902643476337,
+    2.439261090592444,
+    -3.8815400690396555};
+static const int ehd_immersed_R__feature[] = {0, 2, 4};
+static const int ehd_immersed_R__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_immersed_R__coefficients[] = {
+    -0.010527251823575409,
+    -0.1873204970717953,
+    0.13962453230951985,
+    1.3547313923274122,
+    0.9256443258613962,
+    -5.252909383635597,
+    -0.00023983552631911712,
+    0.011626043600378933,
+    -0.05088728707338562,
+    -1.623797245397951e-05};
+static const int ehd_immersed_E__feature[] = {0, 2, 4};
+static const int ehd_immersed_E__powers[] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 0, 0, 1, 1, 0, 2, 0, 1, 0, 0, 1, 0, 1, 1, 1, 0, 2, 0, 0};
+static const double ehd_immersed_E__coefficients[] = {
+    3.04638134900497,
+    0.13684074895605453,
+    0.250272517606479,
+    -1.264488498552739,
+    0.006394729058835703,
+    1.1291037199481544,
+    -0.23080485861712802,
+    -0.026008449999041908,
+    0.06817634092243183,
+    0.010742117892899453};
+static const int ehd_immersed_T__feature[] = {0, 2, 4};
+static const int ehd_immersed_T__powers[] = {0, 0, 0};
+static const double ehd_immersed_T__coefficients[] = {
+    0.017982415257110095};
 
-static const ehd_form_t ehd_forms_[2][4] = {
+static const ehd_form_t ehd_forms_[2][5] = {
     {{10, 2, ehd_thin_St_c__feature, ehd_thin_St_c__powers, ehd_thin_St_c__coefficients},
      {10, 2, ehd_thin_m__feature, ehd_thin_m__powers, ehd_thin_m__coefficients},
-     {35, 3, ehd_thin_A__feature, ehd_thin_A__powers, ehd_thin_A__coefficients},
+     {10, 3, ehd_thin_R__feature, ehd_thin_R__powers, ehd_thin_R__coefficients},
+     {10, 3, ehd_thin_E__feature, ehd_thin_E__powers, ehd_thin_E__coefficients},
      {0, 0, 0, 0, 0}},
     {{10, 2, ehd_immersed_St_c__feature, ehd_immersed_St_c__powers, ehd_immersed_St_c__coefficients},
      {10, 2, ehd_immersed_m__feature, ehd_immersed_m__powers, ehd_immersed_m__coefficients},
-     {35, 3, ehd_immersed_A__feature, ehd_immersed_A__powers, ehd_immersed_A__coefficients},
-     {35, 3, ehd_immersed_B__feature, ehd_immersed_B__powers, ehd_immersed_B__coefficients}}};
+     {10, 3, ehd_immersed_R__feature, ehd_immersed_R__powers, ehd_immersed_R__coefficients},
+     {10, 3, ehd_immersed_E__feature, ehd_immersed_E__powers, ehd_immersed_E__coefficients},
+     {1, 3, ehd_immersed_T__feature, ehd_immersed_T__powers, ehd_immersed_T__coefficients}}};
 
 static inline double ehd_q_(const ehd_form_t *form, const double *f)
 {
@@ -247,9 +192,11 @@ static inline int ehd_check(double St, double eps, double delta, double p_cav, i
     if ((layer != EHD_THIN || !1) && (layer != EHD_IMMERSED || !1))
         flags |= EHD_OUT_LAYER;
     if (!(k > 0.0 && k <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
-    /* a thin layer's wetted film would reach past the sphere's radius */
-    if (layer == EHD_THIN && 2.0 * delta * (1.0 + pow(13.87913118903191 * eps * St, 0.4)) > 1.0)
-        flags |= EHD_OUT_DELTA;
+    /* a thin layer's wetted film, an immersed layer's flattened contact would reach past the
+     * sphere's radius */
+    double compression = pow(13.87913118903191 * eps * St, 0.4);
+    if (layer == EHD_THIN && 2.0 * delta * (1.0 + compression) > 1.0) flags |= EHD_OUT_DELTA;
+    if (layer == EHD_IMMERSED && 2.0 * delta * compression > 1.0) flags |= EHD_OUT_DELTA;
     return flags;
 }
 
@@ -265,17 +212,29 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     }
     const ehd_form_t *forms = ehd_forms_[layer];
     double L = -log(eps);
-    double w = -log(pow(eps, 0.4) + (p_cav == -INFINITY ? 0.0 : sqrt(3.0 / fabs(p_cav))));
+    /* w = -ln of the 4-norm of the elastic and the suction gaps, from their logarithms */
+    double elastic = -0.4 * L;
+    double suction = p_cav == -INFINITY ? -INFINITY : 0.5 * log(0.3 / -p_cav);
+    double top = elastic > suction ? elastic : suction;
+    double n = 4.0;
+    double w = -(top + log(exp(n * (elastic - top)) + exp(n * (suction - top))) / n);
     double f[5] = {log(St), L, 1.0 / L, w, w / L};
     double St_c = (0.4 + f[4]) * L + ehd_q_(&forms[0], f);
     double ratio = St_c / St;
     ratio = ratio < 0.0 ? 0.0 : (ratio > 1.0 ? 1.0 : ratio);
-    double integral = exp(ehd_q_(&forms[2], f));
-    if (layer == EHD_IMMERSED)
-        integral += exp(ehd_q_(&forms[3], f)) * log((1.0 + delta) / (2.0 * delta));
+    double e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
+    /* 3 St I: the rigid passes, the elastic contact and (immersed) the far field */
+    double passes = (1.0 + 1.0 / (e_n + 1.0 / St)) * exp(ehd_q_(&forms[2], f));
+    double total = passes + pow(eps, 0.4) * St * exp(ehd_q_(&forms[3], f));
+    if (layer == EHD_IMMERSED) {
+        double c = 0.5 / delta;
+        double far = log1p(c) + c * log1p(1.0 / c) - 1.0;
+        double contact = 2.94 * pow(13.87913118903191 * eps * St, 0.4);
+        total += far * (passes + contact * exp(ehd_q_(&forms[4], f)));
+    }
     out->St_c = St_c;
-    out->e_n = 1.0 - pow(ratio, exp(ehd_q_(&forms[1], f)));
-    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * integral);
+    out->e_n = e_n;
+    out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St));
     out->spin_change = (1.0 - out->e_t) / k;
     return 0;
 }

@@ -73,9 +73,8 @@ def barus_range_warning(largest: float, validity: float) -> str:
     return (
         f"the Barus viscosity is outside its validity: the film's pressure reached "
         f"{largest:.3g} Pa, past {validity:.3g} Pa where exp(alpha p) exceeds the Roelands law "
-        "of the same alpha by a factor e; a high-pressure pocket of liquid the Barus law "
-        "freezes collapses in a spike that grows with the film nodes (docs/performance.md): "
-        "use the Roelands law (viscosity roelands)"
+        "of the same alpha by a factor e (docs/model.md, Barus's range): use the Roelands law "
+        "(viscosity roelands)"
     )
 
 

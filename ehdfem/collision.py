@@ -18,6 +18,7 @@ from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
 from .film.reynolds import contact_grid
+from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
@@ -333,9 +334,22 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
         )
         if result.halfspace_range.flagged:
             warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)
+    _check_barus_range(params, physical, normal)
     if params.tangential_speed == 0:
         return result
     return _slide(result, given_mode_one)
+
+
+def _check_barus_range(params, physical, normal: NormalResult) -> None:
+    """Warn (ViscosityRangeWarning) when a Barus film's largest pressure went past the law's
+    validity, :func:`ehdfem.film.viscosity.barus_validity_pressure` (SI, Pa); physical inputs
+    only (scaled ones give no liquid to compare the Roelands law of)."""
+    if physical is None or params.viscosity != "barus":
+        return
+    validity = barus_validity_pressure(physical.alpha, physical.liquid.viscosity)
+    largest = float(np.max(normal.history.pressure)) * physical.scales().pressure
+    if largest > validity:
+        warnings.warn(barus_range_warning(largest, validity), ViscosityRangeWarning, stacklevel=4)
 
 
 def with_tangential(

@@ -712,7 +712,7 @@ def _conductance(left_radius, length, h, p_left, p_right, viscosity: Viscosity):
         return geometric, _ends(slope), None
     ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
     if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
-        raise FilmError("the viscosity overflows (mu/mu0 > 1e308): pressure iterate too high")
+        raise FilmError(viscosity.overflow(np.maximum(p_left, p_right)))
     fluidity = 1.0 / ratio
     mean = (_FLUX_W * fluidity).sum(axis=1)
     dk_dp = _ends(-geometric[:, None] * _FLUX_W * fluidity * dlog)

@@ -91,11 +91,11 @@ def test_film_options_reach_the_collision(capsys):
         "--viscosity",
         "barus",
     ]
-    assert main(["collide", *args, "--pressure-viscosity", "1e-8", "--json", "-"]) == 0
+    assert main(["collide", *args, "--pressure-viscosity", "5e-9", "--json", "-"]) == 0
     result = json.loads(capsys.readouterr().out)
     scale = 0.0965 * 0.2 * np.cos(np.radians(30)) * 6.35e-3 / 3e-4**2
     assert result["cavitation"] == "mass-conserving" and result["viscosity"] == "barus"
-    assert result["alpha"] == pytest.approx(1e-8 * scale, rel=1e-12)
+    assert result["alpha"] == pytest.approx(5e-9 * scale, rel=1e-12)
 
 
 @pytest.mark.parametrize(

@@ -5,15 +5,25 @@ import numpy as np
 import pytest
 
 from ehdfem.collision import film_radii
+from ehdfem.film import reynolds
 from ehdfem.inputs.scales import CollisionParameters
 from meshes import contact
 
 pytestmark = pytest.mark.serial
 
-# delta = 1e-3, 120 film nodes, dry compression 0.03 x0 (St 20): Frontal-Delaunay left a sliver
+# delta = 1e-3, 120 film nodes, dry compression 0.03 x0 (St 20), on the contact grid's earlier
+# law (axis spacing 0.7, far field growing by 8 per rim radius): Frontal-Delaunay left a sliver
 # with its three vertices on the wall face here, and the FE compliance came out NaN.
 DELTA = 1e-3
 SLIVER_CASE = CollisionParameters(St=20.0, eps=0.03**2.5 / (13.88 * 20.0), delta=DELTA)
+EARLIER_KNOTS = ((0.0, 0.7), *reynolds._CONTACT_SPACING_KNOTS[1:])
+
+
+@pytest.fixture
+def earlier_grid_law(monkeypatch):
+    """The contact grid's law on which the sliver was found."""
+    monkeypatch.setattr(reynolds, "_CONTACT_SPACING_KNOTS", EARLIER_KNOTS)
+    monkeypatch.setattr(reynolds, "_CONTACT_SPACING_SLOPE", 8.0)
 
 
 def wall_mesh_shape(algorithm=None):
@@ -33,7 +43,7 @@ def wall_mesh_shape(algorithm=None):
         gmsh.finalize()
 
 
-def test_a_sliver_of_the_frontal_mesher_is_meshed_again():
+def test_a_sliver_of_the_frontal_mesher_is_meshed_again(earlier_grid_law):
     """Frontal-Delaunay alone makes the sliver (shape below 1e-6); the generator's mesh has none
     (shape above SLIVER = 1e-3; an equilateral triangle has 0.43)."""
     assert wall_mesh_shape(contact.FRONTAL_DELAUNAY) < 1e-6

@@ -180,13 +180,12 @@ class RunConfig:
                 "wall_roughness): smooth surfaces have no asperities",
                 "asperities",
             )
-        if self.asperities != "impact":
-            return
-        for name in params.asperities_given():
+        given = params.asperities_given()
+        if self.asperities == "impact" and given:
             raise checks.InputError(
-                f"{name} = {getattr(params, name)!r} acts only with asperities = "
+                f"{given[0]} = {getattr(params, given[0])!r} acts only with asperities = "
                 "'greenwood-tripp' (the impact model has no asperity pressure)",
-                name,
+                given[0],
             )
 
     @property

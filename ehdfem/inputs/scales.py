@@ -258,11 +258,12 @@ class CollisionParameters:
                 "smooth surfaces never touch through the film, so Coulomb friction never acts",
                 "friction_coefficient",
             )
-        for name in self.asperities_given():
+        given = self.asperities_given()
+        if given:
             raise checks.InputError(
-                f"{name} = {getattr(self, name)!r} needs roughness > 0: smooth surfaces "
+                f"{given[0]} = {getattr(self, given[0])!r} needs roughness > 0: smooth surfaces "
                 "have no asperities",
-                name,
+                given[0],
             )
 
     def asperities_given(self) -> list[str]:

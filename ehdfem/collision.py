@@ -17,7 +17,7 @@ import numpy as np
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
-from .film.reynolds import contact_grid
+from .film.reynolds import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
 from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.forces import SphereForce
@@ -40,6 +40,7 @@ from .tangential.superposition import (
 )
 from .threads import one_blas_thread
 
+HARD_IMPACT = 1000.0  # St above which the film grid's rim is refined (contact_spacings)
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
@@ -57,19 +58,45 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
     return rim, max(IMMERSED_OUTER_RADIUS, 10.0 * rim)
 
 
+def contact_spacings(St: float) -> dict:
+    """The film grid's axis spacing and rim spacing (relative to the contact's) and its outlet
+    radius (by the rim radius), scaled, no unit (:func:`ehdfem.film.reynolds.contact_grid`'s
+    keywords), for the Stokes number St. Up to St = HARD_IMPACT the grid's own, 0.2, 0.3 and
+    1.5. Above it the thinnest film is the exit constriction at the rim of a contact flattened
+    far more than the film is thick. Its width relative to the contact radius is about
+    (H_min/C)^(2/3) (the gap outside a Hertz contact opens as the 3/2 power of the distance
+    from its rim), and H_min/C, the thinnest film over the dry compression, falls as St^(-3/4)
+    whatever eps (docs/model.md, "Film grid"): with q = (HARD_IMPACT/St)^(1/2) the rim's spacing
+    is 0.3 q (at least 0.03), the outlet beyond it, where the film opens, is passed within
+    1 + 0.5 q^(3/5) rims (at least 1.25, which keeps neighbouring elements within 15 % of each
+    other), and the axis, where the film is then four times the thinnest, takes 0.2 q^(-4/5)
+    (at most 0.5): 0.095, 1.25 and 0.5 at St = 1e4.
+    """
+    if St <= HARD_IMPACT:
+        return {}
+    q = np.sqrt(HARD_IMPACT / St)
+    return {
+        "axis_spacing": min(0.5, AXIS_SPACING * q**-0.8),
+        "rim_spacing": max(0.03, RIM_SPACING * q),
+        "outlet_radius": max(1.25, 1.0 + (OUTLET_RADIUS - 1.0) * q**0.6),
+    }
+
+
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
     """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.reynolds.contact_grid` graded
-    to the rim of :func:`film_extent`. A thin layer's grid ends at least 1.48 rims out (eps^(1/5)
-    is cut to that at tiny St and large eps); an immersed one has a node at the sphere's radius
-    1/sqrt(delta), where the film's shear integrals end. The rigid approach needs no grading of
-    its own: the film's conductances make its force exact on any grid
+    to the rim of :func:`film_extent`, with the spacings of :func:`contact_spacings` (the
+    grid's own up to St = HARD_IMPACT). A thin layer's grid ends at least 1.48 rims out
+    (eps^(1/5) is cut to that at tiny St and large eps); an immersed one has a node at the
+    sphere's radius 1/sqrt(delta), where the film's shear integrals end. The rigid approach
+    needs no grading of its own: the film's conductances make its force exact on any grid
     (:mod:`ehdfem.film.reynolds`), so a sphere the film stops before the solids flatten (eps
     1e-12 up to St = 10) stops at the rigid stopping gap on this grid too.
     """
     rim, outer = film_extent(params)
+    spacings = contact_spacings(params.St)
     if params.layer == "thin":
-        return contact_grid(nodes, min(rim, outer / 1.48), outer)
-    return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta))
+        return contact_grid(nodes, min(rim, outer / 1.48), outer, **spacings)
+    return contact_grid(nodes, rim, outer, node_at=1.0 / np.sqrt(params.delta), **spacings)
 
 
 def elasticity(

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from ehdfem import CollisionParameters, film_radii
+from ehdfem.collision import film_extent
 from ehdfem.film.reynolds import Film, contact_grid, radial_grid
 
 pytestmark = pytest.mark.serial
@@ -89,6 +90,26 @@ def test_contact_grid_follows_its_spacing_law(rim, outer, node_at):
     assert np.all(np.abs(spacing[1:] / spacing[:-1] - 1) < 0.17)
     if node_at is not None:
         assert np.min(np.abs(radii - node_at)) < 1e-12
+
+
+@pytest.mark.parametrize("St", [10.0, 1000.0, 1e4, 1e6])
+def test_hard_impacts_grid_the_exit_constriction_finer(St):
+    """The collision's film grid (ehdfem.collision.film_radii): up to St = 1000 the contact
+    grid's own law; above it the rim's spacing relative to the contact's falls as St^(-1/2)
+    (0.095 at St = 1e4, the width of the exit constriction relative to the contact radius,
+    (H_min/C)^(2/3) with H_min/C ~ St^(-3/4)), at least 0.03, and the axis's rises to at most
+    0.5; the grid stays smooth (neighbouring spacings within 17 %)."""
+    params = CollisionParameters(St=St, eps=1e-9, layer="thin", p_cav=-1e5)
+    radii = film_radii(params)
+    rim, _ = film_extent(params)
+    spacing = np.diff(radii)
+    at_rim = spacing[np.searchsorted(radii, rim) - 1]
+    in_contact = spacing[np.searchsorted(radii, 0.6 * rim)]
+    expected_rim = 0.3 * min(1.0, np.sqrt(1000.0 / St))
+    assert at_rim / in_contact == pytest.approx(max(0.03, expected_rim), rel=0.06)
+    expected_axis = 0.2 if St <= 1000.0 else 0.5
+    assert spacing[0] / in_contact == pytest.approx(expected_axis, rel=0.03)
+    assert np.all(np.abs(spacing[1:] / spacing[:-1] - 1) < 0.17)
 
 
 @pytest.mark.parametrize("St, eps, delta", [(20.0, 1e-3, 0.01), (50.0, 0.1, 0.04)])

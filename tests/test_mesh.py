@@ -4,6 +4,7 @@ import gmsh
 import numpy as np
 import pytest
 
+from ehdfem import collision
 from ehdfem.collision import film_radii
 from ehdfem.film import reynolds
 from ehdfem.inputs.scales import CollisionParameters
@@ -16,13 +17,12 @@ pytestmark = pytest.mark.serial
 # with its three vertices on the wall face here, and the FE compliance came out NaN.
 DELTA = 1e-3
 SLIVER_CASE = CollisionParameters(St=20.0, eps=0.03**2.5 / (13.88 * 20.0), delta=DELTA)
-EARLIER_KNOTS = ((0.0, 0.7), *reynolds._CONTACT_SPACING_KNOTS[1:])
 
 
 @pytest.fixture
 def earlier_grid_law(monkeypatch):
     """The contact grid's law on which the sliver was found."""
-    monkeypatch.setattr(reynolds, "_CONTACT_SPACING_KNOTS", EARLIER_KNOTS)
+    monkeypatch.setattr(collision, "contact_spacings", lambda St: {"axis_spacing": 0.7})
     monkeypatch.setattr(reynolds, "_CONTACT_SPACING_SLOPE", 8.0)
 
 

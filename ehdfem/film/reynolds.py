@@ -70,43 +70,65 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
 
 
 # The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
-# contact_grid): knots (rho, spacing) and the slope beyond the last knot.
-_CONTACT_SPACING_KNOTS = ((0.0, 0.2), (0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0), (1.0, 0.3), (1.5, 4.35))
+# contact_grid): knots (rho, spacing), of which the axis's and the rim's spacing and the outlet's
+# radius (where the spacing is back to 4.35) are the caller's, and the slope beyond the last knot.
+AXIS_SPACING = 0.2
+RIM_SPACING = 0.3
+OUTLET_RADIUS = 1.5
+_CONTACT_SPACING_KNOTS = (
+    (0.0, AXIS_SPACING),
+    (0.4, 1.0),
+    (1.0 - 0.65 / 3.0, 1.0),
+    (1.0, RIM_SPACING),
+    (OUTLET_RADIUS, 4.35),
+)
 _CONTACT_SPACING_SLOPE = 16.0
 
 
 def contact_grid(
-    n: int, rim_radius: float, outer_radius: float, node_at: float | None = None
+    n: int,
+    rim_radius: float,
+    outer_radius: float,
+    node_at: float | None = None,
+    axis_spacing: float = AXIS_SPACING,
+    rim_spacing: float = RIM_SPACING,
+    outlet_radius: float = OUTLET_RADIUS,
 ) -> np.ndarray:
     """Film nodes graded to a contact rim R_c, by sqrt(a x0).
 
-    The spacing is c s(R/R_c), s piecewise linear: 0.2 on the axis (where a soft rebound's film
-    is thinnest), 1 from 0.4 R_c to 0.78 R_c, down to 0.3 at the rim (where a hard impact's exit
-    constriction makes the film thinnest), up to 4.35 at 1.5 R_c and growing by 16 per R_c
-    beyond, so the far field grows geometrically and costs a logarithmic number of nodes. The
-    nodes sit at equal steps of int dR / s(R/R_c), with c set by n. ``node_at``: a radius given
-    a node of its own if it lies inside the grid (the sphere's radius, where the immersed film's
-    shear integrals end).
+    The spacing is c s(R/R_c), s piecewise linear: ``axis_spacing`` (0.2) on the axis (where a
+    soft rebound's film is thinnest), 1 from 0.4 R_c to 0.78 R_c, down to ``rim_spacing`` (0.3)
+    at the rim (where a hard impact's exit constriction makes the film thinnest), up to 4.35 at
+    ``outlet_radius`` (1.5) R_c and growing by 16 per R_c beyond, so the far field grows
+    geometrically and costs a logarithmic number of nodes. The nodes sit at equal steps of
+    int dR / s(R/R_c), with c set by n. ``node_at``: a radius given a node of its own if it lies
+    inside the grid (the sphere's radius, where the immersed film's shear integrals end).
     """
     rim_radius = checks.positive("rim_radius", rim_radius)
     outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
+    axis_spacing = checks.number("axis_spacing", axis_spacing, lower=0.01, upper=1.0)
+    rim_spacing = checks.number("rim_spacing", rim_spacing, lower=0.01, upper=1.0)
+    outlet_radius = checks.number(
+        "outlet_radius", outlet_radius, lower=1.0, upper=3.0, lower_open=True
+    )
     if node_at is not None and node_at <= rim_radius:
         node_at = None
-    radii = graded_grid(n, _contact_spacing(outer_radius / rim_radius), rim_radius, node_at)
+    law = ((0.0, axis_spacing), *_CONTACT_SPACING_KNOTS[1:3], (1.0, rim_spacing))
+    law = (*law, (outlet_radius, _CONTACT_SPACING_KNOTS[4][1]))
+    radii = graded_grid(n, _contact_spacing(law, outer_radius / rim_radius), rim_radius, node_at)
     radii[-1] = outer_radius  # not rim_radius * (outer_radius / rim_radius)
     return radii
 
 
-def _contact_spacing(end: float) -> tuple[np.ndarray, np.ndarray]:
-    """(rho, s) knots of the contact grid's spacing law (:func:`contact_grid`) out to the grid's
-    end rho = R_end / R_c, both by the rim radius R_c."""
-    knots = [(rho, s) for rho, s in _CONTACT_SPACING_KNOTS if rho < end]
-    last_rho, last_s = _CONTACT_SPACING_KNOTS[len(knots) - 1]
+def _contact_spacing(law, end: float) -> tuple[np.ndarray, np.ndarray]:
+    """(rho, s) knots of the contact grid's spacing ``law`` (its knots (rho, s), then the slope
+    _CONTACT_SPACING_SLOPE; :func:`contact_grid`) out to the grid's end rho = R_end / R_c, both
+    by the rim radius R_c."""
+    knots = [(rho, s) for rho, s in law if rho < end]
+    last_rho, last_s = law[len(knots) - 1]
     slope = _CONTACT_SPACING_SLOPE
-    if len(knots) < len(_CONTACT_SPACING_KNOTS):
-        slope = (_CONTACT_SPACING_KNOTS[len(knots)][1] - last_s) / (
-            _CONTACT_SPACING_KNOTS[len(knots)][0] - last_rho
-        )
+    if len(knots) < len(law):
+        slope = (law[len(knots)][1] - last_s) / (law[len(knots)][0] - last_rho)
     rho = np.array([k[0] for k in knots] + [end])
     spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
     return rho, spacing
@@ -460,7 +482,9 @@ class Film:
             slope = h_right - h_left + length[0] * curved
             if slope <= 0.0:
                 break
-            xi = min(max(xi - excess / slope, 0.0), 1.0)
+            previous, xi = xi, min(max(xi - excess / slope, 0.0), 1.0)
+            if abs(xi - previous) <= 1e-15:
+                break
         return xi
 
     def _elements(self, film_thickness: np.ndarray):

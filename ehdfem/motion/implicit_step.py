@@ -141,6 +141,7 @@ class ImplicitStep:
         self._loaded: LoadedThickness | None = None
         self.factor = None
         self.factorisations = 0
+        self._last_deflection = None
 
     def thickness(self, pressure, gap):
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
@@ -159,7 +160,7 @@ class ImplicitStep:
         mean radial displacement C_r P (by x0; None without the shear traction, without the
         surface motion), T formed with H0 = X + S(R) + C P; with asperities H also carries
         their load, H = H0 + W_shear + C P_a(H) (unless ``loaded`` is False)."""
-        h0 = gap + self.undeformed + self.compliance @ pressure
+        h0 = gap + self.undeformed + self._deflection(pressure)
         motion = self.surface_motion
         radial = None if motion is None else motion.displacement(pressure)
         opening = None
@@ -169,6 +170,14 @@ class ImplicitStep:
         if self.asperities is not None and loaded:
             h0 = self.asperities.thickness(h0, self.compliance)
         return h0, opening, radial
+
+    def _deflection(self, pressure) -> np.ndarray:
+        """C P (by x0), kept for the latest pressure: the damping's check of an update and the
+        next iterate's residual ask for the same one."""
+        last = self._last_deflection
+        if last is None or not np.array_equal(last[0], pressure):
+            last = self._last_deflection = (pressure.copy(), self.compliance @ pressure)
+        return last[1]
 
     def loaded(self) -> LoadedThickness | None:
         """The latest iterate's thickness under the asperities' load with its sensitivities
@@ -199,7 +208,8 @@ class ImplicitStep:
             it, cavitated, fill = self._residual(
                 pressure, gap, velocity, fill, cavitated, step, a0, past, time
             )
-            if refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1.0) > 0.3:
+            fresh = refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1) > 0.3
+            if fresh:
                 self._factorise(it, step, a0, fill)
                 refresh = False
             update = self._newton_update(it, step, a0, fill)
@@ -226,10 +236,13 @@ class ImplicitStep:
                 return StepSolution(pressure, gap, velocity, fill, cavities, it.state, iteration)
             if previous_norm is not None and sets == previous_sets:
                 # refresh a stale factorisation when its contraction would need > 6 more sweeps
-                # (not while the fixed nodes move: that slows the iteration whatever the matrix)
+                # (not while the fixed nodes move: that slows the iteration whatever the matrix;
+                # and not on a fresh one's first update, whose ratio to the stale one's update
+                # is no contraction rate: only if the iteration diverges)
                 ratio = norm / previous_norm
                 tol = self.options.newton_tol
-                refresh = ratio >= 1.0 or (ratio > 0.1 and np.log(tol / norm) / np.log(ratio) > 6)
+                slow = 0.1 < ratio < 1.0 and np.log(tol / norm) / np.log(ratio) > 6
+                refresh = ratio >= 1.0 or (slow and not fresh)
             previous_sets, previous_norm = sets, norm
         self.factor = None
         raise StepFailed("Newton did not converge", np.abs(it.rhs).max())

@@ -1,0 +1,106 @@
+"""The half-space collision at the defaults, timed against the code of an earlier commit.
+
+Each case (a head-on collision at the default numerics, 240 film nodes, half-space solids) is
+run in a fresh Python process on the current checkout and on a git worktree of COMMIT, in
+alternation, REPEATS times each; the fastest run of each counts (runs of about a second vary
+by 15 % on a busy machine, and the minimum is the least disturbed). One BLAS thread, as in every
+collision. Writes benchmarks/results/against_commit.json (seconds, implicit steps, Newton
+iterations and e_n of both, and the ratio of the times) and prints a line per case.
+
+Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]   (about 2 minutes at 5)
+
+The commit's code is imported as it stood (its own ``ehdfem`` package), so the cases use only
+the API every version has had: ``collide(CollisionParameters(St=..., eps=..., layer=...,
+p_cav=...))``.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results"
+CASES = {  # name: CollisionParameters keywords (scaled inputs, DSH 1986)
+    "thin St=10 eps=1e-3 P_cav=-2": dict(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0),
+    "immersed St=50 eps=1e-4": dict(St=50.0, eps=1e-4, layer="immersed"),
+    "thin St=1000 eps=1e-6": dict(St=1000.0, eps=1e-6, layer="thin"),
+    "immersed St=20 eps=1e-3 P_cav=-2": dict(St=20.0, eps=1e-3, layer="immersed", p_cav=-2.0),
+}
+TIMER = """
+import json, sys, time
+from ehdfem import CollisionParameters, collide
+params = CollisionParameters(**json.loads(sys.argv[1]))
+collide(params)  # the first run pays for imports and caches
+start = time.perf_counter()
+normal = collide(params).normal
+print(json.dumps({"seconds": time.perf_counter() - start, "steps": normal.steps,
+                  "newton_iterations": getattr(normal, "newton_iterations", None),
+                  "e_n": normal.e_n}))
+"""
+
+
+def run(source: Path, case: dict) -> dict:
+    """One timed collision with the ``ehdfem`` package of ``source``, in its own process."""
+    env = {**os.environ, "PYTHONPATH": str(source), "OPENBLAS_NUM_THREADS": "1"}
+    env["OMP_NUM_THREADS"] = "1"
+    out = subprocess.run(
+        [sys.executable, "-c", TIMER, json.dumps(case)],
+        env=env,
+        cwd=source,
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main(commit: str, repeats: int = 5):
+    rows = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        old = Path(tmp) / "old"
+        subprocess.run(
+            ["git", "worktree", "add", "--detach", str(old), commit],
+            cwd=ROOT,
+            check=True,
+            capture_output=True,
+        )
+        try:
+            for name, case in CASES.items():
+                best = {"current": None, "old": None}
+                for _ in range(repeats):
+                    for label, source in (("current", ROOT), ("old", old)):
+                        result = run(source, case)
+                        if best[label] is None or result["seconds"] < best[label]["seconds"]:
+                            best[label] = result
+                ratio = best["current"]["seconds"] / best["old"]["seconds"]
+                rows[name] = {**best, "time_ratio": ratio}
+                print(
+                    f"{name:34s} current {best['current']['seconds']:.3f} s "
+                    f"({best['current']['steps']} steps), {commit[:10]} "
+                    f"{best['old']['seconds']:.3f} s ({best['old']['steps']} steps): "
+                    f"ratio {ratio:.3f}",
+                    flush=True,
+                )
+        finally:
+            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT)
+    head = subprocess.run(
+        ["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True
+    ).stdout.strip()
+    RESULTS.mkdir(exist_ok=True)
+    out = RESULTS / "against_commit.json"
+    out.write_text(
+        json.dumps(
+            {"current": head, "against": commit, "repeats": repeats, "cases": rows}, indent=2
+        )
+        + "\n"
+    )
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit("usage: against_commit.py COMMIT [REPEATS]")
+    main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 5)

@@ -5,7 +5,7 @@
 #   setup    only the set-up
 #   example  the main job: an oblique collision with both models (half-space, FE), results
 #            printed, plots, JSON and the FE fields (XDMF) in out/example/
-#   test     the test suite: serial pytest, then the MPI tests under mpirun -n 2
+#   test     the test suite: pytest in two processes, then the MPI tests under mpirun -n 2
 #   lint     ruff check and ruff format --check
 #   bench    the benchmarks in benchmarks/ (writes benchmarks/results/*.json)
 #   study    the shipped study (studies/kantak_davis.toml): sweep, critical St, fits, figures
@@ -89,7 +89,9 @@ setup() {
 }
 
 run_tests() {
-    "$PY" -m pytest -q "$@"
+    # The whole suite in two processes (pytest-xdist, a test file per process at a time: the
+    # files share nothing but the FE caches, which are written atomically), one per core.
+    "$PY" -m pytest -q -n 2 --dist loadfile "$@"
     # The same suite on two MPI ranks, without the tests marked serial.
     # Rank 0 reports; the other rank's report goes to a log (mpirun fails if any rank fails).
     local status=0

@@ -154,6 +154,13 @@ def hard_corners():
     ]
 
 
+SELECTIONS = {  # the command line's choice: its cases and the file it writes
+    "cases": (cases, "accuracy.json"),
+    "corners": (corners, "accuracy_corners.json"),
+    "hard": (hard_corners, "accuracy_hard_corners.json"),
+}
+
+
 def parameters(layer, St, eps, options, model):
     base = {**dict(eps=eps, layer=layer, angle=30.0, delta=0.01), **options}
     if St == "near":  # St_c with the fixed OLD numerics, so the case does not move with defaults
@@ -264,16 +271,8 @@ def main(stored_only=False, selection="cases"):
     accuracy_hard_corners.json."""
     RESULTS.mkdir(exist_ok=True)
     references = ResultTable(RESULTS / "accuracy_references.csv", ("case", "grid"))
-    grid = {"cases": cases, "corners": corners, "hard": hard_corners}[selection]()
-    rows = []
-    output = (
-        RESULTS
-        / {
-            "cases": "accuracy.json",
-            "corners": "accuracy_corners.json",
-            "hard": "accuracy_hard_corners.json",
-        }[selection]
-    )
+    select, name = SELECTIONS[selection]
+    grid, rows, output = select(), [], RESULTS / name
     for case in grid:
         print(case[0], flush=True)
         try:

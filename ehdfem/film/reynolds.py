@@ -70,18 +70,14 @@ def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
 
 
 # The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
-# contact_grid): knots (rho, spacing), of which the axis's and the rim's spacing and the outlet's
-# radius (where the spacing is back to 4.35) are the caller's, and the slope beyond the last knot.
+# contact_grid): the caller's spacing on the axis and at the rim and outlet radius (where the
+# spacing is back to _OUTLET_SPACING), the fixed knots (rho, spacing) inside the contact, and
+# the slope beyond the outlet.
 AXIS_SPACING = 0.2
 RIM_SPACING = 0.3
 OUTLET_RADIUS = 1.5
-_CONTACT_SPACING_KNOTS = (
-    (0.0, AXIS_SPACING),
-    (0.4, 1.0),
-    (1.0 - 0.65 / 3.0, 1.0),
-    (1.0, RIM_SPACING),
-    (OUTLET_RADIUS, 4.35),
-)
+_CONTACT_INTERIOR_KNOTS = ((0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0))
+_OUTLET_SPACING = 4.35
 _CONTACT_SPACING_SLOPE = 16.0
 
 
@@ -113,8 +109,12 @@ def contact_grid(
     )
     if node_at is not None and node_at <= rim_radius:
         node_at = None
-    law = ((0.0, axis_spacing), *_CONTACT_SPACING_KNOTS[1:3], (1.0, rim_spacing))
-    law = (*law, (outlet_radius, _CONTACT_SPACING_KNOTS[4][1]))
+    law = (
+        (0.0, axis_spacing),
+        *_CONTACT_INTERIOR_KNOTS,
+        (1.0, rim_spacing),
+        (outlet_radius, _OUTLET_SPACING),
+    )
     radii = graded_grid(n, _contact_spacing(law, outer_radius / rim_radius), rim_radius, node_at)
     radii[-1] = outer_radius  # not rim_radius * (outer_radius / rim_radius)
     return radii

@@ -14,10 +14,11 @@ trajectories have been digitised from the paper's figures: the five choices of t
 the contacts (the history force, in flight and in the contacts; the wall's added mass, gravity
 in the contacts, the exit above the cavity, the roughness), each switched on alone on the
 steady flight without them, and from the base (all five on) the history kernel and its memory,
-the history force left out of the contacts, the drag in the contacts, the assumed roughness
-and e_dry over their plausible ranges, cavitation and the hand-over tolerance (the drag law
-and the added mass were varied on the steady flight before, docs/bounce.md). Every run is
-followed until the sphere rests.
+the history force left out of the contacts, the drag in the contacts, the wall-bounded history
+kernel, the assumed roughness, e_dry and suction limit (ambient minus cavity pressure: 1 atm,
+or down to 0.1 atm if dissolved gas cavitates first) over their plausible ranges, cavitation
+and the hand-over tolerance (the drag law and the added mass were varied on the steady flight
+before, docs/bounce.md). Every run is followed until the sphere rests.
 Nothing is fitted to the trajectories. The digitised points are not shipped (third-party data,
 see docs/bounce.md); given as a CSV file (comment lines starting with #, columns case, time_s
 [s, 0 at the first impact], gap_m [m]) they are compared with the model and drawn in the
@@ -42,6 +43,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.bounce.trajectory import (  # noqa: E402
+    ATMOSPHERE,
     BounceInputs,
     FarField,
     bounce,
@@ -82,12 +84,19 @@ CAUSES = {  # the history force and the drag of the contact, from the base
     "history force in flight only": ({"contact_history": False}, {}),
     "+ drag in contact": ({"contact_drag": True}, {}),
     "memory of the approach only": ({"history_memory": "approach"}, {}),
+    "wall-bounded history kernel": ({"history": "mei-adrian-wall"}, {}),
+    "wall kernel, memory of the approach only": (
+        {"history": "mei-adrian-wall", "history_memory": "approach"},
+        {},
+    ),
 }
-SENSITIVITY = {  # the assumed surface inputs over their plausible ranges, from the base
+SENSITIVITY = {  # the assumed surface inputs and suction limit over plausible ranges, from the base
     "roughness 0.3e-4 a": ({"roughness_by_radius": 0.3e-4}, {}),
     "roughness 3e-4 a": ({"roughness_by_radius": 3e-4}, {}),
     "e_dry = 0.9": ({"e_dry": 0.9}, {}),
     "e_dry = 1": ({"e_dry": 1.0}, {}),
+    "suction limit 0.25 atm": ({"ambient_pressure": 0.25 * ATMOSPHERE}, {}),
+    "suction limit 0.1 atm": ({"ambient_pressure": 0.1 * ATMOSPHERE}, {}),
 }
 VARIANTS = {  # the choices, then the other modelling variations from the base
     **CHOICES,

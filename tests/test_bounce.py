@@ -136,10 +136,13 @@ def test_cavitation_capped_suction_solves_the_truncated_reynolds_film(cavitation
 
 
 @pytest.mark.serial
-@pytest.mark.parametrize("e_dry", [1.0, 0.9])
-def test_energy_is_accounted_for_over_a_bounce(e_dry):
+@pytest.mark.parametrize(
+    ("e_dry", "history"), [(1.0, "mei-adrian"), (0.9, "mei-adrian"), (0.9, "mei-adrian-wall")]
+)
+def test_energy_is_accounted_for_over_a_bounce(e_dry, history):
     """Released from 3 mm, one bounce to its apex without cavitation, every choice of the
-    flight on (history force, the image's added mass, gravity in the contact): kinetic
+    flight on (history force, with Mei & Adrian's kernel or with the wall-bounded one, the
+    image's added mass, gravity in the contact): kinetic
     1/2 M(h) v^2 + potential (weight - buoyancy) + elastic energy + the work of the drag and of
     the history force on the liquid + film dissipation + exit losses (the dry loss
     (1 - e_dry^2) of the exit's kinetic energy) stay equal to the release energy at every
@@ -150,7 +153,9 @@ def test_energy_is_accounted_for_over_a_bounce(e_dry):
     balance sees it), and the exit keeps the kinetic energy across the added mass's change,
     e = e_dry V_exit V0 sqrt(M(h_c) / M(h_exit)) / impact speed. The exit loss is the dry loss
     plus the elastic energy left in the solids at exit, below 1e-6 of the impact energy."""
-    inputs = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=e_dry, cavitation="none")
+    inputs = BounceInputs(
+        **OIL_BOUNCE, release_height=3e-3, e_dry=e_dry, cavitation="none", history=history
+    )
     result = bounce(inputs, max_bounces=1)
     contact = result.contacts[0]
     assert contact.status == "rebound" and contact.apex_gap > 0.1 * inputs.diameter

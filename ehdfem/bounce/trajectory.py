@@ -394,10 +394,12 @@ class FarField:
         """m + C_M m_f [kg], the inertia far from the wall."""
         return self.mass + self.inputs.added_mass * self.fluid_mass
 
-    def history_weights(self, velocity: float) -> np.ndarray:
-        """The weights w_i of the history kernel at the Reynolds number of ``velocity``
+    def history_weights(self, gap: float, velocity: float) -> np.ndarray:
+        """The weights w_i of the history kernel at the Reynolds number of ``velocity`` [m/s]
+        and, for the wall-bounded kernel, the gap ``gap`` [m]
         (:func:`ehdfem.bounce.unsteady.history_weights`)."""
-        return unsteady.history_weights(self.inputs.history, float(self.reynolds(velocity)))
+        reynolds = float(self.reynolds(velocity))
+        return unsteady.history_weights(self.inputs.history, reynolds, gap / self.inputs.radius)
 
     def reynolds(self, velocity):
         """Re = rho_f |v| 2a / mu."""
@@ -474,7 +476,7 @@ class FarField:
         F_H = -6 pi mu a sum_i w_i(Re) z_i (:meth:`history_force`), dz_i/dt = -z_i/tau_i + dv/dt."""
         gap, velocity, memory = max(y[0], 1e-300), y[1], y[4:]
         drag = self.drag(gap, velocity)
-        history = self.history_force(velocity, memory)
+        history = self.history_force(gap, velocity, memory)
         mass, slope = self.inertia(gap)
         acceleration = (drag - self.net_weight + history - 0.5 * slope * velocity**2) / mass
         rates = np.empty(len(y))
@@ -482,12 +484,12 @@ class FarField:
         rates[4:] = -memory / self.relaxation_times + acceleration
         return rates
 
-    def history_force(self, velocity: float, memory) -> float:
-        """F_H = -6 pi mu a sum_i w_i(Re) z_i [N]: the memory z_i [m/s] weighted by the kernel
-        at the current Reynolds number (0 without a history force)."""
+    def history_force(self, gap: float, velocity: float, memory) -> float:
+        """F_H = -6 pi mu a sum_i w_i(Re, h) z_i [N]: the memory z_i [m/s] weighted by the
+        kernel at the current Reynolds number and gap [m] (0 without a history force)."""
         if not len(memory):
             return 0.0
-        return -self.stokes * float(self.history_weights(velocity) @ memory)
+        return -self.stokes * float(self.history_weights(gap, velocity) @ memory)
 
     def contact_history_force(self, gap: float, speed: float, memory) -> HistoryForce:
         """The history force in the film model of a contact handed over at ``gap`` [m] (its x0)
@@ -497,7 +499,7 @@ class FarField:
         return HistoryForce(
             gap / self.inputs.radius,
             self.relaxation_times * speed / gap,
-            lambda velocity: self.history_weights(velocity * speed),
+            lambda velocity: self.history_weights(gap, velocity * speed),
             np.asarray(memory, dtype=float) / speed,
         )
 
@@ -849,7 +851,7 @@ class _Bounce:
         rebound_speed = normal.e_n * speed * math.sqrt(mass / far.inertia(exit_gap)[0])
         jump = (np.append(times, times[-1]), np.append(velocities, rebound_speed))
         memory, history_impulse, history_work = self._carry_memory(
-            start.memory, *(jump if normal.rebound else (times, velocities))
+            start.gap, start.memory, *(jump if normal.rebound else (times, velocities))
         )
         history_work = start.history_work + inputs.contact_history * history_work
         self._record_contact(start, times, samples, energy_unit, history_work[: len(times)])
@@ -915,9 +917,10 @@ class _Bounce:
         memory = state.memory + (velocity - state.velocity) if len(state.memory) else state.memory
         return replace(state, velocity=velocity, drag_work=state.drag_work + work, memory=memory)
 
-    def _carry_memory(self, memory, times, velocities) -> tuple[np.ndarray, float, np.ndarray]:
-        """The history force's memory after the contact whose velocity ``velocities`` [m/s] at
-        ``times`` [s] it follows (the exit's jump included as the last sample), the impulse
+    def _carry_memory(self, gap, memory, times, velocities) -> tuple[np.ndarray, float, np.ndarray]:
+        """The history force's memory after the contact handed over at ``gap`` [m] (the gap of
+        the kernel's weights in it) whose velocity ``velocities`` [m/s] at ``times`` [s] it
+        follows (the exit's jump included as the last sample), the impulse
         [N s] of the history force during it (applied in the contact's time stepping with
         ``contact_history``, else only measured) and its work on the liquid from the hand-over
         at each sample, -int F_H v dt [J] (trapezoidal rule, as the film model's
@@ -930,7 +933,7 @@ class _Bounce:
             return memory, 0.0, np.zeros(len(times))
         carried = unsteady.carry_memory(memory, times, velocities, far.relaxation_times)
         pairs = zip(velocities, carried, strict=True)
-        force = np.array([far.history_force(v, z) for v, z in pairs])
+        force = np.array([far.history_force(gap, v, z) for v, z in pairs])
         impulse = float(trapezoid(force, times))
         work = -cumulative_trapezoid(force * velocities, times, initial=0.0)
         if far.inputs.history_memory == "reset":

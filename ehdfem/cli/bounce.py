@@ -100,7 +100,9 @@ def _add_flight_choices(model) -> None:
         "--history",
         choices=HISTORY_KERNELS,
         default=HISTORY_KERNELS[0],
-        help="history (Basset) force in flight: Mei & Adrian's finite-Re kernel, Basset's, none",
+        help="history (Basset) force in flight: Mei & Adrian's finite-Re kernel; the same with "
+        "the wall-bounded unsteady Stokes kernel in place of Basset's (mei-adrian-wall); "
+        "Basset's; none",
     )
     model.add_argument(
         "--history-memory",

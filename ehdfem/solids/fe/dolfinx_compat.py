@@ -1,10 +1,12 @@
-"""Every DOLFINx call of the package: the FE solids, their fields and the disk film.
+"""Every DOLFINx call of the package: the FE solids, their fields, the disk film and the liquid
+of the wall-bounded history kernel.
 
 The package is written against Debian's DOLFINx 0.5.2. Nothing outside this module imports
-``dolfinx`` (:mod:`ehdfem.solids.fe` and :mod:`ehdfem.tangential.disk` reach it only through these
-functions), so moving to a newer DOLFINx means editing this module and nothing else. The
-docstrings of the calls that changed name, argument form or return type in a later release
-name what the 0.5 call is and what replaces it later; the others (``fem.form``,
+``dolfinx`` (:mod:`ehdfem.solids.fe`, :mod:`ehdfem.tangential.disk` and
+:mod:`ehdfem.bounce.wall_flow` reach it only through these functions), so moving to a newer
+DOLFINx means editing this module and nothing else. The docstrings of the calls that changed
+name, argument form or return type in a later release name what the 0.5 call is and what
+replaces it later; the others (``fem.form``,
 ``fem.Function``, ``fem.Expression``, ``fem.dirichletbc``, ``fem.locate_dofs_*``,
 ``fem.assemble_scalar``, ...) kept their form up to 0.10. UFL (forms) and petsc4py (matrices,
 factorisations) are separate packages, used directly.
@@ -304,4 +306,73 @@ def solve_nonlinear(residual, jacobian, bcs, solution, configure):
     finally:
         solution.x.scatter_forward()
         for petsc_object in (snes, matrix, vector):
+            petsc_object.destroy()
+
+
+def taylor_hood_space(mesh):
+    """The mixed space of a P2 velocity (one component per geometric dimension) and a P1
+    pressure.
+
+    0.5: ``fem.FunctionSpace(mesh, ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 2),
+    ufl.FiniteElement("Lagrange", cell, 1)]))``; from 0.7 the elements are built with
+    ``basix.ufl.element`` and ``basix.ufl.mixed_element``.
+    """
+    import ufl
+    from dolfinx import fem
+
+    cell = mesh.ufl_cell()
+    velocity = ufl.VectorElement("Lagrange", cell, 2)
+    return fem.FunctionSpace(
+        mesh, ufl.MixedElement([velocity, ufl.FiniteElement("Lagrange", cell, 1)])
+    )
+
+
+def velocity_component_dofs(space, component: int, facets) -> np.ndarray:
+    """The local dofs (in ``space``'s numbering) of ``component`` of the velocity (sub-space 0)
+    of a :func:`taylor_hood_space` on the mesh ``facets``."""
+    from dolfinx import fem
+
+    sub = space.sub(0).sub(component)
+    return fem.locate_dofs_topological(sub, space.mesh.topology.dim - 1, facets)
+
+
+def velocity_component_condition(space, component: int, facets, value: float):
+    """The Dirichlet condition ``value`` on ``component`` of the velocity of a
+    :func:`taylor_hood_space` on the mesh ``facets``."""
+    from dolfinx import fem
+    from petsc4py import PETSc
+
+    dofs = velocity_component_dofs(space, component, facets)
+    return fem.dirichletbc(PETSc.ScalarType(value), dofs, space.sub(0).sub(component))
+
+
+def solve_linear(bilinear, linear, bcs, solution) -> None:
+    """Solve the linear problem a(u, v) = L(v) with the Dirichlet ``bcs`` (lifted) by a direct
+    LU factorisation (MUMPS) into the function ``solution``; every PETSc object is destroyed
+    after the solve (no options are left in PETSc's database, so it can be called any number of
+    times).
+
+    0.5: ``fem.petsc.assemble_matrix``, ``assemble_vector``, ``apply_lifting`` and ``set_bc``
+    (as :func:`solve_nonlinear`); ``fem.petsc.LinearProblem`` would do the same but registers
+    new options at each construction. 0.10 reworked these PETSc helpers (check ``set_bc``'s and
+    ``apply_lifting``'s arguments there).
+    """
+    import dolfinx.fem.petsc
+    from petsc4py import PETSc
+
+    matrix = assemble_matrix(bilinear, bcs)
+    vector = dolfinx.fem.petsc.assemble_vector(linear)
+    dolfinx.fem.petsc.apply_lifting(vector, [bilinear], [bcs])
+    vector.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+    dolfinx.fem.petsc.set_bc(vector, bcs)
+    ksp = PETSc.KSP().create(solution.function_space.mesh.comm)
+    try:
+        ksp.setOperators(matrix)
+        ksp.setType("preonly")
+        ksp.getPC().setType("lu")
+        ksp.getPC().setFactorSolverType("mumps")
+        ksp.solve(vector, petsc_vector(solution))
+        solution.x.scatter_forward()
+    finally:
+        for petsc_object in (ksp, matrix, vector):
             petsc_object.destroy()

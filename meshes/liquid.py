@@ -4,9 +4,9 @@ half-disc centred on the sphere), the sphere of unit radius removed, its lowest 
 z = gap.
 
 Lengths are by the sphere radius a. Elements are ``fine`` on the sphere and on the wall near the
-axis and grow by ``GROWTH`` per unit distance up to outer/8; in the gap (r < a) there are at
-least GAP_ELEMENTS across the local gap gap + r^2/2, so the lubrication flow there is resolved
-at any gap.
+axis and grow by ``growth`` (GROWTH) per unit distance up to outer/8; in the gap (r < a) there
+are at least GAP_ELEMENTS across the local gap gap + r^2/2, so the lubrication flow there is
+resolved at any gap.
 
 Physical groups: surface LIQUID; curves AXIS (r = 0), WALL (z = 0), SPHERE, OUTER.
 """
@@ -20,9 +20,12 @@ GROWTH = 0.15  # element size added per unit distance from the sphere or the wal
 GAP_ELEMENTS = 4  # at least this many elements across the local gap gap + r^2/2 (r < a)
 
 
-def build(gap: float | None, outer: float = 40.0, fine: float = 5e-3) -> None:
+def build(
+    gap: float | None, outer: float = 40.0, fine: float = 5e-3, growth: float = GROWTH
+) -> None:
     """The liquid's geometry and 2-D mesh in the current gmsh model (module docstring); ``gap``
-    None: no wall, the sphere centred in the half-disc."""
+    None: no wall, the sphere centred in the half-disc; ``growth``: the size added per unit
+    distance (GROWTH unless a wake must be resolved)."""
     import gmsh
 
     occ, field = gmsh.model.occ, gmsh.model.mesh.field
@@ -55,7 +58,7 @@ def build(gap: float | None, outer: float = 40.0, fine: float = 5e-3) -> None:
         field.setNumbers(distance, "CurvesList", faces)
         field.setNumber(distance, "NumPointsPerCurve", 400)
         size = field.add("MathEval")
-        field.setString(size, "F", f"Min({fine} + {GROWTH}*(F{distance}{extra}), {largest})")
+        field.setString(size, "F", f"Min({fine} + {growth}*(F{distance}{extra}), {largest})")
         return size
 
     sizes = [growing(curves[SPHERE])]

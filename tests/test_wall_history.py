@@ -46,27 +46,29 @@ def test_steady_impedance_near_a_wall_is_brenner(gap):
 
 @pytest.mark.serial
 def test_laplace_inversion_of_known_kernels():
-    """laplace_fit recovers (i) Basset's kernel from rho^ = 1 (rho = 1 within 0.7 % for
-    1e-6 <= s <= 100, measured 0.62 %), (ii) the cut-off kernel e^(-s/tau) / sqrt(pi s), whose
-    transform gives rho^(k) = k / sqrt(k^2 + 1/tau), as rho = e^(-s/tau) within 0.012 for
-    1e-4 <= s <= 3 tau at tau = 0.01, 0.1 and 1 from the table's k (measured 0.010, 0.0057,
-    0.0058: the kernel is known at 10 k per decade)."""
+    """laplace_fit recovers (i) Basset's kernel from rho^ = 1 (rho = 1 within 0.5 % for
+    1e-6 <= s <= 100, measured 0.33 %), (ii) the cut-off kernel e^(-s/tau) / sqrt(pi s), whose
+    transform gives rho^(k) = k / sqrt(k^2 + 1/tau), as rho = e^(-s/tau) within 0.02 for
+    1e-4 <= s <= 3 tau at tau = 0.01, 0.1 and 1 from the table's k (measured 0.015, 0.0055,
+    0.0055: the kernel is known at 10 k per decade, from s = 1e-4 on)."""
     s = FIT_TIMES
     inside = (s >= 1e-6) & (s <= 100)
-    assert np.max(np.abs(laplace_fit(WALL_K, np.ones_like(WALL_K)) - 1)[inside]) < 7e-3
+    assert np.max(np.abs(laplace_fit(WALL_K, np.ones_like(WALL_K)) - 1)[inside]) < 5e-3
     for tau in (0.01, 0.1, 1.0):
         recovered = laplace_fit(WALL_K, WALL_K / np.sqrt(WALL_K**2 + 1 / tau))
         window = (s >= 1e-4) & (s <= 3 * tau)
-        assert np.max(np.abs(recovered - np.exp(-s / tau))[window]) < 0.012
+        assert np.max(np.abs(recovered - np.exp(-s / tau))[window]) < 0.02
 
 
 @pytest.mark.serial
 def test_wall_kernel_limits():
     """(i) From WALL_FAR on the kernel is Mei & Adrian's, weight for weight; (ii) the wall
     cuts the memory: rho <= 1.02 beyond s = 0.01 at every table gap and falls with the gap at
-    s = 0.1 and 1 (measured 0.34 .. 0.9 at s = 0.1); (iii) the shipped table was made at the
-    gaps and k of the code, and its Z(0) is Brenner's to 2e-4 (measured 1.4e-4 at h = 3e-3 a,
-    the thinnest gap, to 4e-3 at 10 a, where the outer radius 40 a is 3.6 centre distances)."""
+    s = 0.1 and 1 (measured 0.32 .. 0.94 at s = 0.1) and stays positive (its sum of exponentials
+    has non-negative weights), and beyond 10 a it joins K_B - 9/(8 (1 + h))
+    (the steady wall drag at once) continuously to 0.002; (iii) the shipped table was made at the
+    gaps and k of the code, and its Z(0) is Brenner's to 2e-4 (measured 1.6e-4 at h = 0.01 a;
+    the liquid's radius is at least 8 centre distances)."""
     for re in (0.0, 14.0, 150.0):
         far = history_weights("mei-adrian-wall", re, WALL_FAR)
         assert np.array_equal(far, history_weights("mei-adrian", re))
@@ -75,11 +77,12 @@ def test_wall_kernel_limits():
     late = FIT_TIMES >= 0.01
     previous = None
     for gap, steady in zip(WALL_GAPS, table["steady_over_brenner"], strict=True):
-        assert steady == pytest.approx(1.0, abs=2e-4 if gap < 10 else 5e-3)
+        assert steady == pytest.approx(1.0, abs=2e-4)
         rho = wall_ratio(gap)
-        assert np.max(rho[late]) < 1.02
+        assert np.max(rho[late]) < 1.02 and np.min(rho) > 0
         at = [rho[np.argmin(np.abs(FIT_TIMES - s))] for s in (0.1, 1.0)]
         if previous is not None:
             assert all(a >= b for a, b in zip(at, previous, strict=True))
         previous = at
     assert math.isfinite(float(history_weights("mei-adrian-wall", 30.0, 1e-5).sum()))
+    assert np.max(np.abs(wall_ratio(10.0 + 1e-9) - wall_ratio(10.0))) < 2e-3

@@ -44,13 +44,15 @@ sphere moving normal to it, K_h(s), is not Basset's: the wall takes up the momen
 carries away. :mod:`ehdfem.bounce.wall_flow` computes its Laplace transform by finite elements
 at the gaps WALL_GAPS (studies/wall_history_kernel.py, the table WALL_TABLE); :func:`laplace_fit`
 turns it into rho(s) = K_h(s) / K_B(s) (a sum of exponentials with non-negative weights: the
-kernel of a dissipative linear flow is completely monotone), and Mei & Adrian's form is kept
+memory of the Stokes flow, whose operator with the wall is self-adjoint and positive, is
+completely monotone), and Mei & Adrian's form is kept
 with K_h in place of K_B,
 
     K(s) = [ K_h(s)^(-1/2) + c(Re) s ]^(-2),
 
 taken at the current gap (:func:`wall_ratio`) and Reynolds number. At the table's smallest gap
-rho = 1.0 at s = 1e-3, 0.74 at 0.01, 0.34 at 0.1; the wall's effect fades to none at WALL_FAR.
+rho = 1.12 at s = 1e-3, 0.67 at 0.01, 0.32 at 0.1 and 0.076 at 1: the kernel's integral is
+finite (the wall takes up the momentum), and rho^ falls as k at small k.
 """
 
 from __future__ import annotations
@@ -145,24 +147,33 @@ def history_weights(kernel: str, reynolds: float, gap_over_radius: float = math.
 
 def laplace_fit(k, ratio) -> np.ndarray:
     """rho(s) = K_h(s) / K_B(s) at FIT_TIMES of the completely monotone kernel K_h whose
-    Laplace transform is p K_h^(p) = k rho^(k) (p = k^2; ``ratio`` rho^ at the increasing ``k``,
-    held constant beyond them): the sum of exponentials sum_i q_i w_i^B exp(-s / sigma_i)
-    (w^B Basset's weights) with q_i >= 0 whose transform sum_i q_i w_i^B p sigma_i / (1 + p
-    sigma_i) matches k rho^ relative to k at LAPLACE_P, the q_i's second differences weighted
-    by LAPLACE_SMOOTHING (non-negative least squares). rho^ = 1 gives Basset's kernel within
-    0.6 % for 1e-6 <= s <= 100 (tested)."""
-    basset = history_weights("basset", 0.0)
+    Laplace transform is p K_h^(p) = k rho^(k) (p = k^2; ``ratio`` rho^ at the increasing ``k``):
+    the sum of exponentials sum_i w_i exp(-s / sigma_i) with weights w_i = q_i sigma_i^(-1/2)
+    >= 0 (Basset's kernel has q_i nearly constant) whose transform sum_i w_i p sigma_i / (1 + p
+    sigma_i) matches k rho^ relative to k at LAPLACE_P, the q_i's second differences weighted by
+    LAPLACE_SMOOTHING (non-negative least squares: positivity regularises the inversion, which
+    stays ill-conditioned). Beyond the largest k, rho^ is held at its last value; below the
+    smallest it follows the power of k of the two smallest (rho^ ~ k when the kernel's integral
+    is finite, as with a wall; constant for Basset's). rho^ = 1 gives Basset's kernel within
+    0.7 % for 1e-6 <= s <= 100 (tested)."""
+    k, ratio = np.asarray(k, dtype=float), np.asarray(ratio, dtype=float)
     root = np.sqrt(LAPLACE_P)
+    power = np.clip(np.log(ratio[1] / ratio[0]) / np.log(k[1] / k[0]), 0.0, 1.0)
+    target = np.where(
+        root < k[0],
+        ratio[0] * (root / k[0]) ** power,
+        np.interp(np.log(root), np.log(k), ratio),
+    )
+    scale = RELAXATION_TIMES**-0.5
     transforms = (
         LAPLACE_P[:, None] * RELAXATION_TIMES / (1.0 + LAPLACE_P[:, None] * RELAXATION_TIMES)
     )
-    design = transforms * basset / root[:, None]
-    target = np.interp(np.log(root), np.log(np.asarray(k, dtype=float)), ratio)
-    smoothing = LAPLACE_SMOOTHING * np.diff(np.eye(len(basset)), 2, axis=0)
+    design = transforms * scale / root[:, None]
+    smoothing = LAPLACE_SMOOTHING * np.diff(np.eye(len(scale)), 2, axis=0)
     factors, _ = nnls(
         np.vstack([design, smoothing]), np.concatenate([target, np.zeros(len(smoothing))])
     )
-    kernel = np.exp(-FIT_TIMES[:, None] / RELAXATION_TIMES) @ (factors * basset)
+    kernel = np.exp(-FIT_TIMES[:, None] / RELAXATION_TIMES) @ (factors * scale)
     return kernel / _basset_samples()
 
 
@@ -178,16 +189,17 @@ def _wall_ratios() -> tuple[np.ndarray, np.ndarray]:
 def wall_ratio(gap_over_radius: float) -> np.ndarray:
     """rho(s) = K_h(s) / K_B(s) at FIT_TIMES: the unsteady Stokes history kernel of a sphere at
     the gap h/a (studies/wall_history_kernel.py) over Basset's, linear in ln h between the
-    table's gaps, its smallest gap's below them, and from the largest (10 a) linear in ln h to
-    1 (no wall) at WALL_FAR."""
+    table's gaps and the smallest gap's below them. Beyond the largest gap (10 a) the wall's
+    steady drag 9/(8 (1 + h/a)) (its first reflection) acts at once while Basset's memory is
+    unchanged, K_h = K_B - 9/(8 (1 + h/a)), not below the 10 a kernel; 1 from WALL_FAR on."""
     if gap_over_radius >= WALL_FAR:  # also no wall at all (inf)
         return np.ones(len(FIT_TIMES))
     checks.positive("gap_over_radius", gap_over_radius)
     gaps, ratios = _wall_ratios()
     x = math.log(max(gap_over_radius, math.exp(gaps[0])))
-    if x > gaps[-1]:
-        share = (x - gaps[-1]) / (math.log(WALL_FAR) - gaps[-1])
-        return (1.0 - share) * ratios[-1] + share
+    if x >= gaps[-1]:
+        steady = 9.0 / (8.0 * (1.0 + gap_over_radius))
+        return np.maximum(1.0 - steady / _basset_samples(), ratios[-1])
     i = min(int(np.searchsorted(gaps, x, side="right")) - 1, len(gaps) - 2)
     share = (x - gaps[i]) / (gaps[i + 1] - gaps[i])
     return (1.0 - share) * ratios[i] + share * ratios[i + 1]

@@ -17,7 +17,8 @@ unsteady Stokes equations, zero initial flow)
     k^2 u - div(2 e(u)) + grad p = 0,  div u = 0,   u = e_z on the sphere, 0 on the wall,
 
 axisymmetric (r, z) with Taylor-Hood elements (P2 velocity, P1 pressure), zero traction on the
-outer boundary (the wall holds the liquid; without a wall k > 0 decays within 1/k), and
+outer boundary (the natural condition of the weak form, which fixes the pressure; the wall
+holds the liquid, and without a wall k > 0 decays within 1/k), and
 Z = -F_z / (6 pi) from the reaction: F_z = -2 pi int (k^2 u.w + 2 e(u):e(w) - p div w) r dr dz
 with w = e_z on the sphere's dofs, 0 elsewhere (the weak form's residual on the sphere).
 """
@@ -31,19 +32,23 @@ from meshes import liquid
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
 
-OUTER = 40.0  # the liquid's outer radius by a
+OUTER = 40.0  # the liquid's outer radius by a, at least 8 centre distances (1 + h/a)
 FINE = 5e-3  # the element size on the sphere and the wall by a (boundary layers down to 1/k)
 
 
 class WallFlow:
     """The Brinkman problem of the module docstring for a sphere at ``gap`` (by a; None: no
-    wall) in a liquid of radius ``outer`` (by a), meshed with elements ``fine`` (by a) on the
-    sphere (:mod:`meshes.liquid`), over the ranks of ``comm``."""
+    wall) in a liquid of radius ``outer`` (by a; None: OUTER, or 8 (1 + gap) if larger, so
+    that the truncation's (centre distance / radius)^3 stays below 2e-3), meshed with
+    elements ``fine`` (by a) on the sphere (:mod:`meshes.liquid`), over the ranks of
+    ``comm``."""
 
-    def __init__(self, comm, gap: float | None, outer: float = OUTER, fine: float = FINE):
+    def __init__(self, comm, gap: float | None, outer: float | None = None, fine: float = FINE):
         import ufl
 
         self.comm, self.gap = comm, gap
+        if outer is None:
+            outer = max(OUTER, 8.0 * (1.0 + (gap or 0.0)))
         mesh, _, facets = contact_mesh(comm, liquid.build, (gap, outer, fine))
         self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
         space = dolfinx_compat.taylor_hood_space(mesh)

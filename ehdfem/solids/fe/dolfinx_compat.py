@@ -1,14 +1,14 @@
 """Every DOLFINx call of the package: the FE solids, their fields, the disk film and the liquid
-of the wall-bounded history kernel.
+around a bouncing sphere.
 
 The package is written against Debian's DOLFINx 0.5.2. Nothing outside this module imports
-``dolfinx`` (:mod:`ehdfem.solids.fe`, :mod:`ehdfem.tangential.disk` and
-:mod:`ehdfem.bounce.wall_flow` reach it only through these functions), so moving to a newer
-DOLFINx means editing this module and nothing else. The docstrings of the calls that changed
-name, argument form or return type in a later release name what the 0.5 call is and what
-replaces it later; the others (``fem.form``,
-``fem.Function``, ``fem.Expression``, ``fem.dirichletbc``, ``fem.locate_dofs_*``,
-``fem.assemble_scalar``, ...) kept their form up to 0.10. UFL (forms) and petsc4py (matrices,
+``dolfinx`` (:mod:`ehdfem.solids.fe`, :mod:`ehdfem.tangential.disk`,
+:mod:`ehdfem.bounce.wall_flow` and :mod:`ehdfem.bounce.sphere_flow` reach it only through these
+functions), so moving to a newer DOLFINx means editing this module and nothing else. The
+docstrings of the calls that changed name, argument form or return type in a later release name
+what the 0.5 call is and what replaces it later; the others (``fem.form``, ``fem.Function``,
+``fem.Expression``, ``fem.dirichletbc``, ``fem.locate_dofs_*``, ``fem.assemble_scalar``, ...)
+kept their form up to 0.10. UFL (forms) and petsc4py (matrices,
 factorisations) are separate packages, used directly.
 
 Nothing here knows about scales: meshes, spaces, matrices and vectors carry whatever units the
@@ -336,14 +336,17 @@ def velocity_component_dofs(space, component: int, facets) -> np.ndarray:
     return fem.locate_dofs_topological(sub, space.mesh.topology.dim - 1, facets)
 
 
-def velocity_component_condition(space, component: int, facets, value: float):
-    """The Dirichlet condition ``value`` on ``component`` of the velocity of a
-    :func:`taylor_hood_space` on the mesh ``facets``."""
+def velocity_component_condition(space, component: int, facets, value):
+    """The Dirichlet condition ``value`` (a number, or a :func:`constant` whose value can be
+    changed between solves) on ``component`` of the velocity of a :func:`taylor_hood_space` on
+    the mesh ``facets``."""
     from dolfinx import fem
     from petsc4py import PETSc
 
     dofs = velocity_component_dofs(space, component, facets)
-    return fem.dirichletbc(PETSc.ScalarType(value), dofs, space.sub(0).sub(component))
+    if isinstance(value, int | float):
+        value = PETSc.ScalarType(value)
+    return fem.dirichletbc(value, dofs, space.sub(0).sub(component))
 
 
 def solve_linear(bilinear, linear, bcs, solution) -> None:
@@ -372,6 +375,8 @@ def solve_linear(bilinear, linear, bcs, solution) -> None:
         ksp.getPC().setType("lu")
         ksp.getPC().setFactorSolverType("mumps")
         ksp.solve(vector, petsc_vector(solution))
+        if ksp.getConvergedReason() <= 0:
+            raise RuntimeError(f"the linear solve failed (KSP reason {ksp.getConvergedReason()})")
         solution.x.scatter_forward()
     finally:
         for petsc_object in (ksp, matrix, vector):

@@ -1,0 +1,180 @@
+"""The Navier-Stokes flow around a sphere whose velocity is prescribed, in an unbounded liquid at
+rest far away, solved by finite elements in the sphere's frame (docs/bounce.md, "The reversal
+in a resolved flow"): the force the reduced flight model replaces by a drag law, an added mass
+and a history kernel.
+
+Scaled: lengths by the sphere radius a, velocities by a speed V0, time by a/V0, pressure by
+rho V0^2, forces by rho V0^2 a^2; Re_a = V0 a / nu (Re = 2 Re_a V for the diameter). In the
+frame moving with the sphere (velocity V(t) e_z in the liquid's frame) the liquid obeys
+
+    du/dt + (u . grad) u = -grad P + (1/Re_a) div(2 e(u)),   div u = 0,
+    u = 0 on the sphere,   u = -V(t) e_z far away (the outer boundary, radius ``outer``),
+
+axisymmetric (r, z) with Taylor-Hood elements (P2 velocity, P1 pressure), P = 0 where the
+axis meets the outer boundary (the velocity is given on the rest of it). The frame's
+acceleration is a uniform body force, absorbed in P; the force on the sphere in the liquid's
+frame is then F = F_frame + m_f dV/dt (m_f = 4 pi / 3, the displaced liquid), with F_frame
+from the weak form's residual on the sphere. Time: BDF2 with variable steps (BDF1 on the first),
+the convecting velocity extrapolated to second order (linear in the unknowns: one LU solve a
+step). :meth:`SphereFlow.steady` solves the steady flow by Newton's method.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from meshes import liquid
+
+from ..solids.fe import dolfinx_compat
+from ..solids.fe.mesh import contact_mesh
+
+OUTER = 30.0  # the liquid's outer radius by a
+FINE = 0.02  # element size on the sphere by a
+GROWTH = 0.1  # element size added per unit distance from the sphere (resolves the near wake)
+DISPLACED = 4.0 * math.pi / 3.0  # the liquid displaced by the sphere, by rho a^3
+
+
+class SphereFlow:
+    """The flow of the module docstring at ``reynolds`` = Re_a, meshed by :mod:`meshes.liquid`
+    without a wall (``outer``, ``fine``, ``growth`` by a), over the ranks of ``comm``; the
+    liquid starts at rest relative to the sphere's frame (u = 0) unless :meth:`steady` is called."""
+
+    def __init__(
+        self,
+        comm,
+        reynolds: float,
+        outer: float = OUTER,
+        fine: float = FINE,
+        growth: float = GROWTH,
+    ):
+        import ufl
+
+        self.comm, self.reynolds = comm, reynolds
+        mesh, _, facets = contact_mesh(comm, liquid.build, (None, outer, fine, growth))
+        self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
+        space = dolfinx_compat.taylor_hood_space(mesh)
+        self.space = space
+        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
+        r = ufl.SpatialCoordinate(mesh)[0]
+        viscosity = 1.0 / reynolds
+        names = ("rate", "now_coefficient", "last_coefficient", "before_coefficient")
+        self.rate, self.c_now, self.c_last, self.c_before = (
+            dolfinx_compat.constant(mesh, 0.0) for _ in names
+        )
+        self.e_last, self.e_before = (dolfinx_compat.constant(mesh, 0.0) for _ in range(2))
+        self.far = dolfinx_compat.constant(mesh, 0.0)
+        last, _ = ufl.split(self.last)
+        before, _ = ufl.split(self.before)
+        convecting = self.e_last * last + self.e_before * before
+
+        def strain(w):
+            shear = 0.5 * (w[0].dx(1) + w[1].dx(0))
+            return ufl.as_tensor([[w[0].dx(0), shear, 0], [shear, w[1].dx(1), 0], [0, 0, w[0] / r]])
+
+        def divergence(w):
+            return w[0].dx(0) + w[0] / r + w[1].dx(1)
+
+        def transport(a, w):
+            return ufl.as_vector([ufl.dot(a, ufl.grad(w[i])) for i in (0, 1)])
+
+        def residual(u, p, v, q, rate_of_u, a):
+            momentum = ufl.inner(rate_of_u + transport(a, u), v)
+            viscous = 2 * viscosity * ufl.inner(strain(u), strain(v))
+            return (momentum + viscous - p * divergence(v) - q * divergence(u)) * r * ufl.dx
+
+        (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
+        history = self.c_last * last + self.c_before * before
+        self.bilinear = dolfinx_compat.form(
+            residual(u, p, v, q, self.rate * self.c_now * u, convecting)
+        )
+        self.linear = dolfinx_compat.form(-self.rate * ufl.inner(history, v) * r * ufl.dx)
+        u_h, p_h = ufl.split(self.now)
+        rate_h = self.rate * (self.c_now * u_h + history)
+        sphere, outer_facets = facets.find(liquid.SPHERE), facets.find(liquid.OUTER)
+        # the velocity is given on the whole boundary but the axis: P is fixed at one point
+        top = dolfinx_compat.point_dofs(
+            space, lambda x: np.isclose(x[0], 0.0) & np.isclose(x[1], outer), component=1
+        )
+        self.bcs = [
+            dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
+            dolfinx_compat.velocity_component_condition(space, 0, sphere, 0.0),
+            dolfinx_compat.velocity_component_condition(space, 1, sphere, 0.0),
+            dolfinx_compat.velocity_component_condition(space, 0, outer_facets, 0.0),
+            dolfinx_compat.velocity_component_condition(space, 1, outer_facets, self.far),
+            dolfinx_compat.zero_condition(space, top, component=1),
+        ]
+        probe = dolfinx_compat.function(space)
+        probe.x.array[dolfinx_compat.velocity_component_dofs(space, 1, sphere)] = 1.0
+        probe_velocity = ufl.split(probe)[0]
+        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
+        steady_convection = transport(u_h, u_h)
+        self.steady_residual = (
+            ufl.inner(steady_convection, v) + 2 * viscosity * ufl.inner(strain(u_h), strain(v))
+        ) * r * ufl.dx - (p_h * divergence(v) + q * divergence(u_h)) * r * ufl.dx
+        self.steady_reaction = (
+            (
+                ufl.inner(steady_convection, probe_velocity)
+                + 2 * viscosity * ufl.inner(strain(u_h), strain(probe_velocity))
+                - p_h * divergence(probe_velocity)
+            )
+            * r
+            * ufl.dx
+        )
+        self.step_size = None
+
+    def steady(self, velocity: float) -> float:
+        """Solve the steady flow of a sphere moving at ``velocity`` (by V0) by Newton's method
+        (MUMPS), make it the flow's past (both previous steps), and return its force (by
+        rho V0^2 a^2, on the sphere, along +z)."""
+        import ufl
+        from petsc4py import PETSc
+
+        self.far.value = -velocity
+        self.now.x.array[:] = 0.0
+
+        def configure(snes, _):
+            snes.setType("newtonls")
+            snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
+            snes.getKSP().setType("preonly")
+            snes.getKSP().getPC().setType("lu")
+            snes.getKSP().getPC().setFactorSolverType("mumps")
+
+        residual = dolfinx_compat.form(self.steady_residual)
+        jacobian = dolfinx_compat.form(ufl.derivative(self.steady_residual, self.now))
+        reason, _ = dolfinx_compat.solve_nonlinear(
+            residual, jacobian, self.bcs, self.now, configure
+        )
+        if reason <= 0 and reason != PETSc.SNES.ConvergedReason.DIVERGED_LINE_SEARCH:
+            raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")
+        self.last.x.array[:] = self.now.x.array
+        self.before.x.array[:] = self.now.x.array
+        self.step_size = None
+        return -2.0 * math.pi * dolfinx_compat.integral(self.steady_reaction, self.comm)
+
+    def step(self, dt: float, velocity: float) -> float:
+        """Advance the flow by ``dt`` (by a/V0) to the sphere velocity ``velocity`` (by V0) and
+        return the force on the sphere in its frame, F_frame (by rho V0^2 a^2, along +z):
+        BDF2 with the step ratio w = dt / previous dt, (1 + 2w)/(1 + w) u - (1 + w) u_last +
+        w^2/(1 + w) u_before, convecting velocity (1 + w) u_last - w u_before; BDF1 first."""
+        if self.step_size is None:
+            coefficients, extrapolation = (1.0, -1.0, 0.0), (1.0, 0.0)
+        else:
+            w = dt / self.step_size
+            coefficients = ((1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w))
+            extrapolation = (1 + w, -w)
+        for constant, value in zip(
+            (self.c_now, self.c_last, self.c_before, self.e_last, self.e_before),
+            (*coefficients, *extrapolation),
+            strict=True,
+        ):
+            constant.value = value
+        self.rate.value = 1.0 / dt
+        self.far.value = -velocity
+        dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
+        force = -2.0 * math.pi * dolfinx_compat.integral(self.reaction, self.comm)
+        self.before.x.array[:] = self.last.x.array
+        self.last.x.array[:] = self.now.x.array
+        self.step_size = dt
+        return force

@@ -1,0 +1,180 @@
+"""The reversal of Gondret et al. (2002)'s St 27 bounce in a resolved flow: the Navier-Stokes flow
+around the sphere (``ehdfem.bounce.sphere_flow``, unbounded liquid, axisymmetric) with the
+sphere's velocity prescribed as the bounce model gives it from the hand-over to the apex, and
+the history force it yields against the flight model's kernels on the same motion
+(docs/bounce.md, "The reversal in a resolved flow").
+
+The motion: the base run of studies/gondret_bounce.py (its trajectory CSV must exist), from the
+hand-over (the flow steady at the hand-over speed V0 before it) through the contact's reversal
+to the rise's end, where the speed has fallen to END_SPEED of the exit's. Scaled by the sphere
+radius a, V0 and a/V0 (Re_a = V0 a / nu). The history force of the resolved flow is its force
+in the liquid's frame minus the steady drag at the instantaneous Re (the standard drag curve of
+Clift, Grace & Weber 1978, which the steady flow matches to 0.07 % at Re 30, tests/
+test_sphere_flow.py) minus the added mass's (1/2) m_f dV/dt; the model's is
+-6 pi mu a sum_i w_i(Re) z_i on the same velocity samples (ehdfem.bounce.unsteady) with the
+memory kept through the contact, with the contact's velocity change forgotten at exit (the
+approach's memory only, zero here), and with Basset's kernel. The impulses are by the exit
+momentum M v_exit, M = (rho_p / rho_f + 1/2) m_f.
+
+Two resolutions (RESOLUTIONS: elements on the sphere, growth, steps in the contact and in the
+rise), each stored as it finishes in studies/results/reversal_flow/; the figure
+docs/figures/bounce_reversal_flow.png.
+Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python studies/reversal_flow.py (about 10 minutes).
+"""
+
+import json
+import math
+import os
+import sys
+import time
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from mpi4py import MPI  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import gondret_bounce  # noqa: E402
+from scipy.integrate import trapezoid  # noqa: E402
+
+from ehdfem.bounce import unsteady  # noqa: E402
+from ehdfem.bounce.sphere_flow import DISPLACED, SphereFlow  # noqa: E402
+from ehdfem.motion.forces import memory_gains  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+RESULTS = ROOT / "studies/results/reversal_flow"
+FIGURE = ROOT / "docs/figures/bounce_reversal_flow.png"
+CASE = "St27"
+END_SPEED = 0.05  # the rise is followed until the speed is this share of the exit's
+RESOLUTIONS = {  # name: (element size on the sphere, growth, step in the contact, in the rise)
+    "coarse": (0.02, 0.1, 2e-3, 1e-2),
+    "fine": (0.014, 0.07, 5e-4, 5e-3),
+}
+WINDOWS = (0.05, 0.25, 0.5, 1.0)  # shares of the rise over which impulses are reported
+
+
+def prescribed_motion():
+    """(times, velocities) by a/V0 and V0 from the hand-over to the rise's end, the exit time,
+    Re_a, the density ratio, and V0 [m/s], from the base run's trajectory."""
+    run = next(r for r in gondret_bounce.GONDRET_RUNS if r.label == CASE)
+    inputs = gondret_bounce.case_inputs(run)
+    trajectory = gondret_bounce.trajectory(CASE, "base")
+    t, v, phase = trajectory["time"], trajectory["velocity"], trajectory["phase"]
+    start = int(np.flatnonzero(phase == "contact")[0])
+    exit_ = start + int(np.flatnonzero(phase[start:] == "flight")[0])
+    speed = -v[start]
+    end = exit_ + int(np.flatnonzero(v[exit_:] < END_SPEED * v[exit_])[0])
+    unit = inputs.radius / speed
+    times, keep = np.unique((t[start : end + 1] - t[start]) / unit, return_index=True)
+    velocities = v[start : end + 1][keep] / speed
+    liquid = inputs.liquid
+    reynolds = speed * inputs.radius * liquid.density / liquid.viscosity
+    ratio = inputs.sphere.density / liquid.density
+    return times, velocities, (t[exit_] - t[start]) / unit, reynolds, ratio, speed
+
+
+def resolved(name) -> dict:
+    """The resolved flow's force on the prescribed motion at resolution ``name`` (stored)."""
+    path = RESULTS / f"{name}.json"
+    if path.exists():
+        return json.loads(path.read_text())
+    fine, growth, contact_step, rise_step = RESOLUTIONS[name]
+    times, velocities, exit_time, reynolds, _, _ = prescribed_motion()
+    steps = np.concatenate(
+        [
+            np.arange(0.0, exit_time, contact_step),
+            np.arange(exit_time, times[-1], rise_step),
+        ]
+    )
+    speeds = np.interp(steps, times, velocities)
+    start = time.perf_counter()
+    flow = SphereFlow(MPI.COMM_WORLD, reynolds, fine=fine, growth=growth)
+    forces = [flow.steady(-1.0)]
+    for k in range(1, len(steps)):
+        forces.append(flow.step(steps[k] - steps[k - 1], speeds[k]))
+        if k % 100 == 0:
+            print(f"{name}: step {k} of {len(steps) - 1}", flush=True)
+    row = {
+        "times": steps.tolist(),
+        "speeds": speeds.tolist(),
+        "frame_force": forces,
+        "cells": flow.cells,
+        "seconds": round(time.perf_counter() - start, 1),
+    }
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}")
+    tmp.write_text(json.dumps(row))
+    os.replace(tmp, path)
+    return row
+
+
+def standard_drag(reynolds):
+    """phi(Re) = C_D Re / 24 of Clift, Grace & Weber (1978)'s standard drag curve (Re <= 260)."""
+    re = np.maximum(np.asarray(reynolds, dtype=float), 1e-12)
+    low = 1 + 0.1315 * re ** (0.82 - 0.05 * np.log10(re))
+    return np.where(re <= 20, low, 1 + 0.1935 * re**0.6305)
+
+
+def history_forces(row, exit_time, reynolds) -> dict:
+    """The history force (by rho V0^2 a^2) of the resolved flow and of the model's kernels on
+    the row's velocity samples."""
+    t, v = np.array(row["times"]), np.array(row["speeds"])
+    rate = np.gradient(v, t)
+    stokes = 6 * math.pi / reynolds
+    steady = -stokes * v * standard_drag(2 * reynolds * np.abs(v))
+    resolved_force = np.array(row["frame_force"]) + DISPLACED * rate
+    forces = {"resolved flow": resolved_force - steady + 0.5 * DISPLACED * rate}
+    relaxation = unsteady.RELAXATION_TIMES * reynolds
+    for label, kernel, forget in (
+        ("Mei & Adrian, memory kept", "mei-adrian", False),
+        ("Mei & Adrian, approach's memory only", "mei-adrian", True),
+        ("Basset, memory kept", "basset", False),
+    ):
+        memory, out = np.zeros(len(relaxation)), [0.0]
+        for k in range(1, len(t)):
+            decay, gain = memory_gains(t[k] - t[k - 1], relaxation)
+            memory = memory * decay + (v[k] - v[k - 1]) * gain
+            if forget and t[k - 1] < exit_time <= t[k]:
+                memory[:] = 0.0
+            weights = unsteady.history_weights(kernel, 2 * reynolds * abs(v[k]))
+            out.append(-stokes * float(weights @ memory))
+        forces[label] = np.array(out)
+    return forces
+
+
+def main():
+    _, _, exit_time, reynolds, ratio, speed = prescribed_motion()
+    momentum = (ratio + 0.5) * DISPLACED
+    print(f"{CASE}: Re_a = {reynolds:.3g} (Re {2 * reynolds:.3g}) at V0 = {speed:.4g} m/s")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for name in RESOLUTIONS:
+        row = resolved(name)
+        t = np.array(row["times"])
+        rise = t >= exit_time
+        exit_speed = row["speeds"][int(np.flatnonzero(rise)[0])]
+        print(f"{name}: {row['cells']} cells, {len(t)} steps, {row['seconds']} s")
+        for label, force in history_forces(row, exit_time, reynolds).items():
+            shares = []
+            for window in WINDOWS:
+                inside = rise & (t <= exit_time + window * (t[-1] - exit_time))
+                impulse = trapezoid(force[inside], t[inside]) / (momentum * exit_speed)
+                shares.append(f"{impulse:+.4f}")
+            print(f"  {label}: rise impulse over {WINDOWS} of the rise: {', '.join(shares)}")
+            if name == "fine" or label == "resolved flow":
+                style = "-" if label == "resolved flow" else "--"
+                ax.plot(t[rise], force[rise], style, label=f"{label} ({name})")
+    ax.set_xlabel("time since the hand-over, a / V0")
+    ax.set_ylabel(r"history force, $\rho V_0^2 a^2$")
+    ax.set_title(f"{CASE}'s reversal and rise, unbounded liquid, Re_a = {reynolds:.3g}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(FIGURE, dpi=110)
+    print(f"wrote {FIGURE}")
+
+
+if __name__ == "__main__":
+    main()

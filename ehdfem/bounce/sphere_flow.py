@@ -69,20 +69,10 @@ class SphereFlow:
         before, _ = ufl.split(self.before)
         convecting = self.e_last * last + self.e_before * before
 
-        def strain(w):
-            shear = 0.5 * (w[0].dx(1) + w[1].dx(0))
-            return ufl.as_tensor([[w[0].dx(0), shear, 0], [shear, w[1].dx(1), 0], [0, 0, w[0] / r]])
-
-        def divergence(w):
-            return w[0].dx(0) + w[0] / r + w[1].dx(1)
-
-        def transport(a, w):
-            return ufl.as_vector([ufl.dot(a, ufl.grad(w[i])) for i in (0, 1)])
-
         def residual(u, p, v, q, rate_of_u, a):
-            momentum = ufl.inner(rate_of_u + transport(a, u), v)
-            viscous = 2 * viscosity * ufl.inner(strain(u), strain(v))
-            return (momentum + viscous - p * divergence(v) - q * divergence(u)) * r * ufl.dx
+            momentum = ufl.inner(rate_of_u + _transport(a, u), v)
+            viscous = 2 * viscosity * ufl.inner(_strain(r, u), _strain(r, v))
+            return (momentum + viscous - p * _divergence(r, v) - q * _divergence(r, u)) * r * ufl.dx
 
         (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
         history = self.c_last * last + self.c_before * before
@@ -109,19 +99,9 @@ class SphereFlow:
         probe.x.array[dolfinx_compat.velocity_component_dofs(space, 1, sphere)] = 1.0
         probe_velocity = ufl.split(probe)[0]
         self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
-        steady_convection = transport(u_h, u_h)
-        self.steady_residual = (
-            ufl.inner(steady_convection, v) + 2 * viscosity * ufl.inner(strain(u_h), strain(v))
-        ) * r * ufl.dx - (p_h * divergence(v) + q * divergence(u_h)) * r * ufl.dx
-        self.steady_reaction = (
-            (
-                ufl.inner(steady_convection, probe_velocity)
-                + 2 * viscosity * ufl.inner(strain(u_h), strain(probe_velocity))
-                - p_h * divergence(probe_velocity)
-            )
-            * r
-            * ufl.dx
-        )
+        still = 0 * u_h  # the steady flow: no rate of change, convected by itself
+        self.steady_residual = residual(u_h, p_h, v, q, still, u_h)
+        self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, still, u_h)
         self.step_size = None
 
     def steady(self, velocity: float) -> float:
@@ -178,3 +158,23 @@ class SphereFlow:
         self.last.x.array[:] = self.now.x.array
         self.step_size = dt
         return force
+
+
+def _strain(r, w):
+    """The axisymmetric strain rate e(w) in (r, z, theta), with the hoop part w_r / r."""
+    import ufl
+
+    shear = 0.5 * (w[0].dx(1) + w[1].dx(0))
+    return ufl.as_tensor([[w[0].dx(0), shear, 0], [shear, w[1].dx(1), 0], [0, 0, w[0] / r]])
+
+
+def _divergence(r, w):
+    """div w = dw_r/dr + w_r / r + dw_z/dz."""
+    return w[0].dx(0) + w[0] / r + w[1].dx(1)
+
+
+def _transport(a, w):
+    """(a . grad) w in the (r, z) plane (no swirl)."""
+    import ufl
+
+    return ufl.as_vector([ufl.dot(a, ufl.grad(w[i])) for i in (0, 1)])

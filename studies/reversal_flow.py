@@ -42,7 +42,6 @@ from scipy.integrate import trapezoid  # noqa: E402
 
 from ehdfem.bounce import unsteady  # noqa: E402
 from ehdfem.bounce.sphere_flow import DISPLACED, SphereFlow  # noqa: E402
-from ehdfem.motion.forces import memory_gains  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies/results/reversal_flow"
@@ -128,20 +127,19 @@ def history_forces(row, exit_time, reynolds) -> dict:
     resolved_force = np.array(row["frame_force"]) + DISPLACED * rate
     forces = {"resolved flow": resolved_force - steady + 0.5 * DISPLACED * rate}
     relaxation = unsteady.RELAXATION_TIMES * reynolds
-    for label, kernel, forget in (
-        ("Mei & Adrian, memory kept", "mei-adrian", False),
-        ("Mei & Adrian, approach's memory only", "mei-adrian", True),
-        ("Basset, memory kept", "basset", False),
+    kept = unsteady.carry_memory(np.zeros_like(relaxation), t, v, relaxation)
+    after = int(np.flatnonzero(t >= exit_time)[0])  # the first sample at or after the exit
+    approach = kept.copy()  # zero before the contact: the flow was steady
+    approach[after:] = unsteady.carry_memory(
+        np.zeros_like(relaxation), t[after:], v[after:], relaxation
+    )
+    for label, kernel, memory in (
+        ("Mei & Adrian, memory kept", "mei-adrian", kept),
+        ("Mei & Adrian, approach's memory only", "mei-adrian", approach),
+        ("Basset, memory kept", "basset", kept),
     ):
-        memory, out = np.zeros(len(relaxation)), [0.0]
-        for k in range(1, len(t)):
-            decay, gain = memory_gains(t[k] - t[k - 1], relaxation)
-            memory = memory * decay + (v[k] - v[k - 1]) * gain
-            if forget and t[k - 1] < exit_time <= t[k]:
-                memory[:] = 0.0
-            weights = unsteady.history_weights(kernel, 2 * reynolds * abs(v[k]))
-            out.append(-stokes * float(weights @ memory))
-        forces[label] = np.array(out)
+        weights = [unsteady.history_weights(kernel, 2 * reynolds * abs(x)) for x in v]
+        forces[label] = -stokes * np.einsum("ij,ij->i", np.array(weights), memory)
     return forces
 
 

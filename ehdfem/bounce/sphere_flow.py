@@ -29,6 +29,7 @@ from meshes import liquid
 
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
+from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate, transport
 
 OUTER = 30.0  # the liquid's outer radius by a
 FINE = 0.02  # element size on the sphere by a
@@ -59,9 +60,8 @@ class SphereFlow:
         self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
         r = ufl.SpatialCoordinate(mesh)[0]
         viscosity = 1.0 / reynolds
-        names = ("rate", "now_coefficient", "last_coefficient", "before_coefficient")
         self.rate, self.c_now, self.c_last, self.c_before = (
-            dolfinx_compat.constant(mesh, 0.0) for _ in names
+            dolfinx_compat.constant(mesh, 0.0) for _ in range(4)
         )
         self.e_last, self.e_before = (dolfinx_compat.constant(mesh, 0.0) for _ in range(2))
         self.far = dolfinx_compat.constant(mesh, 0.0)
@@ -70,9 +70,9 @@ class SphereFlow:
         convecting = self.e_last * last + self.e_before * before
 
         def residual(u, p, v, q, rate_of_u, a):
-            momentum = ufl.inner(rate_of_u + _transport(a, u), v)
-            viscous = 2 * viscosity * ufl.inner(_strain(r, u), _strain(r, v))
-            return (momentum + viscous - p * _divergence(r, v) - q * _divergence(r, u)) * r * ufl.dx
+            momentum = ufl.inner(rate_of_u + transport(a, u), v)
+            viscous = 2 * viscosity * ufl.inner(strain_rate(r, u), strain_rate(r, v))
+            return (momentum + viscous - p * divergence(r, v) - q * divergence(r, u)) * r * ufl.dx
 
         (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
         history = self.c_last * last + self.c_before * before
@@ -95,9 +95,7 @@ class SphereFlow:
             dolfinx_compat.velocity_component_condition(space, 1, outer_facets, self.far),
             dolfinx_compat.zero_condition(space, top, component=1),
         ]
-        probe = dolfinx_compat.function(space)
-        probe.x.array[dolfinx_compat.velocity_component_dofs(space, 1, sphere)] = 1.0
-        probe_velocity = ufl.split(probe)[0]
+        probe_velocity = sphere_probe(space, sphere)
         self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
         still = 0 * u_h  # the steady flow: no rate of change, convected by itself
         self.steady_residual = residual(u_h, p_h, v, q, still, u_h)
@@ -131,7 +129,7 @@ class SphereFlow:
         self.last.x.array[:] = self.now.x.array
         self.before.x.array[:] = self.now.x.array
         self.step_size = None
-        return -2.0 * math.pi * dolfinx_compat.integral(self.steady_reaction, self.comm)
+        return sphere_force(self.steady_reaction, self.comm)
 
     def step(self, dt: float, velocity: float) -> float:
         """Advance the flow by ``dt`` (by a/V0) to the sphere velocity ``velocity`` (by V0) and
@@ -153,28 +151,8 @@ class SphereFlow:
         self.rate.value = 1.0 / dt
         self.far.value = -velocity
         dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
-        force = -2.0 * math.pi * dolfinx_compat.integral(self.reaction, self.comm)
+        force = sphere_force(self.reaction, self.comm)
         self.before.x.array[:] = self.last.x.array
         self.last.x.array[:] = self.now.x.array
         self.step_size = dt
         return force
-
-
-def _strain(r, w):
-    """The axisymmetric strain rate e(w) in (r, z, theta), with the hoop part w_r / r."""
-    import ufl
-
-    shear = 0.5 * (w[0].dx(1) + w[1].dx(0))
-    return ufl.as_tensor([[w[0].dx(0), shear, 0], [shear, w[1].dx(1), 0], [0, 0, w[0] / r]])
-
-
-def _divergence(r, w):
-    """div w = dw_r/dr + w_r / r + dw_z/dz."""
-    return w[0].dx(0) + w[0] / r + w[1].dx(1)
-
-
-def _transport(a, w):
-    """(a . grad) w in the (r, z) plane (no swirl)."""
-    import ufl
-
-    return ufl.as_vector([ufl.dot(a, ufl.grad(w[i])) for i in (0, 1)])

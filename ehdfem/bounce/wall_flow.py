@@ -31,6 +31,7 @@ from meshes import liquid
 
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
+from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate
 
 OUTER = 40.0  # the liquid's outer radius by a, at least 8 centre distances (1 + h/a)
 FINE = 5e-3  # the element size on the sphere and the wall by a (boundary layers down to 1/k)
@@ -57,16 +58,10 @@ class WallFlow:
         r = ufl.SpatialCoordinate(mesh)[0]
         self.k2 = dolfinx_compat.constant(mesh, 0.0)
 
-        def strain(w):
-            shear = 0.5 * (w[0].dx(1) + w[1].dx(0))
-            return ufl.as_tensor([[w[0].dx(0), shear, 0], [shear, w[1].dx(1), 0], [0, 0, w[0] / r]])
-
-        def divergence(w):
-            return w[0].dx(0) + w[0] / r + w[1].dx(1)
-
         def residual(u, p, v, q):
-            viscous = 2 * ufl.inner(strain(u), strain(v)) - p * divergence(v) - q * divergence(u)
-            return (self.k2 * ufl.inner(u, v) + viscous) * r * ufl.dx
+            viscous = 2 * ufl.inner(strain_rate(r, u), strain_rate(r, v))
+            incompressible = p * divergence(r, v) + q * divergence(r, u)
+            return (self.k2 * ufl.inner(u, v) + viscous - incompressible) * r * ufl.dx
 
         self.bilinear = dolfinx_compat.form(residual(u, p, v, q))
         zero = dolfinx_compat.constant(mesh, 0.0)
@@ -82,15 +77,12 @@ class WallFlow:
             self.bcs += [
                 dolfinx_compat.velocity_component_condition(space, i, wall, 0.0) for i in (0, 1)
             ]
-        probe = dolfinx_compat.function(space)
-        probe.x.array[dolfinx_compat.velocity_component_dofs(space, 1, sphere)] = 1.0
         u_h, p_h = ufl.split(self.solution)
-        self.reaction = residual(u_h, p_h, ufl.split(probe)[0], 0.0)
+        self.reaction = residual(u_h, p_h, sphere_probe(space, sphere), 0.0)
 
     def impedance(self, k: float) -> float:
         """Z(k) = -F_z / (6 pi mu a U) at k = a sqrt(p / nu) (module docstring); Z(0) is
         Brenner's lambda(h) (1 without a wall needs an unbounded liquid: use k > 0 there)."""
         self.k2.value = k * k
         dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.solution)
-        force = -2.0 * math.pi * dolfinx_compat.integral(self.reaction, self.comm)
-        return -force / (6.0 * math.pi)
+        return -sphere_force(self.reaction, self.comm) / (6.0 * math.pi)

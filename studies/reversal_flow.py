@@ -55,24 +55,36 @@ RESOLUTIONS = {  # name: (element size on the sphere, growth, step in the contac
 WINDOWS = (0.05, 0.25, 0.5, 1.0)  # shares of the rise over which impulses are reported
 
 
-def prescribed_motion():
-    """(times, velocities) by a/V0 and V0 from the hand-over to the rise's end, the exit time,
-    Re_a, the density ratio, and V0 [m/s], from the base run's trajectory."""
+def prescribed_motion(start_gap: float | None = None) -> dict:
+    """The base run's motion, scaled by the hand-over speed V0 and the sphere radius a: times
+    (by a/V0, from the hand-over: negative before it), gaps (by a) and velocities (by V0) from
+    the hand-over, or from the approach's last sample above ``start_gap`` (by a), to the rise's
+    end; the exit time, Re_a, the density ratio, V0 [m/s], g a/V0^2 and the inputs."""
     run = next(r for r in gondret_bounce.GONDRET_RUNS if r.label == CASE)
     inputs = gondret_bounce.case_inputs(run)
     trajectory = gondret_bounce.trajectory(CASE, "base")
-    t, v, phase = trajectory["time"], trajectory["velocity"], trajectory["phase"]
-    start = int(np.flatnonzero(phase == "contact")[0])
-    exit_ = start + int(np.flatnonzero(phase[start:] == "flight")[0])
-    speed = -v[start]
+    t, h, v, phase = (trajectory[k] for k in ("time", "gap", "velocity", "phase"))
+    handover = int(np.flatnonzero(phase == "contact")[0])
+    start = handover
+    if start_gap is not None:
+        start = int(np.flatnonzero(h[:handover] > start_gap * inputs.radius)[-1])
+    exit_ = handover + int(np.flatnonzero(phase[handover:] == "flight")[0])
+    speed = -v[handover]
     end = exit_ + int(np.flatnonzero(v[exit_:] < END_SPEED * v[exit_])[0])
     unit = inputs.radius / speed
-    times, keep = np.unique((t[start : end + 1] - t[start]) / unit, return_index=True)
-    velocities = v[start : end + 1][keep] / speed
+    times, keep = np.unique((t[start : end + 1] - t[handover]) / unit, return_index=True)
     liquid = inputs.liquid
-    reynolds = speed * inputs.radius * liquid.density / liquid.viscosity
-    ratio = inputs.sphere.density / liquid.density
-    return times, velocities, (t[exit_] - t[start]) / unit, reynolds, ratio, speed
+    return {
+        "times": times,
+        "gaps": h[start : end + 1][keep] / inputs.radius,
+        "velocities": v[start : end + 1][keep] / speed,
+        "exit_time": (t[exit_] - t[handover]) / unit,
+        "reynolds": speed * inputs.radius * liquid.density / liquid.viscosity,
+        "ratio": inputs.sphere.density / liquid.density,
+        "speed": speed,
+        "gravity": inputs.gravity * inputs.radius / speed**2,
+        "inputs": inputs,
+    }
 
 
 def resolved(name) -> dict:
@@ -81,14 +93,15 @@ def resolved(name) -> dict:
     if path.exists():
         return json.loads(path.read_text())
     fine, growth, contact_step, rise_step = RESOLUTIONS[name]
-    times, velocities, exit_time, reynolds, _, _ = prescribed_motion()
+    motion = prescribed_motion()
+    times, exit_time, reynolds = motion["times"], motion["exit_time"], motion["reynolds"]
     steps = np.concatenate(
         [
             np.arange(0.0, exit_time, contact_step),
             np.arange(exit_time, times[-1], rise_step),
         ]
     )
-    speeds = np.interp(steps, times, velocities)
+    speeds = np.interp(steps, times, motion["velocities"])
     start = time.perf_counter()
     flow = SphereFlow(MPI.COMM_WORLD, reynolds, fine=fine, growth=growth)
     forces = [flow.steady(-1.0)]
@@ -144,8 +157,9 @@ def history_forces(row, exit_time, reynolds) -> dict:
 
 
 def main():
-    _, _, exit_time, reynolds, ratio, speed = prescribed_motion()
-    momentum = (ratio + 0.5) * DISPLACED
+    motion = prescribed_motion()
+    exit_time, reynolds, speed = motion["exit_time"], motion["reynolds"], motion["speed"]
+    momentum = (motion["ratio"] + 0.5) * DISPLACED
     print(f"{CASE}: Re_a = {reynolds:.3g} (Re {2 * reynolds:.3g}) at V0 = {speed:.4g} m/s")
     fig, ax = plt.subplots(figsize=(8, 4.5))
     for name in RESOLUTIONS:

@@ -3,9 +3,11 @@ around a bouncing sphere.
 
 The package is written against Debian's DOLFINx 0.5.2. Nothing outside this module imports
 ``dolfinx`` (:mod:`ehdfem.solids.fe`, :mod:`ehdfem.tangential.disk`,
-:mod:`ehdfem.bounce.wall_flow` and :mod:`ehdfem.bounce.sphere_flow` reach it only through these
-functions), so moving to a newer DOLFINx means editing this module and nothing else. The
-docstrings of the calls that changed name, argument form or return type in a later release name
+:mod:`ehdfem.bounce.wall_flow`, :mod:`ehdfem.bounce.sphere_flow` and
+:mod:`ehdfem.bounce.near_wall_flow` reach it only through these functions and the meshes' and
+spaces' own ``geometry.x`` and ``tabulate_dof_coordinates()``), so moving to a newer DOLFINx
+means editing this module and nothing else. The docstrings of the calls that changed name,
+argument form or return type in a later release name
 what the 0.5 call is and what replaces it later; the others (``fem.form``, ``fem.Function``,
 ``fem.Expression``, ``fem.dirichletbc``, ``fem.locate_dofs_*``, ``fem.assemble_scalar``, ...)
 kept their form up to 0.10. UFL (forms) and petsc4py (matrices,

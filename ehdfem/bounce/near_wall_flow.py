@@ -1,0 +1,231 @@
+"""The Navier-Stokes flow of a sphere moving normal to a plane wall, its gap changing, solved by
+finite elements on a moving mesh (docs/bounce.md, "The rebound in a resolved flow with the
+wall"): the force the flight model replaces by a drag law, Brenner's wall factor, the image's
+added mass and a history kernel, with nothing replaced.
+
+Scaled: lengths by the sphere radius a, velocities by a speed V0, time by a/V0, pressure by
+rho V0^2, forces by rho V0^2 a^2; Re_a = V0 a / nu. In the liquid's frame (the wall at z = 0 at
+rest, the sphere's centre at z = 1 + h(t), its velocity V(t) e_z) the liquid obeys, written on
+a mesh moving with the velocity w (arbitrary Lagrangian-Eulerian form),
+
+    du/dt|_mesh + ((u - w) . grad) u = -grad P + (1/Re_a) div(2 e(u)),   div u = 0,
+    u = V e_z on the sphere,   u = 0 on the wall,   zero traction on the outer boundary,
+
+axisymmetric (r, z), Taylor-Hood elements (P2 velocity, P1 pressure). The mesh is
+:mod:`meshes.liquid`'s at a reference gap h_ref, its points moved along z as the gap changes
+by Delta = h - h_ref: above the sphere's lower surface (r < 1) or its centre (r >= 1) they
+translate by Delta; below it, in the column of height T(r) at reference, a point at the
+distance d from the column's top keeps the share d/T of the new column (Delta < 0: squeezed
+uniformly) or moves to d + Delta (d/T)^2 (Delta > 0: the elements near the sphere keep their
+size, those near the wall take the stretch); within MOVING_NEAR of the centre the move is
+whole, falling linearly to none at MOVING_FAR. The mesh velocity w is the BDF rate of the
+points' heights. Time: BDF2 with variable steps (BDF1 on the first), the convecting velocity
+u extrapolated to second order (one LU solve a step). The force on the sphere is taken from
+the weak form's residual on it. :meth:`NearWallFlow.steady` solves the flow steady in the
+sphere's frame (the quasi-steady start of a run) by Newton's method.
+
+The gap of the mesh and the sphere's velocity are given separately: a contact that the film
+model resolves below the mesh's smallest gap is followed at a fixed mesh gap with the
+sphere's velocity still imposed (the liquid outside the film sees the velocity's reversal).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from meshes import liquid
+
+from ..solids.fe import dolfinx_compat
+from ..solids.fe.mesh import contact_mesh
+from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate, transport
+
+OUTER = 30.0  # the liquid's outer radius by a
+FINE = 0.02  # element size on the sphere by a
+GROWTH = 0.1  # element size added per unit distance from the sphere (resolves the near wake)
+MOVING_NEAR, MOVING_FAR = 2.0, 10.0  # the mesh translates with the sphere within the first,
+# and stays beyond the second (distances from the centre by a)
+
+
+def mesh_heights(r, z, reference_gap: float, gap: float):
+    """The heights (by a) of the mesh's points at (r, z) (by a, the mesh at ``reference_gap``)
+    when the sphere's lowest point is at ``gap`` (module docstring)."""
+    centre = 1.0 + reference_gap
+    top = centre - np.sqrt(np.clip(1.0 - r * r, 0.0, None))  # the column's top at reference
+    column = np.clip(z / top, 0.0, 1.0)  # the share of the column under the point
+    change = gap - reference_gap
+    shape = 1.0 - column if change < 0.0 else (1.0 - column) ** 2
+    below = top + change - (top * (1.0 - column) + change * shape)  # the column's map
+    moved = np.where(z < top, below, z + change)
+    distance = np.hypot(r, z - centre)
+    fade = np.clip((MOVING_FAR - distance) / (MOVING_FAR - MOVING_NEAR), 0.0, 1.0)
+    return z + fade * (moved - z)
+
+
+class NearWallFlow:
+    """The flow of the module docstring at ``reynolds`` = Re_a, on the mesh of
+    :mod:`meshes.liquid` at ``reference_gap`` (``outer``, ``fine``, ``growth`` by a) over the
+    ranks of ``comm``; :meth:`move` sets the gap. The liquid starts at rest (u = 0) unless
+    :meth:`steady` is called."""
+
+    def __init__(
+        self,
+        comm,
+        reynolds: float,
+        reference_gap: float,
+        outer: float = OUTER,
+        fine: float = FINE,
+        growth: float = GROWTH,
+    ):
+        import ufl
+
+        self.comm, self.reynolds, self.reference_gap = comm, reynolds, reference_gap
+        mesh, _, facets = contact_mesh(comm, liquid.build, (reference_gap, outer, fine, growth))
+        self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
+        self.nodes = mesh.geometry.x
+        self.reference = self.nodes[:, :2].copy()
+        self.mesh_rate = dolfinx_compat.function(dolfinx_compat.lagrange_space(mesh, 1))
+        self.rate_points = self.mesh_rate.function_space.tabulate_dof_coordinates()[:, :2].copy()
+        space = dolfinx_compat.taylor_hood_space(mesh)
+        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
+        self.gaps = [reference_gap] * 2  # the mesh's gap at the last two steps (before, last)
+        self.velocities = [0.0, 0.0]  # the sphere's velocity at the last two steps
+        constant = [dolfinx_compat.constant(mesh, 0.0) for _ in range(7)]
+        self.rate, self.c_now, self.c_last, self.c_before = constant[:4]
+        self.e_last, self.e_before, self.sphere_velocity = constant[4:]
+        mesh_velocity = ufl.as_vector([0.0, self.mesh_rate])
+        last, before = ufl.split(self.last)[0], ufl.split(self.before)[0]
+        convecting = self.e_last * last + self.e_before * before - mesh_velocity
+        r = ufl.SpatialCoordinate(mesh)[0]
+        viscosity = 1.0 / reynolds
+
+        def residual(u, p, v, q, rate_of_u, a):
+            momentum = ufl.inner(rate_of_u + transport(a, u), v)
+            viscous = 2 * viscosity * ufl.inner(strain_rate(r, u), strain_rate(r, v))
+            return (momentum + viscous - p * divergence(r, v) - q * divergence(r, u)) * r * ufl.dx
+
+        (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
+        history = self.c_last * last + self.c_before * before
+        self.bilinear = dolfinx_compat.form(
+            residual(u, p, v, q, self.rate * self.c_now * u, convecting)
+        )
+        self.linear = dolfinx_compat.form(-self.rate * ufl.inner(history, v) * r * ufl.dx)
+        u_h, p_h = ufl.split(self.now)
+        sphere, wall = facets.find(liquid.SPHERE), facets.find(liquid.WALL)
+        self.bcs = [
+            dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
+            dolfinx_compat.velocity_component_condition(space, 0, sphere, 0.0),
+            dolfinx_compat.velocity_component_condition(space, 1, sphere, self.sphere_velocity),
+            dolfinx_compat.velocity_component_condition(space, 0, wall, 0.0),
+            dolfinx_compat.velocity_component_condition(space, 1, wall, 0.0),
+        ]
+        probe_velocity = sphere_probe(space, sphere)
+        rate_h = self.rate * (self.c_now * u_h + history)
+        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
+        relative = u_h - ufl.as_vector([0.0, self.sphere_velocity])  # steady with the sphere
+        self.steady_residual = residual(u_h, p_h, v, q, 0 * u_h, relative)
+        self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, 0 * u_h, relative)
+        self.step_size = None
+
+    def move(self, gap: float) -> None:
+        """Put the sphere's lowest point at ``gap`` (by a) above the wall (module docstring)."""
+        r, z = self.reference.T
+        self.nodes[:, 1] = mesh_heights(r, z, self.reference_gap, gap)
+
+    def steady(self, gap: float, velocity: float) -> float:
+        """Solve the flow at ``gap`` that is steady in the frame of the sphere moving at
+        ``velocity`` (by V0), ((u - V e_z) . grad) u = -grad P + (1/Re_a) div(2 e(u)), the wall
+        held where it is (the flow far from the wall is the translating one; near it this is
+        the quasi-steady start of a run) (Newton, MUMPS), make it the flow's past (both
+        previous steps), and return its force (by rho V0^2 a^2, on the sphere, along +z)."""
+        import ufl
+        from petsc4py import PETSc
+
+        self.move(gap)
+        self.gaps, self.velocities = [gap, gap], [velocity, velocity]
+        self.sphere_velocity.value = velocity
+        self.now.x.array[:] = 0.0
+
+        def configure(snes, _):
+            snes.setType("newtonls")
+            snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
+            snes.getKSP().setType("preonly")
+            snes.getKSP().getPC().setType("lu")
+            snes.getKSP().getPC().setFactorSolverType("mumps")
+
+        residual = dolfinx_compat.form(self.steady_residual)
+        jacobian = dolfinx_compat.form(ufl.derivative(self.steady_residual, self.now))
+        reason, _ = dolfinx_compat.solve_nonlinear(
+            residual, jacobian, self.bcs, self.now, configure
+        )
+        if reason <= 0 and reason != PETSc.SNES.ConvergedReason.DIVERGED_LINE_SEARCH:
+            raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")
+        self.last.x.array[:] = self.now.x.array
+        self.before.x.array[:] = self.now.x.array
+        self.step_size = None
+        return sphere_force(self.steady_reaction, self.comm)
+
+    def step(self, dt: float, gap: float, velocity: float) -> float:
+        """Advance the flow by ``dt`` (by a/V0) to the mesh gap ``gap`` (by a) and the sphere
+        velocity ``velocity`` (by V0), and return the force on the sphere (by rho V0^2 a^2,
+        along +z): BDF2 with the step ratio w = dt / previous dt, (1 + 2w)/(1 + w) x_now -
+        (1 + w) x_last + w^2/(1 + w) x_before for x = u and for the mesh's heights, convecting
+        velocity (1 + w) u_last - w u_before minus the mesh's; BDF1 first."""
+        coefficients, _ = self._weights(dt)
+        force = self._solve(dt, coefficients, gap, velocity)
+        self._accept(dt, gap, velocity)
+        return force
+
+    def free_step(self, dt: float, mass: float, weight: float) -> tuple[float, float, float]:
+        """Advance the flow and a free sphere together by ``dt`` (by a/V0): the sphere of
+        ``mass`` (by rho a^3) under its ``weight`` less buoyancy (by rho V0^2 a^2, along -z)
+        obeys mass dV/dt = F - weight, dh/dt = V, both in the BDF2 of :meth:`step`. The gap is
+        that of the velocity extrapolated from the last two steps (second order); the force is
+        affine in V at that gap, F = F(0) + V (F(1) - F(0)), so two solves give V implicitly
+        (the added mass and the drag in it). Returns (gap, V, F)."""
+        coefficients, extrapolation = self._weights(dt)
+        now, last, before = coefficients
+        guess = np.dot(extrapolation, list(reversed(self.velocities)))
+        gap = (dt * guess - last * self.gaps[1] - before * self.gaps[0]) / now
+        at_rest = self._solve(dt, coefficients, gap, 0.0)
+        flow_at_rest = self.now.x.array.copy()
+        response = self._solve(dt, coefficients, gap, 1.0) - at_rest
+        past = mass * (last * self.velocities[1] + before * self.velocities[0]) / dt
+        velocity = (at_rest - weight - past) / (mass * now / dt - response)
+        self.now.x.array[:] = flow_at_rest + velocity * (self.now.x.array - flow_at_rest)
+        self._accept(dt, gap, velocity)
+        return gap, velocity, at_rest + velocity * response
+
+    def _weights(self, dt: float):
+        """The BDF weights (now, last, before) and the extrapolation's (last, before) of a
+        step ``dt`` after the last one (BDF1 and a constant extrapolation on the first)."""
+        if self.step_size is None:
+            return (1.0, -1.0, 0.0), (1.0, 0.0)
+        w = dt / self.step_size
+        return ((1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w)), (1 + w, -w)
+
+    def _solve(self, dt: float, coefficients, gap: float, velocity: float) -> float:
+        """Solve the step's flow at the mesh gap ``gap`` and the sphere velocity ``velocity``
+        into ``now`` and return its force; the past is left as it is."""
+        _, extrapolation = self._weights(dt)
+        for constant, value in zip(
+            (self.c_now, self.c_last, self.c_before, self.e_last, self.e_before),
+            (*coefficients, *extrapolation),
+            strict=True,
+        ):
+            constant.value = value
+        self.rate.value = 1.0 / dt
+        r, z = self.rate_points.T
+        heights = [mesh_heights(r, z, self.reference_gap, h) for h in (gap, *reversed(self.gaps))]
+        self.mesh_rate.x.array[:] = np.dot(coefficients, heights) / dt
+        self.sphere_velocity.value = velocity
+        self.move(gap)
+        dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
+        return sphere_force(self.reaction, self.comm)
+
+    def _accept(self, dt: float, gap: float, velocity: float) -> None:
+        """Make the step's flow, gap and sphere velocity the last ones."""
+        self.before.x.array[:] = self.last.x.array
+        self.last.x.array[:] = self.now.x.array
+        self.gaps = [self.gaps[1], gap]
+        self.velocities = [self.velocities[1], velocity]
+        self.step_size = dt

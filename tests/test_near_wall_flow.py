@@ -1,0 +1,71 @@
+"""The resolved Navier-Stokes flow of a sphere moving normal to a wall on a moving mesh
+(ehdfem.bounce.near_wall_flow): Brenner's exact Stokes force over the range of gaps one mesh is
+moved through (also under mpirun -n 2), a steadily translating sphere far from the wall on the
+moving mesh against the unbounded steady flow, and a free sphere settling in Stokes flow against
+Brenner's quasi-steady law."""
+
+import math
+
+import numpy as np
+import pytest
+from mpi4py import MPI
+from scipy.integrate import quad
+
+from ehdfem.bounce.near_wall_flow import NearWallFlow
+from ehdfem.bounce.sphere_flow import DISPLACED, SphereFlow
+from ehdfem.bounce.trajectory import brenner_factor
+
+REFERENCE_GAP = 0.055  # the mesh of studies/wall_rebound_flow.py
+
+
+@pytest.fixture(scope="module")
+def stokes_flow():
+    return NearWallFlow(MPI.COMM_WORLD, 1e-3, REFERENCE_GAP)
+
+
+@pytest.mark.parametrize(("gap", "tolerance"), [(0.006, 4e-3), (0.02, 2e-3), (0.5, 3e-4)])
+def test_stokes_force_is_brenners_over_the_moved_mesh(stokes_flow, gap, tolerance):
+    """At Re_a = 1e-3 the steady force on a sphere moving at V0 at the gap h is
+    -6 pi mu a V0 lambda(h) (Brenner 1961, exact): on the mesh made at h = 0.055 a and moved to
+    h (squeezed 9 times under the sphere at 0.006 a, stretched 9 times at 0.5 a), within 0.35 %
+    at 0.006 a, 0.13 % at 0.02 a and 6e-5 at 0.5 a (measured)."""
+    force = stokes_flow.steady(gap, 1.0)
+    factor = -force * stokes_flow.reynolds / (6 * math.pi)
+    assert factor == pytest.approx(float(brenner_factor(gap)), rel=tolerance)
+
+
+def test_translating_sphere_far_from_the_wall_keeps_the_unbounded_flow():
+    """At Re_a = 5, 20 a from the wall (liquid of radius 60 a), the flow steady with the sphere
+    gives the unbounded liquid's steady force (ehdfem.bounce.sphere_flow) within 1e-3
+    (measured 3e-4), and moving the sphere by 1 a at the same speed in 20 steps, the mesh
+    translating near the sphere and fixed beyond 10 a, keeps it within 2e-4 (measured 1.1e-4 on
+    the first step, BDF1, and 1.5e-5 after it):
+    the mesh's velocity in the convection and the rate at fixed mesh points are consistent."""
+    reynolds, gap = 5.0, 20.0
+    unbounded = SphereFlow(MPI.COMM_WORLD, reynolds).steady(-1.0)
+    flow = NearWallFlow(MPI.COMM_WORLD, reynolds, gap, outer=60.0)
+    steady = flow.steady(gap, -1.0)
+    assert steady == pytest.approx(unbounded, rel=1e-3)
+    for k in range(1, 21):
+        force = flow.step(0.05, gap - 0.05 * k, -1.0)
+        assert force == pytest.approx(steady, rel=2e-4)
+
+
+def test_free_sphere_settles_by_brenners_quasi_steady_law(stokes_flow):
+    """A neutrally buoyant-massed sphere (m = m_f) under a constant weight W at Re_a = 1e-3 (its
+    inertia and the liquid's negligible: St ~ 2e-4) settles from 0.5 a towards the wall at
+    the quasi-steady speed V = -W / (6 pi mu a lambda(h)) within 0.5 % (measured below 0.35 %)
+    and reaches each gap at the time int_h^0.5 lambda dh 6 pi mu a / W within 0.5 %."""
+    stokes = 6 * math.pi / stokes_flow.reynolds
+    weight = stokes * float(brenner_factor(0.5))  # V = -1 at 0.5 a
+    stokes_flow.steady(0.5, -1.0)
+    elapsed = 0.0
+    while True:
+        gap, velocity, _ = stokes_flow.free_step(0.02, DISPLACED, weight)
+        elapsed += 0.02
+        assert velocity == pytest.approx(-weight / (stokes * float(brenner_factor(gap))), rel=5e-3)
+        if gap < 0.05:
+            break
+    arrival = quad(lambda h: float(brenner_factor(h)), gap, 0.5)[0] * stokes / weight
+    assert elapsed == pytest.approx(arrival, rel=5e-3)
+    assert np.isfinite(elapsed)

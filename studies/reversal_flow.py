@@ -59,7 +59,8 @@ def prescribed_motion(start_gap: float | None = None) -> dict:
     """The base run's motion, scaled by the hand-over speed V0 and the sphere radius a: times
     (by a/V0, from the hand-over: negative before it), gaps (by a) and velocities (by V0) from
     the hand-over, or from the approach's last sample above ``start_gap`` (by a), to the rise's
-    end; the exit time, Re_a, the density ratio, V0 [m/s], g a/V0^2 and the inputs."""
+    end; the exit time, the rise's apex (by a), Re_a, the density ratio, V0 [m/s], g a/V0^2
+    and the inputs."""
     run = next(r for r in gondret_bounce.GONDRET_RUNS if r.label == CASE)
     inputs = gondret_bounce.case_inputs(run)
     trajectory = gondret_bounce.trajectory(CASE, "base")
@@ -72,13 +73,18 @@ def prescribed_motion(start_gap: float | None = None) -> dict:
     speed = -v[handover]
     end = exit_ + int(np.flatnonzero(v[exit_:] < END_SPEED * v[exit_])[0])
     unit = inputs.radius / speed
-    times, keep = np.unique((t[start : end + 1] - t[handover]) / unit, return_index=True)
+    # at the exit the contact's last sample and the flight's first share a time (within 1e-10
+    # a/V0): the flight's, the later one, is kept
+    span = slice(start, end + 1)
+    times, last = np.unique((t[span] - t[handover])[::-1] / unit, return_index=True)
+    keep = end - start - last
     liquid = inputs.liquid
     return {
         "times": times,
-        "gaps": h[start : end + 1][keep] / inputs.radius,
-        "velocities": v[start : end + 1][keep] / speed,
+        "gaps": h[span][keep] / inputs.radius,
+        "velocities": v[span][keep] / speed,
         "exit_time": (t[exit_] - t[handover]) / unit,
+        "apex": h[exit_ + int(np.flatnonzero(v[exit_:] < 0.0)[0]) - 1] / inputs.radius,
         "reynolds": speed * inputs.radius * liquid.density / liquid.viscosity,
         "ratio": inputs.sphere.density / liquid.density,
         "speed": speed,

@@ -1,5 +1,6 @@
 """The axisymmetric forms of the liquid around a sphere, shared by its finite-element flows
-(:mod:`ehdfem.bounce.wall_flow`, :mod:`ehdfem.bounce.sphere_flow`): the velocity (u_r, u_z) in
+(:mod:`ehdfem.bounce.wall_flow`, :mod:`ehdfem.bounce.sphere_flow`,
+:mod:`ehdfem.bounce.near_wall_flow`): the velocity (u_r, u_z) in
 the (r, z) plane without swirl, integrals r-weighted (times 2 pi for the volume), and the
 force on the sphere from the weak form's residual.
 

@@ -235,6 +235,17 @@ def exterior_facets(mesh) -> np.ndarray:
     return dmesh.exterior_facet_indices(mesh.topology)
 
 
+def cell_nodes(mesh) -> np.ndarray:
+    """The geometry nodes of each local cell (cells x nodes per cell), indices into
+    ``mesh.geometry.x``.
+
+    0.5: ``mesh.geometry.dofmap`` is an AdjacencyList, flattened by ``.array``; from 0.7 it is
+    already the 2-D array.
+    """
+    dofmap = mesh.geometry.dofmap
+    return dofmap.array.reshape(dofmap.num_nodes, -1)
+
+
 def facet_midpoints(mesh, facets) -> np.ndarray:
     """The midpoints (n, 3) of the local ``facets`` of ``mesh``."""
     from dolfinx import mesh as dmesh

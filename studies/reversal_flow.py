@@ -19,7 +19,7 @@ momentum M v_exit, M = (rho_p / rho_f + 1/2) m_f.
 Two resolutions (RESOLUTIONS: elements on the sphere, growth, steps in the contact and in the
 rise), each stored as it finishes in studies/results/reversal_flow/; the figure
 docs/figures/bounce_reversal_flow.png.
-Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python studies/reversal_flow.py (about 10 minutes).
+Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python studies/reversal_flow.py (about 15 minutes).
 """
 
 import json

@@ -23,7 +23,8 @@ exit momentum (M v_exit, M = (rho_p/rho_f + 1/2) m_f), the work over the rise, a
 rise's apex against the model's. Stored in studies/results/wall_rebound_flow/; the figure
 docs/figures/bounce_wall_rebound_flow.png.
 Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python studies/wall_rebound_flow.py [run names]
-(all RUNS by default; names to compute some of them in parallel processes).
+(all RUNS by default, about 40 minutes; names to compute some of them in parallel processes).
+It reads the base run of studies/gondret_bounce.py (its trajectory CSV must exist).
 """
 
 import json

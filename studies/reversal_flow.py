@@ -24,7 +24,6 @@ Run: OPENBLAS_NUM_THREADS=1 .venv/bin/python studies/reversal_flow.py (about 15 
 
 import json
 import math
-import os
 import sys
 import time
 from pathlib import Path
@@ -42,6 +41,7 @@ from scipy.integrate import trapezoid  # noqa: E402
 
 from ehdfem.bounce import unsteady  # noqa: E402
 from ehdfem.bounce.sphere_flow import DISPLACED, SphereFlow  # noqa: E402
+from ehdfem.study.sweep import write_atomic  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies/results/reversal_flow"
@@ -123,9 +123,7 @@ def resolved(name) -> dict:
         "seconds": round(time.perf_counter() - start, 1),
     }
     RESULTS.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}")
-    tmp.write_text(json.dumps(row))
-    os.replace(tmp, path)
+    write_atomic(path, json.dumps(row))
     return row
 
 

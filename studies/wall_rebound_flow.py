@@ -28,7 +28,6 @@ It reads the base run of studies/gondret_bounce.py (its trajectory CSV must exis
 """
 
 import json
-import os
 import sys
 import time
 from pathlib import Path
@@ -47,6 +46,7 @@ import reversal_flow  # noqa: E402
 from ehdfem.bounce.near_wall_flow import NearWallFlow  # noqa: E402
 from ehdfem.bounce.sphere_flow import DISPLACED  # noqa: E402
 from ehdfem.bounce.trajectory import FarField  # noqa: E402
+from ehdfem.study.sweep import write_atomic  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies/results/wall_rebound_flow"
@@ -123,9 +123,7 @@ def resolved(name, free: bool = False) -> dict:
         "seconds": round(time.perf_counter() - start, 1),
     }
     RESULTS.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}")
-    tmp.write_text(json.dumps(row))
-    os.replace(tmp, path)
+    write_atomic(path, json.dumps(row))
     return row
 
 

@@ -1,11 +1,11 @@
 """The axisymmetric forms of the liquid around a sphere, shared by its finite-element flows
 (:mod:`ehdfem.bounce.wall_flow`, :mod:`ehdfem.bounce.sphere_flow`,
-:mod:`ehdfem.bounce.near_wall_flow`): the velocity (u_r, u_z) in
-the (r, z) plane without swirl, integrals r-weighted (times 2 pi for the volume), and the
-force on the sphere from the weak form's residual.
+:mod:`ehdfem.bounce.near_wall_flow`): the velocity (u_r, u_z) in the (r, z) plane without
+swirl, integrals r-weighted (times 2 pi for the volume), the force on the sphere from the weak
+form's residual, and the Navier-Stokes flows' variable-step BDF2 and steady Newton solve.
 
 Nothing here knows about scales: the forms carry the caller's (lengths by the sphere radius a
-in both flows).
+in every flow).
 """
 
 from __future__ import annotations
@@ -50,3 +50,87 @@ def sphere_force(reaction, comm) -> float:
     """F_z = -2 pi int R r dr dz, the liquid's force on the sphere along +z from the residual
     ``reaction`` tested with :func:`sphere_probe` (in the units of the caller's forms)."""
     return -2.0 * math.pi * dolfinx_compat.integral(reaction, comm)
+
+
+def momentum_residual(r, viscosity, u, p, v, q, rate_of_u, convecting):
+    """The r-weighted weak form of the momentum and mass balances, (du/dt + (a . grad) u, v) +
+    2 nu (e(u), e(v)) - (p, div v) - (q, div u), with the rate ``rate_of_u`` and the convecting
+    velocity a (``convecting``) given (UFL form; nu = ``viscosity``)."""
+    import ufl
+
+    momentum = ufl.inner(rate_of_u + transport(convecting, u), v)
+    viscous = 2 * viscosity * ufl.inner(strain_rate(r, u), strain_rate(r, v))
+    return (momentum + viscous - p * divergence(r, v) - q * divergence(r, u)) * r * ufl.dx
+
+
+class Bdf2Steps:
+    """The past of a flow in the Taylor-Hood ``space`` and the constants of its variable-step
+    BDF2: the functions ``now``, ``last``, ``before``; the rate 1/dt (``rate``), the weights
+    c_now, c_last, c_before of du/dt = rate (c_now u + c_last u_last + c_before u_before),
+    and the extrapolation e_last u_last + e_before u_before of the convecting velocity."""
+
+    def __init__(self, space):
+        import ufl
+
+        mesh = space.mesh
+        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
+        constants = [dolfinx_compat.constant(mesh, 0.0) for _ in range(6)]
+        self.rate, self.c_now, self.c_last, self.c_before, self.e_last, self.e_before = constants
+        last, before = ufl.split(self.last)[0], ufl.split(self.before)[0]
+        self.history = self.c_last * last + self.c_before * before  # UFL
+        self.extrapolated = self.e_last * last + self.e_before * before  # UFL
+        self.step_size = None
+
+    def weights(self, dt: float):
+        """((c_now, c_last, c_before), (e_last, e_before)) of a step ``dt`` after the last:
+        with w = dt / previous dt, ((1 + 2w)/(1 + w), -(1 + w), w^2/(1 + w)) and
+        (1 + w, -w); BDF1 and a constant extrapolation on the first step."""
+        if self.step_size is None:
+            return (1.0, -1.0, 0.0), (1.0, 0.0)
+        w = dt / self.step_size
+        return ((1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w)), (1 + w, -w)
+
+    def prepare(self, dt: float):
+        """Set the constants for a step ``dt`` and return its weights (:meth:`weights`)."""
+        coefficients, extrapolation = self.weights(dt)
+        for constant, value in zip(
+            (self.c_now, self.c_last, self.c_before, self.e_last, self.e_before),
+            (*coefficients, *extrapolation),
+            strict=True,
+        ):
+            constant.value = value
+        self.rate.value = 1.0 / dt
+        return coefficients
+
+    def accept(self, dt: float) -> None:
+        """Make ``now`` the last step (of size ``dt``) and the last the one before."""
+        self.before.x.array[:] = self.last.x.array
+        self.last.x.array[:] = self.now.x.array
+        self.step_size = dt
+
+    def restart(self) -> None:
+        """Make ``now`` the whole past (a steady flow): the next step is BDF1."""
+        self.last.x.array[:] = self.now.x.array
+        self.before.x.array[:] = self.now.x.array
+        self.step_size = None
+
+
+def solve_steady(residual, solution, bcs) -> None:
+    """Solve the UFL ``residual`` (of ``solution``) = 0 with the Dirichlet ``bcs`` by Newton's
+    method (MUMPS LU, relative tolerance 1e-10) from the values of ``solution``; raises if it
+    does not converge."""
+    import ufl
+
+    def configure(snes, _):
+        snes.setType("newtonls")
+        snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
+        snes.getKSP().setType("preonly")
+        snes.getKSP().getPC().setType("lu")
+        snes.getKSP().getPC().setFactorSolverType("mumps")
+
+    jacobian = dolfinx_compat.form(ufl.derivative(residual, solution))
+    reason, _ = dolfinx_compat.solve_nonlinear(
+        dolfinx_compat.form(residual), jacobian, bcs, solution, configure
+    )
+    if reason <= 0:
+        raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")

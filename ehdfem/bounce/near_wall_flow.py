@@ -41,11 +41,15 @@ from meshes import liquid
 
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
-from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate, transport
+from .liquid_forms import (
+    Bdf2Steps,
+    momentum_residual,
+    solve_steady,
+    sphere_force,
+    sphere_probe,
+)
+from .sphere_flow import FINE, GROWTH, OUTER  # the same liquid and elements around the sphere
 
-OUTER = 30.0  # the liquid's outer radius by a
-FINE = 0.02  # element size on the sphere by a
-GROWTH = 0.1  # element size added per unit distance from the sphere (resolves the near wake)
 MOVING_NEAR, MOVING_FAR = 2.0, 10.0  # the mesh translates with the sphere within the first,
 # and stays beyond the second (distances from the centre by a)
 COLUMN_RADIUS = 0.9  # the column under the sphere ends at the sphere's surface at this radius
@@ -94,29 +98,23 @@ class NearWallFlow:
         self.mesh_rate = dolfinx_compat.function(dolfinx_compat.lagrange_space(mesh, 1))
         self.rate_points = self.mesh_rate.function_space.tabulate_dof_coordinates()[:, :2].copy()
         space = dolfinx_compat.taylor_hood_space(mesh)
-        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
+        self.steps = steps = Bdf2Steps(space)
+        self.now = steps.now
         self.gaps = [reference_gap] * 2  # the mesh's gap at the last two steps (before, last)
         self.velocities = [0.0, 0.0]  # the sphere's velocity at the last two steps
-        constant = [dolfinx_compat.constant(mesh, 0.0) for _ in range(7)]
-        self.rate, self.c_now, self.c_last, self.c_before = constant[:4]
-        self.e_last, self.e_before, self.sphere_velocity = constant[4:]
-        mesh_velocity = ufl.as_vector([0.0, self.mesh_rate])
-        last, before = ufl.split(self.last)[0], ufl.split(self.before)[0]
-        convecting = self.e_last * last + self.e_before * before - mesh_velocity
+        self.sphere_velocity = dolfinx_compat.constant(mesh, 0.0)
+        convecting = steps.extrapolated - ufl.as_vector([0.0, self.mesh_rate])
         r = ufl.SpatialCoordinate(mesh)[0]
         viscosity = 1.0 / reynolds
 
         def residual(u, p, v, q, rate_of_u, a):
-            momentum = ufl.inner(rate_of_u + transport(a, u), v)
-            viscous = 2 * viscosity * ufl.inner(strain_rate(r, u), strain_rate(r, v))
-            return (momentum + viscous - p * divergence(r, v) - q * divergence(r, u)) * r * ufl.dx
+            return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, a)
 
         (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
-        history = self.c_last * last + self.c_before * before
         self.bilinear = dolfinx_compat.form(
-            residual(u, p, v, q, self.rate * self.c_now * u, convecting)
+            residual(u, p, v, q, steps.rate * steps.c_now * u, convecting)
         )
-        self.linear = dolfinx_compat.form(-self.rate * ufl.inner(history, v) * r * ufl.dx)
+        self.linear = dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx)
         u_h, p_h = ufl.split(self.now)
         sphere, wall = facets.find(liquid.SPHERE), facets.find(liquid.WALL)
         self.bcs = [
@@ -127,12 +125,11 @@ class NearWallFlow:
             dolfinx_compat.velocity_component_condition(space, 1, wall, 0.0),
         ]
         probe_velocity = sphere_probe(space, sphere)
-        rate_h = self.rate * (self.c_now * u_h + history)
+        rate_h = steps.rate * (steps.c_now * u_h + steps.history)
         self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
         relative = u_h - ufl.as_vector([0.0, self.sphere_velocity])  # steady with the sphere
         self.steady_residual = residual(u_h, p_h, v, q, 0 * u_h, relative)
         self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, 0 * u_h, relative)
-        self.step_size = None
 
     def move(self, gap: float) -> None:
         """Put the sphere's lowest point at ``gap`` (by a) above the wall (module docstring)."""
@@ -154,30 +151,12 @@ class NearWallFlow:
         held where it is (the flow far from the wall is the translating one; near it this is
         the quasi-steady start of a run) (Newton, MUMPS), make it the flow's past (both
         previous steps), and return its force (by rho V0^2 a^2, on the sphere, along +z)."""
-        import ufl
-
         self.move(gap)
         self.gaps, self.velocities = [gap, gap], [velocity, velocity]
         self.sphere_velocity.value = velocity
         self.now.x.array[:] = 0.0
-
-        def configure(snes, _):
-            snes.setType("newtonls")
-            snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
-            snes.getKSP().setType("preonly")
-            snes.getKSP().getPC().setType("lu")
-            snes.getKSP().getPC().setFactorSolverType("mumps")
-
-        residual = dolfinx_compat.form(self.steady_residual)
-        jacobian = dolfinx_compat.form(ufl.derivative(self.steady_residual, self.now))
-        reason, _ = dolfinx_compat.solve_nonlinear(
-            residual, jacobian, self.bcs, self.now, configure
-        )
-        if reason <= 0:
-            raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")
-        self.last.x.array[:] = self.now.x.array
-        self.before.x.array[:] = self.now.x.array
-        self.step_size = None
+        solve_steady(self.steady_residual, self.now, self.bcs)
+        self.steps.restart()
         return sphere_force(self.steady_reaction, self.comm)
 
     def step(self, dt: float, gap: float, velocity: float) -> float:
@@ -186,7 +165,7 @@ class NearWallFlow:
         along +z): BDF2 with the step ratio w = dt / previous dt, (1 + 2w)/(1 + w) x_now -
         (1 + w) x_last + w^2/(1 + w) x_before for x = u and for the mesh's heights, convecting
         velocity (1 + w) u_last - w u_before minus the mesh's; BDF1 first."""
-        coefficients, _ = self._weights(dt)
+        coefficients = self.steps.prepare(dt)
         force = self._solve(dt, coefficients, gap, velocity)
         self._accept(dt, gap, velocity)
         return force
@@ -198,8 +177,9 @@ class NearWallFlow:
         that of the velocity extrapolated from the last two steps (second order); the force is
         affine in V at that gap, F = F(0) + V (F(1) - F(0)), so two solves give V implicitly
         (the added mass and the drag in it). Returns (gap, V, F)."""
-        coefficients, extrapolation = self._weights(dt)
+        coefficients = self.steps.prepare(dt)
         now, last, before = coefficients
+        _, extrapolation = self.steps.weights(dt)
         guess = np.dot(extrapolation, list(reversed(self.velocities)))
         gap = (dt * guess - last * self.gaps[1] - before * self.gaps[0]) / now
         at_rest = self._solve(dt, coefficients, gap, 0.0)
@@ -211,25 +191,9 @@ class NearWallFlow:
         self._accept(dt, gap, velocity)
         return gap, velocity, at_rest + velocity * response
 
-    def _weights(self, dt: float):
-        """The BDF weights (now, last, before) and the extrapolation's (last, before) of a
-        step ``dt`` after the last one (BDF1 and a constant extrapolation on the first)."""
-        if self.step_size is None:
-            return (1.0, -1.0, 0.0), (1.0, 0.0)
-        w = dt / self.step_size
-        return ((1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w)), (1 + w, -w)
-
     def _solve(self, dt: float, coefficients, gap: float, velocity: float) -> float:
         """Solve the step's flow at the mesh gap ``gap`` and the sphere velocity ``velocity``
         into ``now`` and return its force; the past is left as it is."""
-        _, extrapolation = self._weights(dt)
-        for constant, value in zip(
-            (self.c_now, self.c_last, self.c_before, self.e_last, self.e_before),
-            (*coefficients, *extrapolation),
-            strict=True,
-        ):
-            constant.value = value
-        self.rate.value = 1.0 / dt
         r, z = self.rate_points.T
         heights = [mesh_heights(r, z, self.reference_gap, h) for h in (gap, *reversed(self.gaps))]
         self.mesh_rate.x.array[:] = np.dot(coefficients, heights) / dt
@@ -240,8 +204,6 @@ class NearWallFlow:
 
     def _accept(self, dt: float, gap: float, velocity: float) -> None:
         """Make the step's flow, gap and sphere velocity the last ones."""
-        self.before.x.array[:] = self.last.x.array
-        self.last.x.array[:] = self.now.x.array
+        self.steps.accept(dt)
         self.gaps = [self.gaps[1], gap]
         self.velocities = [self.velocities[1], velocity]
-        self.step_size = dt

@@ -29,7 +29,13 @@ from meshes import liquid
 
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
-from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate, transport
+from .liquid_forms import (
+    Bdf2Steps,
+    momentum_residual,
+    solve_steady,
+    sphere_force,
+    sphere_probe,
+)
 
 OUTER = 30.0  # the liquid's outer radius by a
 FINE = 0.02  # element size on the sphere by a
@@ -57,31 +63,23 @@ class SphereFlow:
         self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
         space = dolfinx_compat.taylor_hood_space(mesh)
         self.space = space
-        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
+        self.steps = Bdf2Steps(space)
+        self.now = self.steps.now
         r = ufl.SpatialCoordinate(mesh)[0]
         viscosity = 1.0 / reynolds
-        self.rate, self.c_now, self.c_last, self.c_before = (
-            dolfinx_compat.constant(mesh, 0.0) for _ in range(4)
-        )
-        self.e_last, self.e_before = (dolfinx_compat.constant(mesh, 0.0) for _ in range(2))
         self.far = dolfinx_compat.constant(mesh, 0.0)
-        last, _ = ufl.split(self.last)
-        before, _ = ufl.split(self.before)
-        convecting = self.e_last * last + self.e_before * before
+        steps = self.steps
 
-        def residual(u, p, v, q, rate_of_u, a):
-            momentum = ufl.inner(rate_of_u + transport(a, u), v)
-            viscous = 2 * viscosity * ufl.inner(strain_rate(r, u), strain_rate(r, v))
-            return (momentum + viscous - p * divergence(r, v) - q * divergence(r, u)) * r * ufl.dx
+        def residual(u, p, v, q, rate_of_u, convecting):
+            return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, convecting)
 
         (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
-        history = self.c_last * last + self.c_before * before
         self.bilinear = dolfinx_compat.form(
-            residual(u, p, v, q, self.rate * self.c_now * u, convecting)
+            residual(u, p, v, q, steps.rate * steps.c_now * u, steps.extrapolated)
         )
-        self.linear = dolfinx_compat.form(-self.rate * ufl.inner(history, v) * r * ufl.dx)
+        self.linear = dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx)
         u_h, p_h = ufl.split(self.now)
-        rate_h = self.rate * (self.c_now * u_h + history)
+        rate_h = steps.rate * (steps.c_now * u_h + steps.history)
         sphere, outer_facets = facets.find(liquid.SPHERE), facets.find(liquid.OUTER)
         # the velocity is given on the whole boundary but the axis: P is fixed at one point
         top = dolfinx_compat.point_dofs(
@@ -96,63 +94,30 @@ class SphereFlow:
             dolfinx_compat.zero_condition(space, top, component=1),
         ]
         probe_velocity = sphere_probe(space, sphere)
-        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
+        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, steps.extrapolated)
         still = 0 * u_h  # the steady flow: no rate of change, convected by itself
         self.steady_residual = residual(u_h, p_h, v, q, still, u_h)
         self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, still, u_h)
-        self.step_size = None
 
     def steady(self, velocity: float) -> float:
         """Solve the steady flow of a sphere moving at ``velocity`` (by V0) by Newton's method
         (MUMPS), make it the flow's past (both previous steps), and return its force (by
         rho V0^2 a^2, on the sphere, along +z)."""
-        import ufl
-        from petsc4py import PETSc
-
         self.far.value = -velocity
         self.now.x.array[:] = 0.0
-
-        def configure(snes, _):
-            snes.setType("newtonls")
-            snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
-            snes.getKSP().setType("preonly")
-            snes.getKSP().getPC().setType("lu")
-            snes.getKSP().getPC().setFactorSolverType("mumps")
-
-        residual = dolfinx_compat.form(self.steady_residual)
-        jacobian = dolfinx_compat.form(ufl.derivative(self.steady_residual, self.now))
-        reason, _ = dolfinx_compat.solve_nonlinear(
-            residual, jacobian, self.bcs, self.now, configure
-        )
-        if reason <= 0 and reason != PETSc.SNES.ConvergedReason.DIVERGED_LINE_SEARCH:
-            raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")
-        self.last.x.array[:] = self.now.x.array
-        self.before.x.array[:] = self.now.x.array
-        self.step_size = None
+        solve_steady(self.steady_residual, self.now, self.bcs)
+        self.steps.restart()
         return sphere_force(self.steady_reaction, self.comm)
 
     def step(self, dt: float, velocity: float) -> float:
         """Advance the flow by ``dt`` (by a/V0) to the sphere velocity ``velocity`` (by V0) and
         return the force on the sphere in its frame, F_frame (by rho V0^2 a^2, along +z):
         BDF2 with the step ratio w = dt / previous dt, (1 + 2w)/(1 + w) u - (1 + w) u_last +
-        w^2/(1 + w) u_before, convecting velocity (1 + w) u_last - w u_before; BDF1 first."""
-        if self.step_size is None:
-            coefficients, extrapolation = (1.0, -1.0, 0.0), (1.0, 0.0)
-        else:
-            w = dt / self.step_size
-            coefficients = ((1 + 2 * w) / (1 + w), -(1 + w), w * w / (1 + w))
-            extrapolation = (1 + w, -w)
-        for constant, value in zip(
-            (self.c_now, self.c_last, self.c_before, self.e_last, self.e_before),
-            (*coefficients, *extrapolation),
-            strict=True,
-        ):
-            constant.value = value
-        self.rate.value = 1.0 / dt
+        w^2/(1 + w) u_before, convecting velocity (1 + w) u_last - w u_before; BDF1 first
+        (:class:`ehdfem.bounce.liquid_forms.Bdf2Steps`)."""
+        self.steps.prepare(dt)
         self.far.value = -velocity
         dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
         force = sphere_force(self.reaction, self.comm)
-        self.before.x.array[:] = self.last.x.array
-        self.last.x.array[:] = self.now.x.array
-        self.step_size = dt
+        self.steps.accept(dt)
         return force

@@ -11,6 +11,7 @@ in every flow).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from ..solids.fe import dolfinx_compat
 
@@ -100,7 +101,7 @@ class Bdf2Steps:
         ):
             constant.value = value
         self.rate.value = 1.0 / dt
-        return coefficients
+        return coefficients, extrapolation
 
     def accept(self, dt: float) -> None:
         """Make ``now`` the last step (of size ``dt``) and the last the one before."""
@@ -113,6 +114,49 @@ class Bdf2Steps:
         self.last.x.array[:] = self.now.x.array
         self.before.x.array[:] = self.now.x.array
         self.step_size = None
+
+
+@dataclass(frozen=True)
+class FlowForms:
+    """The forms of a Navier-Stokes flow (:func:`navier_stokes_forms`): a BDF2 step's compiled
+    ``bilinear`` and ``linear`` forms and its residual tested on the sphere (``reaction``), the
+    steady flow's residual (``steady_residual``) and its test on the sphere
+    (``steady_reaction``), the last three UFL forms."""
+
+    bilinear: object
+    linear: object
+    reaction: object
+    steady_residual: object
+    steady_reaction: object
+
+
+def navier_stokes_forms(steps, viscosity, probe_velocity, convecting, frame_velocity):
+    """The :class:`FlowForms` of the flow whose past is ``steps`` (:class:`Bdf2Steps`), at the
+    ``viscosity`` 1/Re (in the caller's scales), tested on the sphere with ``probe_velocity``
+    (:func:`sphere_probe`): a step has the rate rate (c_now u + history) and the convecting
+    velocity ``convecting`` (UFL); the steady flow has no rate and is convected by u -
+    ``frame_velocity`` (UFL: the velocity of the frame in which it is steady)."""
+    import ufl
+
+    space = steps.now.function_space
+    r = ufl.SpatialCoordinate(space.mesh)[0]
+
+    def residual(u, p, v, q, rate_of_u, a):
+        return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, a)
+
+    (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
+    u_h, p_h = ufl.split(steps.now)
+    rate_h = steps.rate * (steps.c_now * u_h + steps.history)
+    relative, still = u_h - frame_velocity, 0 * u_h
+    return FlowForms(
+        bilinear=dolfinx_compat.form(
+            residual(u, p, v, q, steps.rate * steps.c_now * u, convecting)
+        ),
+        linear=dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx),
+        reaction=residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting),
+        steady_residual=residual(u_h, p_h, v, q, still, relative),
+        steady_reaction=residual(u_h, p_h, probe_velocity, 0.0, still, relative),
+    )
 
 
 def solve_steady(residual, solution, bcs) -> None:

@@ -41,13 +41,7 @@ from meshes import liquid
 
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
-from .liquid_forms import (
-    Bdf2Steps,
-    momentum_residual,
-    solve_steady,
-    sphere_force,
-    sphere_probe,
-)
+from .liquid_forms import Bdf2Steps, navier_stokes_forms, solve_steady, sphere_force, sphere_probe
 from .sphere_flow import FINE, GROWTH, OUTER  # the same liquid and elements around the sphere
 
 MOVING_NEAR, MOVING_FAR = 2.0, 10.0  # the mesh translates with the sphere within the first,
@@ -70,6 +64,12 @@ def mesh_heights(r, z, reference_gap: float, gap: float):
     distance = np.hypot(r, z - centre)
     fade = np.clip((MOVING_FAR - distance) / (MOVING_FAR - MOVING_NEAR), 0.0, 1.0)
     return z + fade * (moved - z)
+
+
+def signed_areas(corners):
+    """Twice the signed areas of the triangles whose corners are ``corners`` (cells x 3 x 2)."""
+    edges = corners[:, 1:] - corners[:, :1]
+    return np.cross(edges[:, 0], edges[:, 1])
 
 
 class NearWallFlow:
@@ -95,6 +95,7 @@ class NearWallFlow:
         self.nodes = mesh.geometry.x
         self.reference = self.nodes[:, :2].copy()
         self.triangles = dolfinx_compat.cell_nodes(mesh)
+        self.orientation = np.sign(signed_areas(self.reference[self.triangles]))
         self.mesh_rate = dolfinx_compat.function(dolfinx_compat.lagrange_space(mesh, 1))
         self.rate_points = self.mesh_rate.function_space.tabulate_dof_coordinates()[:, :2].copy()
         space = dolfinx_compat.taylor_hood_space(mesh)
@@ -103,19 +104,6 @@ class NearWallFlow:
         self.gaps = [reference_gap] * 2  # the mesh's gap at the last two steps (before, last)
         self.velocities = [0.0, 0.0]  # the sphere's velocity at the last two steps
         self.sphere_velocity = dolfinx_compat.constant(mesh, 0.0)
-        convecting = steps.extrapolated - ufl.as_vector([0.0, self.mesh_rate])
-        r = ufl.SpatialCoordinate(mesh)[0]
-        viscosity = 1.0 / reynolds
-
-        def residual(u, p, v, q, rate_of_u, a):
-            return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, a)
-
-        (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
-        self.bilinear = dolfinx_compat.form(
-            residual(u, p, v, q, steps.rate * steps.c_now * u, convecting)
-        )
-        self.linear = dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx)
-        u_h, p_h = ufl.split(self.now)
         sphere, wall = facets.find(liquid.SPHERE), facets.find(liquid.WALL)
         self.bcs = [
             dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
@@ -124,23 +112,20 @@ class NearWallFlow:
             dolfinx_compat.velocity_component_condition(space, 0, wall, 0.0),
             dolfinx_compat.velocity_component_condition(space, 1, wall, 0.0),
         ]
-        probe_velocity = sphere_probe(space, sphere)
-        rate_h = steps.rate * (steps.c_now * u_h + steps.history)
-        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting)
-        relative = u_h - ufl.as_vector([0.0, self.sphere_velocity])  # steady with the sphere
-        self.steady_residual = residual(u_h, p_h, v, q, 0 * u_h, relative)
-        self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, 0 * u_h, relative)
+        # a step is convected relative to the mesh; the steady start is steady with the sphere
+        self.forms = navier_stokes_forms(
+            steps,
+            1.0 / reynolds,
+            sphere_probe(space, sphere),
+            steps.extrapolated - ufl.as_vector([0.0, self.mesh_rate]),
+            ufl.as_vector([0.0, self.sphere_velocity]),
+        )
 
     def move(self, gap: float) -> None:
         """Put the sphere's lowest point at ``gap`` (by a) above the wall (module docstring)."""
         r, z = self.reference.T
         self.nodes[:, 1] = mesh_heights(r, z, self.reference_gap, gap)
-        corners = self.nodes[self.triangles, :2]
-        edges = corners[:, 1:] - corners[:, :1]
-        areas = np.cross(edges[:, 0], edges[:, 1])
-        reference = self.reference[self.triangles]
-        before = np.cross(reference[:, 1] - reference[:, 0], reference[:, 2] - reference[:, 0])
-        if np.any(areas * before <= 0.0):
+        if np.any(signed_areas(self.nodes[self.triangles, :2]) * self.orientation <= 0.0):
             raise ValueError(
                 f"gap = {gap} a turns cells of the mesh made at {self.reference_gap} a"
             )
@@ -155,9 +140,9 @@ class NearWallFlow:
         self.gaps, self.velocities = [gap, gap], [velocity, velocity]
         self.sphere_velocity.value = velocity
         self.now.x.array[:] = 0.0
-        solve_steady(self.steady_residual, self.now, self.bcs)
+        solve_steady(self.forms.steady_residual, self.now, self.bcs)
         self.steps.restart()
-        return sphere_force(self.steady_reaction, self.comm)
+        return sphere_force(self.forms.steady_reaction, self.comm)
 
     def step(self, dt: float, gap: float, velocity: float) -> float:
         """Advance the flow by ``dt`` (by a/V0) to the mesh gap ``gap`` (by a) and the sphere
@@ -165,7 +150,7 @@ class NearWallFlow:
         along +z): BDF2 with the step ratio w = dt / previous dt, (1 + 2w)/(1 + w) x_now -
         (1 + w) x_last + w^2/(1 + w) x_before for x = u and for the mesh's heights, convecting
         velocity (1 + w) u_last - w u_before minus the mesh's; BDF1 first."""
-        coefficients = self.steps.prepare(dt)
+        coefficients, _ = self.steps.prepare(dt)
         force = self._solve(dt, coefficients, gap, velocity)
         self._accept(dt, gap, velocity)
         return force
@@ -177,9 +162,8 @@ class NearWallFlow:
         that of the velocity extrapolated from the last two steps (second order); the force is
         affine in V at that gap, F = F(0) + V (F(1) - F(0)), so two solves give V implicitly
         (the added mass and the drag in it). Returns (gap, V, F)."""
-        coefficients = self.steps.prepare(dt)
+        coefficients, extrapolation = self.steps.prepare(dt)
         now, last, before = coefficients
-        _, extrapolation = self.steps.weights(dt)
         guess = np.dot(extrapolation, list(reversed(self.velocities)))
         gap = (dt * guess - last * self.gaps[1] - before * self.gaps[0]) / now
         at_rest = self._solve(dt, coefficients, gap, 0.0)
@@ -199,8 +183,9 @@ class NearWallFlow:
         self.mesh_rate.x.array[:] = np.dot(coefficients, heights) / dt
         self.sphere_velocity.value = velocity
         self.move(gap)
-        dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
-        return sphere_force(self.reaction, self.comm)
+        forms = self.forms
+        dolfinx_compat.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
+        return sphere_force(forms.reaction, self.comm)
 
     def _accept(self, dt: float, gap: float, velocity: float) -> None:
         """Make the step's flow, gap and sphere velocity the last ones."""

@@ -31,7 +31,7 @@ from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import (
     Bdf2Steps,
-    momentum_residual,
+    navier_stokes_forms,
     solve_steady,
     sphere_force,
     sphere_probe,
@@ -62,24 +62,9 @@ class SphereFlow:
         mesh, _, facets = contact_mesh(comm, liquid.build, (None, outer, fine, growth))
         self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
         space = dolfinx_compat.taylor_hood_space(mesh)
-        self.space = space
         self.steps = Bdf2Steps(space)
         self.now = self.steps.now
-        r = ufl.SpatialCoordinate(mesh)[0]
-        viscosity = 1.0 / reynolds
         self.far = dolfinx_compat.constant(mesh, 0.0)
-        steps = self.steps
-
-        def residual(u, p, v, q, rate_of_u, convecting):
-            return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, convecting)
-
-        (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
-        self.bilinear = dolfinx_compat.form(
-            residual(u, p, v, q, steps.rate * steps.c_now * u, steps.extrapolated)
-        )
-        self.linear = dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx)
-        u_h, p_h = ufl.split(self.now)
-        rate_h = steps.rate * (steps.c_now * u_h + steps.history)
         sphere, outer_facets = facets.find(liquid.SPHERE), facets.find(liquid.OUTER)
         # the velocity is given on the whole boundary but the axis: P is fixed at one point
         top = dolfinx_compat.point_dofs(
@@ -93,11 +78,14 @@ class SphereFlow:
             dolfinx_compat.velocity_component_condition(space, 1, outer_facets, self.far),
             dolfinx_compat.zero_condition(space, top, component=1),
         ]
-        probe_velocity = sphere_probe(space, sphere)
-        self.reaction = residual(u_h, p_h, probe_velocity, 0.0, rate_h, steps.extrapolated)
-        still = 0 * u_h  # the steady flow: no rate of change, convected by itself
-        self.steady_residual = residual(u_h, p_h, v, q, still, u_h)
-        self.steady_reaction = residual(u_h, p_h, probe_velocity, 0.0, still, u_h)
+        # in the sphere's frame: the steady flow is convected by itself
+        self.forms = navier_stokes_forms(
+            self.steps,
+            1.0 / reynolds,
+            sphere_probe(space, sphere),
+            self.steps.extrapolated,
+            ufl.as_vector([0.0, 0.0]),
+        )
 
     def steady(self, velocity: float) -> float:
         """Solve the steady flow of a sphere moving at ``velocity`` (by V0) by Newton's method
@@ -105,9 +93,9 @@ class SphereFlow:
         rho V0^2 a^2, on the sphere, along +z)."""
         self.far.value = -velocity
         self.now.x.array[:] = 0.0
-        solve_steady(self.steady_residual, self.now, self.bcs)
+        solve_steady(self.forms.steady_residual, self.now, self.bcs)
         self.steps.restart()
-        return sphere_force(self.steady_reaction, self.comm)
+        return sphere_force(self.forms.steady_reaction, self.comm)
 
     def step(self, dt: float, velocity: float) -> float:
         """Advance the flow by ``dt`` (by a/V0) to the sphere velocity ``velocity`` (by V0) and
@@ -117,7 +105,8 @@ class SphereFlow:
         (:class:`ehdfem.bounce.liquid_forms.Bdf2Steps`)."""
         self.steps.prepare(dt)
         self.far.value = -velocity
-        dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.now)
-        force = sphere_force(self.reaction, self.comm)
+        forms = self.forms
+        dolfinx_compat.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
+        force = sphere_force(forms.reaction, self.comm)
         self.steps.accept(dt)
         return force

@@ -105,3 +105,13 @@ def test_free_sphere_settles_by_brenners_quasi_steady_law(stokes_flow):
     arrival = quad(lambda h: float(brenner_factor(h)), gap, 0.5)[0] * stokes / weight
     assert elapsed == pytest.approx(arrival, rel=5e-3)
     assert np.isfinite(elapsed)
+
+
+def test_bad_inputs_are_refused_with_their_names(stokes_flow):
+    """A Reynolds number or a gap that is not positive is named before any work."""
+    with pytest.raises(ValueError, match="reynolds"):
+        NearWallFlow(MPI.COMM_WORLD, 0.0, REFERENCE_GAP)
+    with pytest.raises(ValueError, match="reference_gap"):
+        NearWallFlow(MPI.COMM_WORLD, 1.0, -0.1)
+    with pytest.raises(ValueError, match="gap"):
+        stokes_flow.move(0.0)

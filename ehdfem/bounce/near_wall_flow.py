@@ -39,6 +39,7 @@ import numpy as np
 
 from meshes import liquid
 
+from .. import checks
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import Bdf2Steps, navier_stokes_forms, solve_steady, sphere_force, sphere_probe
@@ -89,6 +90,8 @@ class NearWallFlow:
     ):
         import ufl
 
+        for name, value in (("reynolds", reynolds), ("reference_gap", reference_gap)):
+            checks.positive(name, value)
         self.comm, self.reynolds, self.reference_gap = comm, reynolds, reference_gap
         mesh, _, facets = contact_mesh(comm, liquid.build, (reference_gap, outer, fine, growth))
         self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
@@ -123,6 +126,7 @@ class NearWallFlow:
 
     def move(self, gap: float) -> None:
         """Put the sphere's lowest point at ``gap`` (by a) above the wall (module docstring)."""
+        checks.positive("gap", gap)
         r, z = self.reference.T
         self.nodes[:, 1] = mesh_heights(r, z, self.reference_gap, gap)
         if np.any(signed_areas(self.nodes[self.triangles, :2]) * self.orientation <= 0.0):

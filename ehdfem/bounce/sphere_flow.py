@@ -27,6 +27,7 @@ import numpy as np
 
 from meshes import liquid
 
+from .. import checks
 from ..solids.fe import dolfinx_compat
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import (
@@ -58,6 +59,7 @@ class SphereFlow:
     ):
         import ufl
 
+        checks.positive("reynolds", reynolds)
         self.comm, self.reynolds = comm, reynolds
         mesh, _, facets = contact_mesh(comm, liquid.build, (None, outer, fine, growth))
         self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)

@@ -39,25 +39,6 @@ quietly() {
     fi
 }
 
-# The system's BLAS and LAPACK are Debian alternatives, and installing OpenBLAS (Yade needs it)
-# makes it the default: the set-up selects the reference libraries (libblas3, liblapack3) on
-# every machine, fresh or not, so that ehdfem's arithmetic, which the regression table
-# (tests/test_regression.py) compares to 1e-10, is the same everywhere. OpenBLAS stays
-# installed for Yade, and tests/test_threads.py loads it to show that results do not depend
-# on its thread count.
-REFERENCE_BLAS=(libblas.so.3-x86_64-linux-gnu=/usr/lib/x86_64-linux-gnu/blas/libblas.so.3
-                liblapack.so.3-x86_64-linux-gnu=/usr/lib/x86_64-linux-gnu/lapack/liblapack.so.3)
-reference_blas() {
-    local sudo="$1" entry name path
-    for entry in "${REFERENCE_BLAS[@]}"; do
-        name=${entry%%=*} path=${entry#*=}
-        if [ "$(update-alternatives --query "$name" | sed -n 's/^Value: //p')" != "$path" ]; then
-            echo "setup: selecting the reference $path for $name"
-            quietly $sudo update-alternatives --set "$name" "$path"
-        fi
-    done
-}
-
 setup() {
     local missing=() sudo=""
     [ "$(id -u)" -eq 0 ] || sudo=sudo
@@ -72,7 +53,6 @@ setup() {
         quietly $sudo env DEBIAN_FRONTEND=noninteractive \
             apt-get install -y --no-install-recommends "${missing[@]}"
     fi
-    reference_blas "$sudo"
     if [ ! -x "$PY" ]; then
         echo "setup: creating the venv $VENV on Debian's python (system site packages)"
         quietly /usr/bin/python3 -m venv --system-site-packages "$VENV"

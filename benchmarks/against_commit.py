@@ -4,8 +4,13 @@ Each case (a head-on collision at the default numerics, 240 film nodes, half-spa
 run in a fresh Python process on the current checkout and on a git worktree of COMMIT, in
 alternation, REPEATS times each; the fastest run of each counts (runs of about a second vary
 by 15 % on a busy machine, and the minimum is the least disturbed). One BLAS thread, as in every
-collision. Writes benchmarks/results/against_commit.json (seconds, implicit steps, Newton
-iterations and e_n of both, and the ratio of the times) and prints a line per case.
+collision, on the machine's BLAS (both sides the same library). Then, where Linux's ``perf`` is
+installed, the current code's collisions are sampled by ``perf record`` and the share of the
+samples inside the BLAS and LAPACK libraries (OpenBLAS or the reference ones) is reported per
+case: the part of a collision's time that is arithmetic in the dense kernels, against Python and
+numpy's small operations. Writes benchmarks/results/against_commit.json (seconds, implicit
+steps, Newton iterations, e_n, the thinnest film and the contact time of both, the ratio of the
+times, the BLAS share) and prints a line per case.
 
 Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]   (about 2 minutes at 5)
 
@@ -16,6 +21,7 @@ p_cav=...))``.
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -24,6 +30,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 CASES = {  # name: CollisionParameters keywords (scaled inputs, DSH 1986)
+    "immersed St=10 eps=6.75e-3 no cavitation": dict(
+        St=10.0, eps=6.75e-3, layer="immersed", cavitation="none"
+    ),
+    "thin St=20 eps=1e-3": dict(St=20.0, eps=1e-3, layer="thin"),
     "thin St=10 eps=1e-3 P_cav=-2": dict(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0),
     "immersed St=50 eps=1e-4": dict(St=50.0, eps=1e-4, layer="immersed"),
     "thin St=1000 eps=1e-6": dict(St=1000.0, eps=1e-6, layer="thin"),
@@ -38,8 +48,17 @@ start = time.perf_counter()
 normal = collide(params).normal
 print(json.dumps({"seconds": time.perf_counter() - start, "steps": normal.steps,
                   "newton_iterations": getattr(normal, "newton_iterations", None),
-                  "e_n": normal.e_n}))
+                  "e_n": normal.e_n, "min_film_thickness": normal.min_film_thickness,
+                  "contact_time": normal.contact_time}))
 """
+SAMPLED = """
+import json, sys
+from ehdfem import CollisionParameters, collide
+params = CollisionParameters(**json.loads(sys.argv[1]))
+for _ in range(int(sys.argv[2])):
+    collide(params)
+"""
+LINEAR_ALGEBRA = ("blas", "lapack")  # the shared objects that count as dense kernels
 
 
 def run(source: Path, case: dict) -> dict:
@@ -55,6 +74,55 @@ def run(source: Path, case: dict) -> dict:
         check=True,
     )
     return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def blas_share(case: dict, runs: int = 5) -> float | None:
+    """The share of ``perf record``'s samples of ``runs`` collisions of the current code that
+    fall in a BLAS or LAPACK library (None without perf). The import and the kernel build are
+    in the samples too, which makes the share a lower bound."""
+    if shutil.which("perf") is None:
+        return None
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    with tempfile.TemporaryDirectory() as tmp:
+        data = str(Path(tmp) / "perf.data")
+        subprocess.run(
+            ["perf", "record", "-q", "-F", "2000", "-o", data, "--"]
+            + [sys.executable, "-c", SAMPLED, json.dumps(case), str(runs)],
+            env=env,
+            cwd=ROOT,
+            capture_output=True,
+            check=True,
+        )
+        report = subprocess.run(
+            ["perf", "report", "-i", data, "--sort", "dso", "--stdio", "-q"],
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout
+    shares = [line.split() for line in report.splitlines() if "%" in line]
+    total = sum(float(row[0].rstrip("%")) for row in shares)
+    dense = sum(
+        float(row[0].rstrip("%"))
+        for row in shares
+        if any(name in row[-1].lower() for name in LINEAR_ALGEBRA)
+    )
+    return dense / total if total else None
+
+
+def blas_libraries() -> list[str]:
+    """The BLAS and LAPACK libraries numpy and scipy load on this machine (both codes use
+    them)."""
+    import numpy  # noqa: F401
+    import scipy.linalg  # noqa: F401
+
+    maps = Path("/proc/self/maps").read_text().splitlines()
+    return sorted(
+        {
+            line.split()[-1]
+            for line in maps
+            if any(f"lib{name}" in line.split()[-1] for name in LINEAR_ALGEBRA)
+        }
+    )
 
 
 def main(commit: str, repeats: int = 5):
@@ -76,12 +144,14 @@ def main(commit: str, repeats: int = 5):
                         if best[label] is None or result["seconds"] < best[label]["seconds"]:
                             best[label] = result
                 ratio = best["current"]["seconds"] / best["old"]["seconds"]
-                rows[name] = {**best, "time_ratio": ratio}
+                share = blas_share(case)
+                rows[name] = {**best, "time_ratio": ratio, "blas_lapack_share": share}
                 print(
-                    f"{name:34s} current {best['current']['seconds']:.3f} s "
+                    f"{name:42s} current {best['current']['seconds']:.3f} s "
                     f"({best['current']['steps']} steps), {commit[:10]} "
                     f"{best['old']['seconds']:.3f} s ({best['old']['steps']} steps): "
-                    f"ratio {ratio:.3f}",
+                    f"ratio {ratio:.3f}, BLAS/LAPACK share "
+                    + ("n/a" if share is None else f"{100 * share:.0f} %"),
                     flush=True,
                 )
         finally:
@@ -91,9 +161,17 @@ def main(commit: str, repeats: int = 5):
     ).stdout.strip()
     RESULTS.mkdir(exist_ok=True)
     out = RESULTS / "against_commit.json"
+    blas = blas_libraries()
     out.write_text(
         json.dumps(
-            {"current": head, "against": commit, "repeats": repeats, "cases": rows}, indent=2
+            {
+                "current": head,
+                "against": commit,
+                "repeats": repeats,
+                "blas_libraries": blas,
+                "cases": rows,
+            },
+            indent=2,
         )
         + "\n"
     )

@@ -53,6 +53,16 @@ from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
 from .timestepping import IntegratorOptions
 
 
+def _remaining(norm: float, ratio: float | None) -> float:
+    """The error left after a Newton update of size ``norm`` at the contraction rate ``ratio``
+    (the latest update over the one before): ratio / (1 - ratio) norm for a contracting
+    iteration (the geometric series of the updates still to come), the update itself
+    otherwise."""
+    if ratio is None or ratio >= 0.5:
+        return norm
+    return ratio / (1.0 - ratio) * norm
+
+
 class StepFailed(Exception):
     """The Newton iteration of one step failed; the time stepper retries with a smaller step."""
 
@@ -231,18 +241,18 @@ class ImplicitStep:
                 pressure, fill, cavitated, it.state.dry, stiffness
             )
             sets = (*it.sets[:2], self.cavitation.theta_nodes(cavitated).tobytes())
-            if norm <= self.options.newton_tol and damping == 1.0 and sets == previous_sets:
+            same = sets == previous_sets
+            ratio = norm / previous_norm if same and previous_norm else None
+            if damping == 1.0 and same and _remaining(norm, ratio) <= self.options.newton_tol:
                 cavities = self.cavitation.theta_nodes(cavitated)
                 return StepSolution(pressure, gap, velocity, fill, cavities, it.state, iteration)
-            if previous_norm is not None and sets == previous_sets:
-                # refresh a stale factorisation when its contraction would need > 6 more sweeps
-                # (not while the fixed nodes move: that slows the iteration whatever the matrix;
-                # and not on a fresh one's first update, whose ratio to the stale one's update
-                # is no contraction rate: only if the iteration diverges)
-                ratio = norm / previous_norm
+            if ratio is not None:
+                # refresh a stale factorisation that diverges or whose contraction would need
+                # > 6 more sweeps (not on a fresh one's first update, whose ratio to the stale
+                # one's update is no contraction rate)
                 tol = self.options.newton_tol
                 slow = 0.1 < ratio < 1.0 and np.log(tol / norm) / np.log(ratio) > 6
-                refresh = ratio >= 1.0 or (slow and not fresh)
+                refresh = not fresh and (ratio >= 1.0 or slow)
             previous_sets, previous_norm = sets, norm
         self.factor = None
         raise StepFailed("Newton did not converge", np.abs(it.rhs).max())

@@ -299,7 +299,7 @@ class _NormalIntegration:
         if hist.surface_radial:
             recent.append(latest(hist.surface_radial, order))
         past = stepper.past(weights, recent)
-        guess = stepper.guess(t_new, (hist.pressure, hist.gap, hist.velocity))
+        guess = stepper.guess(t_new, (hist.pressure, hist.gap, hist.velocity), order)
         guess[0] = np.where(self.cavitated, self.cavitation.p_cav, guess[0])
         try:
             solution = self.step_solver.solve(

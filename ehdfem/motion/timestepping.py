@@ -106,12 +106,24 @@ def latest(values, count):
     return values[-1 : -count - 1 : -1]
 
 
+def interpolation_weights(nodes, t) -> list:
+    """Weights l_j(t) of the Lagrange polynomials through ``nodes``: the polynomial through
+    (nodes[j], y_j) is sum_j l_j(t) y_j at t (any units of time)."""
+    weights = []
+    for j, tj in enumerate(nodes):
+        weight = 1.0
+        for k, tk in enumerate(nodes):
+            if k != j:
+                weight *= (t - tk) / (tj - tk)
+        weights.append(weight)
+    return weights
+
+
 def extrapolate(nodes, values, t):
-    """Value at t of the polynomial through (nodes[j], values[j])."""
+    """Value at t of the polynomial through (nodes[j], values[j]) (scalars or arrays)."""
     total = 0.0
-    for j, (tj, yj) in enumerate(zip(nodes, values, strict=True)):
-        others = [tk for k, tk in enumerate(nodes) if k != j]
-        total = total + yj * np.prod([(t - tk) / (tj - tk) for tk in others])
+    for weight, value in zip(interpolation_weights(nodes, t), values, strict=True):
+        total = total + weight * value
     return total
 
 
@@ -209,9 +221,9 @@ class BDFStepper:
         latest accepted values, newest first."""
         return [weights[1:] @ np.asarray(values) for values in recent]
 
-    def guess(self, t_new, histories) -> list:
-        """Extrapolation of each history from (up to) the three latest accepted values."""
-        known = min(self._known(), 3)
+    def guess(self, t_new, histories, order=2) -> list:
+        """Extrapolation of each history from (up to) its ``order`` + 1 latest accepted values."""
+        known = min(self._known(), order + 1)
         return [
             extrapolate(latest(self.times, known), latest(values, known), t_new)
             for values in histories

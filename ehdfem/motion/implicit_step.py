@@ -63,6 +63,24 @@ def _remaining(norm: float, ratio: float | None) -> float:
     return ratio / (1.0 - ratio) * norm
 
 
+def _band_rows(bands, matrix, rows) -> np.ndarray:
+    """The rows ``rows`` of tridiag(lower, diagonal, upper) @ ``matrix`` (n x m) for the bands
+    (lower, diagonal, upper) of an n x n tridiagonal matrix (lower[0] and upper[-1] unused):
+    by shifted slices when ``rows`` are all the rows, by gathered rows otherwise."""
+    lower, diagonal, upper = bands
+    n = len(diagonal)
+    if len(rows) == n:
+        out = diagonal[:, None] * matrix
+        out[1:] += lower[1:, None] * matrix[:-1]
+        out[:-1] += upper[:-1, None] * matrix[1:]
+        return out
+    below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
+    out = diagonal[rows, None] * matrix[rows]
+    out += np.where(rows > 0, lower[rows], 0.0)[:, None] * matrix[below]
+    out += np.where(rows < n - 1, upper[rows], 0.0)[:, None] * matrix[above]
+    return out
+
+
 class StepFailed(Exception):
     """The Newton iteration of one step failed; the time stepper retries with a smaller step."""
 
@@ -351,32 +369,24 @@ class ImplicitStep:
         columns of those hold d/d(theta), which is zero off their own rows."""
         n = len(state.mass)
         lower, diag, upper = state.dflux_dH
-        diag = diag + state.mass * fill * a0 / step
-        below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
+        squeeze = (lower, diag + state.mass * fill * a0 / step, upper)
         out = np.zeros((len(rows), n + 2))
         loaded = self.loaded()
         c = self.compliance if loaded is None else loaded.by_pressure
-        out[:, :n] = (
-            diag[rows, None] * c[rows] + lower[rows, None] * c[below] + upper[rows, None] * c[above]
-        )
+        out[:, :n] = _band_rows(squeeze, c, rows)
+        below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
         j = np.arange(len(rows))
         for k_low, k_diag, k_up in (state.conductance, state.dflux_dP):
             out[j, rows] += k_diag[rows]
             out[j, below] += k_low[rows]
             out[j, above] += k_up[rows]
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
-            b_low, b_diag, b_up = state.transport
-            c = self.surface_motion.sqrt_delta * a0 / step * self.surface_motion.matrix
-            out[:, :n] += (
-                b_diag[rows, None] * c[rows]
-                + b_low[rows, None] * c[below]
-                + b_up[rows, None] * c[above]
+            motion = self.surface_motion
+            out[:, :n] += _band_rows(state.transport, motion.matrix, rows) * (
+                motion.sqrt_delta * a0 / step
             )
-        if loaded is None:
-            out[:, n] = lower[rows] + diag[rows] + upper[rows]
-        else:  # dH/dX = (I - C D)^-1 1
-            g = loaded.by_gap
-            out[:, n] = lower[rows] * g[below] + diag[rows] * g[rows] + upper[rows] * g[above]
+        by_gap = np.ones(n) if loaded is None else loaded.by_gap  # dH/dX = (I - C D)^-1 1
+        out[:, n] = _band_rows(squeeze, by_gap[:, None], rows)[:, 0]
         if theta_nodes is not None:
             out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out

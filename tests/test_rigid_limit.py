@@ -84,8 +84,9 @@ def test_rigid_film_force_is_exact_on_any_grid(layer):
     found on the element's exact undeformed gap), equals the closed form on any grid at
     every gap down to the one where the film at most doubles over each element
     (:func:`doubling_gap`), to 1.7e-8 (measured on the reference and the OpenBLAS LAPACK
-    alike, with the flux solve of :func:`film_force`; 3e-8 allowed). Below that gap the conductance's 6-point quadrature
-    of int R^3 / H^3 dR is what limits it (1e-3 of the force where H grows 50-fold); the
+    alike, with the flux solve of :func:`film_force`; 3e-8 allowed). Below that gap the
+    conductance's 6-point quadrature of int R^3 / H^3 dR is what limits it (1e-3 of the
+    force where H grows 50-fold); the
     default grids reach it only below 1e-7, where these spheres have flattened or stopped.
     The P1 Galerkin conductance fell short by about 0.9 (dR/R)^2, 1.5e-3 on the grid graded
     for eps = 1e-12, and the edge interpolated linearly in H cost the thin layer 2.5e-3."""

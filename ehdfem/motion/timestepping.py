@@ -16,7 +16,6 @@ import numpy as np
 
 from ..inputs.settings import setting, validate
 
-
 PREDICTOR_DEGREE = 3  # the highest degree of the polynomial that starts Newton (BDFStepper.guess)
 
 
@@ -36,8 +35,9 @@ class IntegratorOptions:
     5; BDF is zero-stable up to 6, and orders 3 to 5 are stable on the negative real axis,
     where the film's stiff modes lie). ``max_growth``: the largest step growth per step.
     ``newton_tol``: the error left in a step's Newton iteration, relative to the solution size
-    (the latest update, or rho/(1 - rho) times it at a contraction rate rho < 1/2). ``first_step``: initial
-    time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by stalling).
+    (the latest update, or rho/(1 - rho) times it at a contraction rate rho < 1/2).
+    ``first_step``: initial time step (by x0 / V0). ``max_time``: give up after this scaled
+    time (sticking by stalling).
     ``exit_gap``: the gap X (by x0) at which a rebounding sphere leaves the film model (V > 0);
     1, the layer surface, by default; above 1 only for an immersed film, which then follows the
     sphere further out (a bounce hands back to its flight where cavitation no longer acts,

@@ -5,7 +5,9 @@ In film units (gap and film thickness by x0, radius R by sqrt(a x0), delta = x0 
 
     H(R, T) = X(T) + S(R) + W(R, T),
 
-with S the height of the two undeformed surfaces above their closest points, summed:
+with S the height of the two undeformed surfaces above their closest points, summed (a gap
+class gives S, with its slope dS/dR (``profile``), and S minus its chord between nodes with
+that difference's slope):
 
 - ``paraboloid`` (the asymptotic theory): S = R^2 / 2;
 - ``exact``: each sphere of radius rho a (rho by a; a flat wall or coating contributes 0) adds
@@ -39,6 +41,10 @@ class Paraboloid:
         """S(R) by x0 at R by sqrt(a x0)."""
         return 0.5 * radius**2
 
+    def profile(self, radius):
+        """(S, dS/dR) at R (by x0 and sqrt(x0/a), R by sqrt(a x0))."""
+        return 0.5 * radius**2, radius
+
     def between_nodes(self, left, length, xi):
         """S(left + xi L) minus the linear interpolant of S between left and left + L, for the
         elements (left, length) at the points xi in [0, 1]: -xi (1 - xi) L^2 / 2."""
@@ -62,9 +68,8 @@ class ExactSpheres(Paraboloid):
         self.limit = min(self.radii) / math.sqrt(self.delta)  # the smaller sphere's equator
 
     def _remainder(self, radius):
-        """D = S - R^2/2 and dD/dR."""
-        radius = np.asarray(radius, dtype=float)
-        if np.any(radius >= self.limit):
+        """D = S - R^2/2 and dD/dR (at a float R or an array of them)."""
+        if (np.asarray(radius) >= self.limit).any():
             raise checks.InputError(
                 f"the film reaches R = {float(np.max(radius)):.4g} sqrt(a x0), beyond the "
                 f"sphere's equator at {self.limit:.4g}: no exact gap there"
@@ -78,6 +83,10 @@ class ExactSpheres(Paraboloid):
 
     def height(self, radius):
         return 0.5 * radius**2 + self._remainder(radius)[0]
+
+    def profile(self, radius):
+        value, slope = self._remainder(radius)
+        return 0.5 * radius**2 + value, radius + slope
 
     def between_nodes(self, left, length, xi):
         points = left[:, None] + length[:, None] * xi

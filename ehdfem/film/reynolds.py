@@ -374,14 +374,20 @@ def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
     return conductance, thickness_coupling, pressure_coupling
 
 
+def _node_sums(nodes, values, n: int) -> np.ndarray:
+    """The sums of ``values`` over each node index of ``nodes`` (n nodes; repeated indices
+    add), as np.add.at but in one pass."""
+    return np.bincount(nodes, weights=values, minlength=n)
+
+
 def _hat_weights(el: _Elements, values: np.ndarray, n: int) -> np.ndarray:
     """w with w . f = int f g R dR over the elements, for a nodal (P1) f that is 0 at a cut
     edge and g given at the elements' Gauss points, ``values`` (elements, 3)."""
     regular = el.right >= 0
     weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
     out = np.zeros(n)
-    np.add.at(out, el.left, (weight * (1.0 - _GAUSS_XI)).sum(axis=1))
-    np.add.at(out, el.right[regular], (weight * _GAUSS_XI).sum(axis=1)[regular])
+    out += _node_sums(el.left, (weight * (1.0 - _GAUSS_XI)).sum(axis=1), len(out))
+    out += _node_sums(el.right[regular], (weight * _GAUSS_XI).sum(axis=1)[regular], len(out))
     return out
 
 
@@ -403,8 +409,10 @@ def _cell_hat_weights(el: _Elements, radii: np.ndarray, values: np.ndarray) -> n
     rising = (el.gauss_r - radii[el.left, None]) / full[:, None]
     weight = el.length[:, None] * _GAUSS_W * el.gauss_r * values
     out = np.zeros(len(radii))
-    np.add.at(out, el.left, (weight * (1.0 - rising)).sum(axis=1))
-    np.add.at(out, np.minimum(el.left + 1, len(out) - 1), (weight * rising).sum(axis=1))
+    out += _node_sums(el.left, (weight * (1.0 - rising)).sum(axis=1), len(out))
+    out += _node_sums(
+        np.minimum(el.left + 1, len(out) - 1), (weight * rising).sum(axis=1), len(out)
+    )
     return out
 
 
@@ -438,6 +446,14 @@ class Film:
         self._full_mass = np.zeros_like(self.radii)
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
+        self._recent_elements = []  # (H, the wetted elements) of the two latest H
+        # S at the nodes, and S minus its chord at the quadrature points of the whole cells
+        # by the points' id (a gap that has no value at a node, as a true sphere beyond its
+        # equator, refuses the grid here)
+        self._node_height = self.gap.height(self.radii)
+        self._cell_between = {
+            id(xi): self.gap.between_nodes(left, self._length, xi) for xi in (_FLUX_XI, _GAUSS_XI)
+        }
 
     @property
     def full_mass(self) -> np.ndarray:
@@ -472,14 +488,15 @@ class Film:
         """xi in [0, 1] where H = h_left (1 - xi) + h_right xi + (S - its chord) = 1 on element
         k (h_left < 1 <= h_right): Newton from the linear crossing, which lies left of the root
         (S lies below its chord) on a convex H, so the iterates bracket it after one step."""
-        left, length = self.radii[k : k + 1], self._length[k : k + 1]
+        left, length = float(self.radii[k]), float(self._length[k])
+        s_left, s_right = (float(value) for value in self._node_height[k : k + 2])
+        chord = (s_right - s_left) / length
         xi = (1.0 - h_left) / (h_right - h_left)
         for _ in range(6):
-            point = np.array([xi])
+            height, gap_slope = self.gap.profile(left + xi * length)
             excess = h_left + (h_right - h_left) * xi - 1.0
-            excess += self.gap.between_nodes(left, length, point)[0, 0]
-            curved = self.gap.slope_between_nodes(left, length, point)[0, 0]
-            slope = h_right - h_left + length[0] * curved
+            excess += float(height) - s_left - chord * xi * length
+            slope = h_right - h_left + length * (float(gap_slope) - chord)
             if slope <= 0.0:
                 break
             previous, xi = xi, min(max(xi - excess / slope, 0.0), 1.0)
@@ -489,7 +506,13 @@ class Film:
 
     def _elements(self, film_thickness: np.ndarray):
         """(number of wet nodes, R_edge, the wetted elements). A thin layer's last element is
-        cut at the edge: its ``right`` index is -1 and H = 1 there."""
+        cut at the edge: its ``right`` index is -1 and H = 1 there. Kept for the two latest H
+        (an iterate's film and its surface transport ask for the same, and its shear traction
+        for the film without the shear's opening)."""
+        for kept, result in self._recent_elements:
+            if np.array_equal(kept, film_thickness):
+                return result
+        previous = self._recent_elements
         h = film_thickness
         n_wet, edge = self.wetted_edge(h)
         n_elem = max(n_wet - 1, 0)
@@ -502,7 +525,10 @@ class Film:
             length[-1] = edge - self.radii[left[-1]]
             h_right[-1] = 1.0
         gauss_r = self.radii[left, None] + length[:, None] * _GAUSS_XI
-        return n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
+        result = n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
+        self._recent_elements = [(np.array(film_thickness, copy=True), result)]
+        self._recent_elements += previous[:1]
+        return result
 
     def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
         """Assemble the film for thickness H and pressure P (both at the nodes, scaled)."""
@@ -671,10 +697,10 @@ class Film:
         from_left = (weight * (1.0 - rising)).sum(axis=1)
         from_right = (weight * rising).sum(axis=1)
         lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-        np.add.at(diagonal, el.left, from_left)
-        np.add.at(upper, el.left, from_right)
-        np.add.at(lower, el.right[regular], -from_left[regular])
-        np.add.at(diagonal, el.right[regular], -from_right[regular])
+        diagonal += _node_sums(el.left, from_left, len(diagonal))
+        upper += _node_sums(el.left, from_right, len(upper))
+        lower += _node_sums(el.right[regular], -from_left[regular], len(lower))
+        diagonal += _node_sums(el.right[regular], -from_right[regular], len(diagonal))
         if self.layer == "immersed":
             theta = 1.0 if fill is None else fill[-1]
             diagonal[-1] += self.radii[-1] * theta * h[-1]
@@ -700,8 +726,19 @@ class Film:
         """H at the points ``xi`` (on [0, 1], the Gauss points unless given) of the elements:
         the undeformed gap S is kept exactly between the nodes, H = X + S + W with only W
         linear (the linear interpolant of H plus S minus its own interpolant)."""
-        between = self.gap.between_nodes(self.radii[el.left], el.length, xi)
-        return _gauss_values(el.h_left, el.h_right, xi) + between
+        return _gauss_values(el.h_left, el.h_right, xi) + self._between(el, xi)
+
+    def _between(self, el: _Elements, xi) -> np.ndarray:
+        """S minus its chord at the points ``xi`` of the elements (a prefix of the cells, the
+        last one possibly cut at the wetted edge), from the cells' table where it has them."""
+        cells = self._cell_between.get(id(xi))
+        if cells is None:  # other points than the film's quadrature
+            return self.gap.between_nodes(self.radii[el.left], el.length, xi)
+        out = cells[: len(el.left)]
+        if len(el.left) and el.right[-1] < 0:
+            out = out.copy()
+            out[-1] = self.gap.between_nodes(self.radii[el.left[-1:]], el.length[-1:], xi)[0]
+        return out
 
     def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
         """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of

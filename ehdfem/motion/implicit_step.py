@@ -170,6 +170,7 @@ class ImplicitStep:
         self.factor = None
         self.factorisations = 0
         self._last_deflection = None
+        self._last_thickness = None  # (X, loaded, P, thickness_parts) of the latest call
 
     def thickness(self, pressure, gap):
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
@@ -187,7 +188,19 @@ class ImplicitStep:
         """(H, W_shear, U): the film thickness, its shear opening C_T T(H0, P) and the faces'
         mean radial displacement C_r P (by x0; None without the shear traction, without the
         surface motion), T formed with H0 = X + S(R) + C P; with asperities H also carries
-        their load, H = H0 + W_shear + C P_a(H) (unless ``loaded`` is False)."""
+        their load, H = H0 + W_shear + C P_a(H) (unless ``loaded`` is False). Kept for the
+        latest (P, X): the damping's check of an update and the next iterate's residual ask
+        for the same."""
+        loaded = loaded and self.asperities is not None
+        last = self._last_thickness
+        if last is not None and last[:2] == (gap, loaded) and np.array_equal(last[2], pressure):
+            return last[3]
+        parts = self._thickness_parts(pressure, gap, loaded)
+        self._last_thickness = (gap, loaded, pressure.copy(), parts)
+        return parts
+
+    def _thickness_parts(self, pressure, gap, loaded):
+        """:meth:`thickness_parts`, computed."""
         h0 = gap + self.undeformed + self._deflection(pressure)
         motion = self.surface_motion
         radial = None if motion is None else motion.displacement(pressure)

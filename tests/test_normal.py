@@ -110,21 +110,30 @@ def test_rebound_and_e_dry():
 
 @pytest.mark.slow
 def test_grid_convergence_of_the_restitution():
-    """e_n changes by less than 0.5 % when the default grid is doubled; the observed order
-    from three grids is printed (the integrator runs at a tight tolerance, and Newton to 1e-10,
-    so that only the grid changes: measured 0.638297, 0.638343, 0.638369 on 120, 240, 480
-    nodes; with Newton to 1e-7 the 240-node e_n moved by 2e-5, as much as the grid's change)."""
-    params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)
+    """e_n converges at second order in the film grid (the integrator at a tight tolerance and
+    Newton to 1e-10, so that only the grid changes). Without a cavitation limit: measured
+    0.3310275, 0.3311522, 0.3311809 on 120, 240, 480 nodes (observed order 2.1), the same to
+    1e-9 from another Newton start. With truncation at P_cav = -2, e_n changes by less than
+    0.5 % when the default grid is doubled (measured 0.638329, 0.638337, 0.638369), but there
+    the semismooth active set's path leaves a scatter of about 5e-5 in e_n (a quadratic
+    instead of a cubic Newton start moved the three to 0.638277, 0.638330, 0.638391), larger
+    than the grid's change from 240 nodes on, so its order is not observable."""
     options = IntegratorOptions(rtol=2e-6, newton_tol=1e-10)
     nodes = (DEFAULT_NODES // 2, DEFAULT_NODES, 2 * DEFAULT_NODES)
-    e = [
-        collide(params, RunConfig(numerics=Numerics(nodes=n, integrator=options))).normal.e_n
-        for n in nodes
-    ]
+
+    def restitutions(cavitation):
+        params = CollisionParameters(
+            St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, cavitation=cavitation
+        )
+        config = [RunConfig(numerics=Numerics(nodes=n, integrator=options)) for n in nodes]
+        return [collide(params, c).normal.e_n for c in config]
+
+    e = restitutions("none")
     order = np.log2(abs(e[0] - e[1]) / abs(e[1] - e[2]))
     print(f"e_n on {nodes} nodes: {e}; observed order {order:.2f}")
+    assert order > 1.8
+    e = restitutions("truncate")
     assert abs(e[2] / e[1] - 1) < 5e-3
-    assert abs(e[2] / e[1] - 1) < abs(e[1] / e[0] - 1)
 
 
 @pytest.mark.parametrize(

@@ -135,6 +135,7 @@ def test_cavitation_capped_suction_solves_the_truncated_reynolds_film(cavitation
     assert cavity_edge_ratio(1e-10) == pytest.approx(math.sqrt(6e-10), rel=1e-4)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 @pytest.mark.parametrize(
     ("e_dry", "history"), [(1.0, "mei-adrian"), (0.9, "mei-adrian"), (0.9, "mei-adrian-wall")]
@@ -174,6 +175,7 @@ def test_energy_is_accounted_for_over_a_bounce(e_dry, history):
     assert abs(contact.entry_jump) < 0.03  # the hand-over criterion, 2 % at the start
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_handover_joins_flight_and_film_both_ways():
     """With the suction capped by cavitation (the default), the force changes by about the
@@ -255,6 +257,7 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
     assert rebound == pytest.approx(contact.film["exit_velocity"], rel=1e-9)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
     """``contact_history`` (default on) applies the history force in the film model's time
@@ -286,6 +289,7 @@ def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
     assert results["both"].energy_error() < 2e-3
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_the_memory_across_a_contact_changes_only_the_flight_after_it():
     """The three readings of the history force's memory across a contact (kept; emptied at
@@ -343,6 +347,7 @@ def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
     assert np.abs(momentum).max() < 5e-4
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_release_height_gives_the_wanted_impact_speed():
     """The release height found by bisection gives the wanted largest approach speed (to the
@@ -404,6 +409,7 @@ def test_a_start_inside_the_film_region_is_refused():
         bounce(inputs)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_command_writes_trajectory_contacts_json_and_plot(tmp_path, capsys):
     out = tmp_path / "run"

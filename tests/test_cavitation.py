@@ -98,6 +98,7 @@ def liquid_balance(result, film):
     return np.abs(volume + left - volume[0]).max()
 
 
+@pytest.mark.slow
 def test_liquid_volume_is_conserved_through_cavitation_and_rebound():
     """Immersed sphere (St = 10, eps = 1e-2, P_cav = -2) with implicit Euler steps: the liquid
     volume plus the outflow stays constant to 1e-6 of the largest cavity volume,

@@ -33,6 +33,7 @@ REQUIRED = {
 }
 
 
+@pytest.mark.slow
 def test_dimensionless_collision_writes_json_and_plots(tmp_path, capsys):
     out = tmp_path / "r.json"
     code = main(
@@ -215,6 +216,7 @@ def test_physical_json_records_the_materials_and_the_liquid(capsys):
 COMPILER_OR_VTK = re.compile(r"INFO:root|gcc|build_ext|X server", re.IGNORECASE)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("verbose", [False, True])
 def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
     """A default FE collide on an empty JIT cache compiles its forms: no compiler lines on
@@ -230,6 +232,7 @@ def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
     assert "e_n" in out
 
 
+@pytest.mark.slow
 def test_render_is_quiet(tmp_path):
     """No VTK "bad X server connection" warning (and no compiler lines) from a render; with
     `--json -` its standard output is the JSON alone."""
@@ -260,6 +263,7 @@ def collide_json(capsys, *args):
     return json.loads(capsys.readouterr().out)
 
 
+@pytest.mark.slow
 def test_custom_materials_and_liquid_equal_their_presets(capsys):
     """The example's steel, glass and 100 cSt silicone oil given as values, or as other
     presets whose values are all changed to those, give the same collision."""
@@ -339,6 +343,7 @@ def test_presets_version_and_help(capsys):
     assert description.rstrip().endswith(".") and "critical Stokes number" in description
 
 
+@pytest.mark.slow
 def test_critical_json_to_stdout_is_the_json_alone(capsys):
     args = ["critical", "--eps", "1e-3", "--p-cav=-2", "--nodes", "80", "--rtol", "0.05"]
     args += ["--bracket", "1", "30"]
@@ -385,6 +390,7 @@ def test_json_records_the_provenance(tmp_path, capsys):
     assert record["libraries"]["numpy"] == np.__version__ and record["mpi_size"] >= 1
 
 
+@pytest.mark.slow
 def test_collide_from_a_result_runs_it_again_exactly(tmp_path, capsys):
     """`collide --from r.json` (or from its histories file) rebuilds the same inputs and run
     settings and gives bit-equal results, for dimensionless and for physical inputs; an input
@@ -441,6 +447,7 @@ def test_histories_file_holds_the_histories_with_their_units(tmp_path, capsys):
     assert histories.markdown_table() in docs.read_text()  # the documented format is the file's
 
 
+@pytest.mark.slow
 def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):
     """Physical inputs: the critical impact speed [m/s] by bisection, the sphere sticking at
     the bracket's low end and rebounding at its high end (checked by two collisions); the
@@ -567,6 +574,7 @@ def test_errors_have_one_form_naming_the_option_as_typed(capsys):
     assert "ehdfem critical: error: unrecognized arguments: --St 3" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [

@@ -134,6 +134,7 @@ def _known_table(known, deltas=(1e-3, 0.5), held_back=False) -> list[dict]:
     return rows
 
 
+@pytest.mark.slow
 def test_closed_forms_recover_known_coefficients():
     """A table made from forms of the closed forms' shape is fitted back with errors below
     1e-8 in e_n (the joint least squares stops there) and in e_t (which takes the fitted e_n
@@ -152,6 +153,7 @@ def test_closed_forms_recover_known_coefficients():
     assert found["St_c"] == pytest.approx(exact, rel=0.03)
 
 
+@pytest.mark.slow
 def test_closed_forms_carry_their_limits():
     """The shape's limits, whatever the coefficients: St_c / ln(1/eps) -> 2/5 with a
     cavitation limit and 4/5 without as eps -> 0 (the rigid approach to the elastic gap
@@ -181,6 +183,7 @@ def test_closed_forms_carry_their_limits():
     assert rolling == pytest.approx(1 / 1.25, rel=1e-12)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("layer", ["thin", "immersed"])
 def test_couette_tangential_form_is_exact_in_delta_and_inertia(layer):
     """The tangential form against computed collisions (St 30, eps 1e-6, P_cav -100,
@@ -375,6 +378,7 @@ def _write_table(path, rows):
         writer.writerows(rows)
 
 
+@pytest.mark.slow
 def test_fit_command_writes_every_export(tmp_path, capsys):
     """`ehdfem fit TABLE --held-back TABLE --json --python --c --table-out` writes the fit with
     its held-back errors, a module equal to the package's forms (1e-13), a header and the
@@ -425,6 +429,7 @@ def refused(capsys, *argv) -> str:
     return lines[0]
 
 
+@pytest.mark.slow
 def test_fit_names_what_a_table_lacks_for_the_closed_forms(tmp_path, capsys):
     """fit's messages: a file that is not a table (binary, empty, a header only, ragged), a
     table of a study without delta (one delta: the immersed forms need two), a table of the

@@ -80,6 +80,7 @@ def _share(variant, delta, output="e_n", config=TIGHT):
     return (run_model(params, variant, radii, IDENTICAL, config)[output] - theory) / theory
 
 
+@pytest.mark.slow
 def test_surface_effects_on_half_spaces_are_of_order_sqrt_delta():
     """On half-spaces with the paraboloid, delta enters only as the factor sqrt(delta) of the
     shear opening and of the faces' radial velocity, so (surface - theory) / theory /
@@ -96,6 +97,7 @@ def test_surface_effects_on_half_spaces_are_of_order_sqrt_delta():
         assert small < 0  # the faces' outflow and the shear lift thin the film, e_n drops
 
 
+@pytest.mark.slow
 def test_true_gap_is_a_correction_of_order_delta():
     """The sphere's gap is R^2/2 + delta R^4/8 + ...: the geometry's share is of order delta,
     not sqrt(delta); share / delta at delta = 1e-3 and 1e-2 agree within 0.5 % (measured 0.12 %,

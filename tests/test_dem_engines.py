@@ -28,6 +28,7 @@ def small(**values):
     return from_presets(**(inputs | values))
 
 
+@pytest.mark.slow
 def test_yade_without_liquid_restitutes_its_contact_spring(tmp_path):
     """eta -> 0 (1e-9 Pa s): the asperities' spring keps kn in series with kn, undamped, gives
     e_n = 1 and the time in the layer 2 (x0 - 2 eps a) / V0 + pi sqrt(m / k) with
@@ -48,6 +49,7 @@ def test_yade_without_liquid_restitutes_its_contact_spring(tmp_path):
     assert rebound.time_in_layer == pytest.approx(expected, abs=20 * inputs["time_step"])
 
 
+@pytest.mark.slow
 def test_yade_wall_force_is_the_rigid_lubrication_force(tmp_path):
     """Far from contact the spring is rigid and Yade's force with eta = 4 mu is the exact wall
     force 6 pi mu a^2 v / h (with eta = mu a quarter of it: Yade's wall is a sphere of radius
@@ -80,6 +82,7 @@ def test_liggghts_bridge_force_is_the_rigid_lubrication_force(tmp_path):
     assert np.all(force[after & (gap > 1.01e-4)] == 0.0)
 
 
+@pytest.mark.slow
 def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
     """``ehdfem dem`` leaves the engine's files in --folder and its JSON holds both rebounds."""
     folder, out = tmp_path / "yade", tmp_path / "dem.json"
@@ -182,6 +185,7 @@ def stated_rough_error(engine, factor, asperities, sigma=3e-6):
     return max(abs(run["e_n"] - full["e_n"]) for run, full in rows)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "engine, wall, factor, asperities",
     [

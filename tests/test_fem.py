@@ -61,6 +61,7 @@ def test_hertz_contact_with_fe_solids():
     assert pressure[0] == pytest.approx(8 * c / (np.pi**2 * eps), rel=0.02)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_mesh_convergence_of_the_compliance():
     """The mesh follows the film grid; refining the film grid (and so the mesh) converges the
@@ -98,6 +99,7 @@ def test_fe_collision_agrees_with_the_half_space_at_small_delta(St, delta):
     assert fem.normal.e_n == pytest.approx(half_space.normal.e_n, rel=0.01)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 @pytest.mark.serial
 def test_fe_energy_balance_at_finite_delta():
@@ -123,6 +125,7 @@ def test_film_reaching_round_the_sphere_is_refused():
         FESolids(0.2, radial_grid(20, 0.5, 2.0), comm=MPI.COMM_SELF)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 @pytest.mark.parametrize(
     ("options", "expected", "tolerance"),

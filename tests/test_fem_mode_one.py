@@ -366,6 +366,7 @@ def test_every_block_agrees_with_the_half_space_mode_one_kernels(small_delta, la
                     assert not np.any(fe.block(f"{other}_{displacement}", load))
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_mesh_convergence_of_the_mode_one_gap_opening():
     """Nested film grids of 20, 39 and 77 nodes (the mesh follows them), delta = 1e-3, the

@@ -150,6 +150,7 @@ def test_manufactured_solution_converges_at_second_order():
     assert errors[-1, 0] < 1e-3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "name, profile, squeeze, edge",
     [
@@ -179,6 +180,7 @@ def test_axisymmetric_film_equals_the_one_dimensional_film(name, profile, squeez
         assert relative_max(reference, 3 * (paraboloid(radii) ** -2 - 1)) < 5e-4
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "name, profile, edge",
     [("paraboloid", paraboloid, PARABOLOID_EDGE), ("flattened", flattened, FLAT_EDGE)],
@@ -262,6 +264,7 @@ def test_cavitation_limit_is_the_axisymmetric_obstacle_solution(p_cav):
     assert np.all(solution.axisymmetric_pressure[radii < cavity - 0.05] == p_cav)
 
 
+@pytest.mark.slow
 def test_sliding_under_cavitation_is_the_mode_one_film_outside_the_cavity():
     """Sliding (s w = 0.05 at w = 1) on the separating paraboloid at P_cav = -10: the mode-1
     pressure the sliding adds, (p1(s) - p1(0)) / s (p1(0) the mesh's own asymmetry), is the

@@ -279,6 +279,7 @@ GRID = [
 ]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("St,eps,sigma,asperities", GRID)
 def test_rough_collisions_never_create_energy(St, eps, sigma, asperities):
     """Over mu (0.05, 0.5), the angle (15, 60 deg) and the couette, gcb and sliding films: the

@@ -96,6 +96,7 @@ def test_rigid_film_force_with_the_exact_gap_is_exact():
     assert abs(paraboloid / exact - 1) > 5e-3
 
 
+@pytest.mark.slow
 def test_rigid_true_sphere_slows_as_the_exact_quadrature():
     """A rigid true sphere (delta = 0.1) in a thin layer: |V| = 1 - int_X^1 G / St along the
     approach, within 0.005/St (the tolerance of the paraboloid's rigid test); 200 nodes."""

@@ -140,6 +140,7 @@ def test_load_radius_of_a_hertz_pressure():
     assert load_radius(radii, -pressure) == 0.0  # a suction alone carries no load
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_a_collision_beyond_the_theorys_range_is_flagged():
     """St 1000, eps 0.1, delta 0.1 compresses the sphere by 1.78 a (x0 = a / 10 and 17.8 x0):

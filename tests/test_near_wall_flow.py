@@ -53,6 +53,7 @@ def test_stokes_force_is_brenners_over_the_moved_mesh(stokes_flow, gap, toleranc
     assert factor == pytest.approx(float(brenner_factor(gap)), rel=tolerance)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_translating_sphere_far_from_the_wall_keeps_the_unbounded_flow():
     """At Re_a = 5, 20 a from the wall (liquid of radius 60 a), the flow steady with the sphere
@@ -72,6 +73,7 @@ def test_translating_sphere_far_from_the_wall_keeps_the_unbounded_flow():
         assert force == pytest.approx(steady, rel=2e-4)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_the_same_motion_on_two_differently_moving_meshes_gives_the_same_force():
     """At Re_a = 10 a sphere approaching the wall at V0 from 0.3 a (steady start) to 0.2 a, on
@@ -85,6 +87,7 @@ def test_the_same_motion_on_two_differently_moving_meshes_gives_the_same_force()
     assert np.array(forces[0]) == pytest.approx(np.array(forces[1]), rel=5e-4)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_free_sphere_settles_by_brenners_quasi_steady_law(stokes_flow):
     """A neutrally buoyant-massed sphere (m = m_f) under a constant weight W at Re_a = 1e-3 (its

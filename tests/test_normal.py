@@ -47,6 +47,7 @@ def test_rigid_sphere_stops_at_the_exact_gap(layer):
     assert np.abs(-hist.velocity[approaching] - exact_speed).max() < 0.005 / St
 
 
+@pytest.mark.slow
 def test_dry_hertz_limit_of_the_maximum_compression():
     """At large St the film is negligible: the approach reaches the Hertz compression
     (13.88 eps St)^(2/5) (within 2 %) and the sphere comes back at nearly its impact speed."""
@@ -58,6 +59,7 @@ def test_dry_hertz_limit_of_the_maximum_compression():
     assert result.normal.max_rebound_velocity > 0.98
 
 
+@pytest.mark.slow
 def test_energy_balance_without_cavitation():
     """Kinetic + elastic energy lost = viscous dissipation, to discretisation error: in a thin
     layer the imbalance is below 1e-3 of the impact energy at the defaults (measured 6.4e-4)
@@ -79,6 +81,7 @@ def test_energy_balance_without_cavitation():
     assert collide(immersed).normal.energy_error < 1e-3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("layer", ["thin", "immersed"])
 def test_no_step_creates_mechanical_energy(layer):
     """Without cavitation the film only dissipates: kinetic + elastic energy never rises over
@@ -136,6 +139,7 @@ def test_grid_convergence_of_the_restitution():
     assert abs(e[2] / e[1] - 1) < 5e-3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "case",
     [

@@ -119,6 +119,7 @@ def test_study_rows_carry_exactly_the_registry_names(tmp_path):
         assert unknown <= {"St", "eps", "delta", "p_cav"}, unknown
 
 
+@pytest.mark.slow
 def test_a_bounce_contact_carries_every_output_once_in_si_where_it_has_a_unit():
     """Steel on glass in a 10 cSt oil, released from 3 mm: the contact's film outputs are the
     registry's, under the SI key where there is one; with the truncation cavitation limit the

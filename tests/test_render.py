@@ -46,6 +46,7 @@ def widest_black_shape(image) -> int:
     return max(widths, default=0)
 
 
+@pytest.mark.slow
 def test_render_is_a_picture_of_the_solids_with_scale_bars(fe_collision, tmp_path):
     hist = fe_collision.normal.history
     i = int(np.argmin(hist.gap))
@@ -141,6 +142,7 @@ def test_animation_frames_fall_in_the_contact():
     assert contact[steps].mean() >= 0.45
 
 
+@pytest.mark.slow
 def test_animation_has_one_frame_per_sampled_step(fe_collision, tmp_path):
     path = tmp_path / "film.gif"
     frames = animate_film(fe_collision.normal, path, frames=12, units=UNITS)

@@ -41,6 +41,7 @@ def test_parameters_are_valid_or_refused_by_name(changes):
         assert math.isfinite(value) or (name == "p_cav" and value == -math.inf)
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     St=st.floats(0.5, 1e4),
@@ -69,6 +70,7 @@ def test_valid_inputs_give_a_physical_result_or_a_solver_error(St, eps, layer, p
         assert summary["e_t"] is None
 
 
+@pytest.mark.slow
 @settings(
     max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )

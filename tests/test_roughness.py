@@ -168,6 +168,7 @@ def test_energy_balance_of_the_impact_model():
     assert normal.energy_error < 3e-4
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_energy_balance_of_the_greenwood_tripp_model():
     """eps = 1e-3, thin, St = 10, sigma = 0.03, no suction limit, 120 nodes, and an asperity
@@ -185,6 +186,7 @@ def test_energy_balance_of_the_greenwood_tripp_model():
     assert np.array_equal(histories.arrays(result)["asperity_force"], normal.asperity_force)
 
 
+@pytest.mark.slow
 def test_greenwood_tripp_with_fe_solids_on_every_rank():
     """The mixed model on the FE solids (delta = 0.01, 80 nodes, thin, St = 10, eps = 1e-3,
     sigma = 0.03): the FE compliance carries the asperities' load as the half-space's does, so

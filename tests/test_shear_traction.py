@@ -109,6 +109,7 @@ def test_fe_shear_opening_matches_the_half_space(sphere, wall, delta, tolerance)
     assert error < tolerance
 
 
+@pytest.mark.slow
 def test_energy_balance_with_the_shear_traction():
     """Half-space solids with the tangential surface effects (delta = 0.05, St = 10,
     eps = 1e-3, no cavitation): kinetic + elastic (with the film's work on the shear opening and

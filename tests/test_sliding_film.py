@@ -62,6 +62,7 @@ def test_on_elastic_half_spaces_no_energy_is_created(eps, St):
     assert energy.balance_error < 1e-2
 
 
+@pytest.mark.slow
 def test_tangential_displacements_in_the_slip_keep_the_balance():
     """deformation "full" (the Couette traction's tangential displacement rate in the slip):
     the same balance, and e_t within 1e-5 of the mode-1 gap alone at eps = 0.1, St = 1000."""
@@ -75,6 +76,7 @@ def test_tangential_displacements_in_the_slip_keep_the_balance():
     assert full.e_t == pytest.approx(results["gap"].e_t, abs=1e-5)
 
 
+@pytest.mark.slow
 def test_a_rigid_mode_one_film_on_deformed_solids_gains_its_energy_from_x():
     """The inconsistency found in review: the mode-1 film of rigid solids on the flattened
     film (deformation "none" at eps = 0.1, St = 1000) leaves with e_t > 1. The balance shows
@@ -124,6 +126,7 @@ def test_viscosity_tilt_is_the_linearised_change_of_ln_mu():
     assert not viscosity_tilt(thin(1e-3, 20.0), pressure, q).any()
 
 
+@pytest.mark.slow
 def test_a_film_frozen_by_its_viscosity_stops_the_sliding_film():
     """Barus, eps = 1e-3, St = 20, no cavitation limit: at alpha = 5e-3 the linearisation holds
     (both tilts below 0.3, measured 0.04; not flagged); at alpha = 0.01 the viscosity tilt
@@ -146,6 +149,7 @@ def test_a_film_frozen_by_its_viscosity_stops_the_sliding_film():
     assert 0.0 < collide(frozen, RunConfig.from_settings(nodes=120)).tangential.e_t < 1.0
 
 
+@pytest.mark.slow
 def test_a_sliding_film_that_creates_energy_is_flagged():
     """St 1000, eps 1e-3, delta 0.01 at 45 degrees: without the mode-1 gap (deformation
     "none") the film gives the sliding the normal motion's work and e_t exceeds 1 (measured

@@ -10,6 +10,7 @@ from mpi4py import MPI
 from ehdfem.bounce.sphere_flow import SphereFlow
 
 
+@pytest.mark.slow
 def test_impulsive_start_at_small_reynolds_number_is_basset():
     """A sphere started at once to V0 at Re_a = 0.05 from a liquid at rest: for t > 0 the force
     is 6 pi mu a V0 (1 + a / sqrt(pi nu t)) (Basset; the added mass acts in the first step

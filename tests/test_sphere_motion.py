@@ -77,6 +77,7 @@ def test_exit_gap_above_the_layer_surface():
         solve_normal(thin, RigidSolids(radial_grid(100, 0.05, OUTER["thin"])), options)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("force", [2.0, -2.0])
 def test_energy_balance_with_the_work_of_a_constant_force(force):
     """Kinetic + elastic + dissipated - F (X - 1) = St/2 without cavitation, to discretisation
@@ -116,6 +117,7 @@ def test_history_force_of_unfading_memory_is_the_velocity_change_since_ever():
     assert np.abs(momentum).max() < 5e-3
 
 
+@pytest.mark.slow
 def test_history_force_of_short_memory_is_an_added_mass():
     """A memory much shorter than the motion (one mode, T = 1e-4, weight k w = m_a / T) gives
     Z = T dV/dT + O(T^2), F = -m_a dV/dT: an added mass m_a = 2, so the rigid immersed sphere

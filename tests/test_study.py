@@ -49,6 +49,7 @@ def shared_dir(comm):
     return Path(comm.bcast(tempfile.mkdtemp(prefix="ehdfem-study-") if comm.rank == 0 else None))
 
 
+@pytest.mark.slow
 def test_sweep_on_all_ranks_equals_one_process():
     """Run under mpirun -n 2 too: the table from all ranks equals the one from one process."""
     comm = MPI.COMM_WORLD
@@ -67,6 +68,7 @@ def test_sweep_on_all_ranks_equals_one_process():
     comm.Barrier()
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_killed_sweep_resumes_with_every_point_once(tmp_path):
     """SIGKILL a sweep at three different moments (while points are running); after a last
@@ -96,6 +98,7 @@ def test_killed_sweep_resumes_with_every_point_once(tmp_path):
     assert not list(study.point_dir.glob(".*.tmp"))
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_critical_stokes_number_agrees_with_a_scan():
     """Bisection on the outcome brackets St_c to 1e-3; a scan in 1 % steps finds the first
@@ -117,6 +120,7 @@ def test_critical_stokes_number_agrees_with_a_scan():
     assert lo / 1.0101 <= first <= hi * 1.0101
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_critical_speed_agrees_with_the_critical_stokes_number():
     """A physical collision's critical speed (eps, P_cav changing with the speed): St there
@@ -163,6 +167,7 @@ def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):
         Study(path)
 
 
+@pytest.mark.slow
 @pytest.mark.serial
 def test_critical_stokes_number_of_the_fe_model():
     """At delta = 1e-3 the FE solids are half-spaces to 1 %: St_c agrees within 1 %."""

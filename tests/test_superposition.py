@@ -55,6 +55,7 @@ def test_ring_cut_is_the_azimuthal_mean_of_the_cut_pressure(offset, amplitude):
     assert ring_cut(offset, amplitude) == pytest.approx(exact / (2 * np.pi), abs=1e-12)
 
 
+@pytest.mark.slow
 def test_two_dimensional_film_is_the_superposition_without_suction():
     """eps = 1e-3, St = 20, no cavitation limit (small eps St): at the instants of the largest
     normal and tangential force the 2-D film's mode-1 moment int P X dA and slope force int P
@@ -78,6 +79,7 @@ def test_two_dimensional_film_is_the_superposition_without_suction():
         assert check.cavitated_vertices == 0
 
 
+@pytest.mark.slow
 def test_superposition_fails_under_suction_and_returns_as_the_sliding_vanishes():
     """eps = 1e-3, St = 20, P_cav = -1: at the step of the largest suction overlap the
     superposed pressure crosses the limit and the 2-D film's moment differs by more than 5 % and
@@ -107,6 +109,7 @@ def test_superposition_fails_under_suction_and_returns_as_the_sliding_vanishes()
     assert small.moment_error < 4e-2
 
 
+@pytest.mark.slow
 def test_two_dimensional_film_with_a_piezoviscous_liquid():
     """Barus, scaled alpha = 5e-3 (mu/mu0 up to 27, viscosity tilt 0.04), eps = 1e-3, St = 20,
     no cavitation limit, at the instant of the largest normal force: the disk film with the

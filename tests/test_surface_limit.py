@@ -78,6 +78,7 @@ def test_rigid_stop_and_input_checks():
         surface_force_coefficients(0.5, "couette")
 
 
+@pytest.mark.slow
 def test_code_tends_to_the_closed_form_at_weak_elasticity():
     """(H_min(shear traction on) / H_min(off) - 1) / (eps sqrt(delta)) on half-spaces (thin
     layer, paraboloid, no cavitation) against c = -11.53 at St = 1 (c = -kappa J(X_s) /

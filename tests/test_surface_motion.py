@@ -137,6 +137,7 @@ def _shear_opening_only(params):
     return compliance
 
 
+@pytest.mark.slow
 def test_energy_balance_closes_with_the_surface_flux():
     """Half-spaces, St = 10, eps = 1e-3, delta = 0.05, no cavitation, rtol 2e-6: with the
     tangential surface effects on, kinetic + elastic (with the film's work on the shear opening

@@ -56,6 +56,7 @@ def test_slip_decays_as_the_exact_exponential(rigid_approach):
         assert t.slip[i] == pytest.approx(exact, rel=2e-4)
 
 
+@pytest.mark.slow
 def test_restitution_does_not_depend_on_the_impact_angle():
     e_t = [
         collide(CollisionParameters(**{**PARAMS, "angle": a})).tangential.e_t for a in (5, 30, 70)
@@ -63,6 +64,7 @@ def test_restitution_does_not_depend_on_the_impact_angle():
     assert np.ptp(e_t) < 1e-12
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("model", ["couette", "lubrication"])
 def test_one_minus_e_t_is_linear_in_delta(model):
     """For small delta, 1 - e_t = slope * delta: the slopes at delta = 5e-4, 1e-3 and 2e-3
@@ -200,6 +202,7 @@ def test_reduced_models_lose_energy_and_keep_their_balance(model):
         assert 1 + impulse == pytest.approx(t.velocity[end][-1], abs=1e-3 * (1 - t.e_t))
 
 
+@pytest.mark.slow
 def test_another_tangential_model_on_the_same_normal_motion():
     """with_tangential keeps the normal motion and solves only the tangential one: for every
     model its e_t, spin change and histories equal a new collide call's exactly (same

@@ -53,6 +53,7 @@ def test_the_collision_runs_on_a_threaded_blas():
     assert run_with_blas_threads(2)["threads"] == 2
 
 
+@pytest.mark.slow
 def test_a_collision_is_bit_equal_on_one_and_two_blas_threads():
     """A soft oblique collision with the sliding film: every output equal bit for bit."""
     assert run_with_blas_threads(1)["values"] == run_with_blas_threads(2)["values"]

@@ -29,6 +29,7 @@ from ehdfem.solids.compliance import RigidSolids
 pytestmark = pytest.mark.serial
 
 
+@pytest.mark.slow
 def test_barus_with_zero_alpha_is_the_constant_viscosity():
     """alpha = 0 is the constant-viscosity collision to round-off (and alpha = 1e-14, where
     exp(alpha P) - 1 < 1e-9, within 1e-8)."""
@@ -56,6 +57,7 @@ def exact_force(gap, velocity, law: Viscosity):
     return quad(pressure, gap, 1.0, limit=200, epsabs=0, epsrel=1e-10)[0] / 3
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "law",
     [Viscosity("barus", 5e-4), Viscosity("roelands", 5e-4, roelands_pressure=300.0)],
@@ -140,6 +142,7 @@ def test_barus_validity_pressure_is_unbounded_where_roelands_is_not_below_barus(
     assert barus_validity_pressure(2e-8, 6e-5) == math.inf
 
 
+@pytest.mark.slow
 def test_a_barus_film_past_its_validity_is_flagged():
     """The main job's oil at 0.2 m/s with Barus at 1e-8 1/Pa: the central pocket the Barus
     law freezes reaches GPa (p_B = 0.31 GPa for this oil, docs/performance.md), so the
@@ -154,6 +157,7 @@ def test_a_barus_film_past_its_validity_is_flagged():
         collide(from_presets(**inputs, viscosity="roelands"), config)
 
 
+@pytest.mark.slow
 def test_piezoviscous_collapse_spike_is_a_punch_on_the_axis():
     """The main job's oil at 0.2 m/s, Roelands at 2e-8 1/Pa, mass-conserving: the central
     pocket frozen at impact collapses to the axis after the turn, a rigid punch that ends in a

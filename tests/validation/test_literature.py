@@ -16,6 +16,7 @@ from ehdfem.study.sweep import critical_speed, critical_stokes
 pytestmark = pytest.mark.serial
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("sphere", "diameter", "liquid"), lit.JOSEPH_RANGE)
 def test_immersed_critical_stokes_number_is_about_ten(sphere, diameter, liquid):
     """Joseph et al. 2001 (and Gondret et al. 2002): no rebound below St ~ 10, for spheres and
@@ -25,6 +26,7 @@ def test_immersed_critical_stokes_number_is_about_ten(sphere, diameter, liquid):
     assert claim.band[0] <= found["St_c"] <= claim.band[1]
 
 
+@pytest.mark.slow
 def test_restitution_reaches_the_dry_value_above_st_500():
     """Joseph et al. 2001: e approaches e_dry for St > 500; the pure-EHD e_n (e_dry = 1) of
     a steel sphere in glycerol at St ~ 500 and of Gondret's St = 742 run is above 0.9."""
@@ -36,6 +38,7 @@ def test_restitution_reaches_the_dry_value_above_st_500():
         assert claim.band[0] <= collide(inputs).normal.e_n <= claim.band[1]
 
 
+@pytest.mark.slow
 def test_critical_stokes_number_decreases_weakly_with_eps():
     """Davis, Rager & Good 2002: St_c decreases weakly with the elasticity parameter (thin
     layer, delta = 0.01, P_cav = -10): St_c falls from eps = 1e-6 to 1e-2 with a power-law
@@ -55,6 +58,7 @@ def test_critical_stokes_number_decreases_weakly_with_eps():
     assert band[0] < exponent < band[1]
 
 
+@pytest.mark.slow
 def test_normal_restitution_follows_the_davis_form():
     """e = e_inf (1 - St_c/St) (Davis, Rager & Good 2002; Kantak & Davis 2004 for oblique
     impacts): the computed thin-layer e_n from 1.3 St_c to St = 1000 stays within the claim's
@@ -70,6 +74,7 @@ def test_normal_restitution_follows_the_davis_form():
         assert deviation < lit.RESTITUTION_FORM.band[1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("eps", [1e-5, 1e-1])
 @pytest.mark.parametrize("St", [15.0, 200.0])
 def test_tangential_restitution_is_close_to_one(eps, St):

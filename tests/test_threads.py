@@ -3,8 +3,8 @@
 A threaded BLAS changes the rounding of the dense products with the thread count; unpinned,
 the 24 collisions of benchmarks/sweep.py all differed between 1 and 2 OpenBLAS threads (by 1e-12
 to 1e-9 in e_n, and a soft case's step sequence diverged). The set-up installs Debian's threaded
-OpenBLAS (make.sh; the system keeps the reference BLAS), and these tests load it in a fresh
-process (a BLAS reads its thread count when it loads) from its own folder.
+OpenBLAS (make.sh), and these tests load it in a fresh process (a BLAS reads its thread count
+when it loads) from its own folder, whichever BLAS the system's alternatives select.
 """
 
 import json

@@ -672,3 +672,51 @@ def test_sweep_counts_only_its_own_points_and_prints_short_numbers(tmp_path):
     run_study(study, None, progress=lines.append)
     assert len(lines) == 1 and lines[0].startswith("[1/1] rank 0: St=10, eps=0.001 -> ok:")
     assert re.search(r"e_n=0\.\d{4} \(", lines[0])
+
+
+@pytest.mark.serial
+def test_ctrl_c_ends_a_long_command_with_one_line():
+    """SIGINT during `ehdfem critical` (a search of many collisions): exit status 130 and one
+    line on standard error naming the command, no traceback."""
+    import signal
+    import time
+
+    process = subprocess.Popen(
+        [sys.executable, "-m", "ehdfem", "critical", "--eps", "1e-3"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(4.0)  # imports done, collisions under way
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    assert err.strip().splitlines() == [
+        "ehdfem critical: interrupted: stopped by Ctrl-C; files already written are kept"
+    ]
+
+
+@pytest.mark.parametrize(
+    "args,option",
+    [
+        (["--out", "r.txt"], "--out"),
+        (["--out", "render"], "--out"),
+        (["--animation", "film.mp4"], "--animation"),
+        (["--magnification", "0"], "--magnification"),
+        (["--time", "-1"], "--time"),
+    ],
+)
+def test_render_refuses_its_outputs_and_ranges_before_any_work(
+    args, option, tmp_path, monkeypatch, capsys
+):
+    """A picture format matplotlib does not write, an animation that is not a GIF, a
+    magnification or time out of range: refused by the option's name within a second (the FE
+    work of a render takes tens of seconds)."""
+    import time
+
+    monkeypatch.chdir(tmp_path)
+    start = time.perf_counter()
+    assert main(["render", *args]) == 2
+    assert time.perf_counter() - start < 2.0
+    err = capsys.readouterr().err
+    assert err.startswith(f"ehdfem render: error: {option}:"), err

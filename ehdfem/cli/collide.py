@@ -134,7 +134,11 @@ def collide_command(args) -> int:
 def add_render(parser) -> None:
     add_collision_arguments(parser, exclude=("model",))  # pictures of the FE solids only
     r = parser.add_argument_group("picture")
-    r.add_argument("--out", default="render.png", help="PNG file; default: render.png")
+    r.add_argument(
+        "--out",
+        default="render.png",
+        help="picture file, its format by its suffix (.png, .pdf, .svg, ...); default: render.png",
+    )
     r.add_argument("--time", type=float, help="instant T [by x0/V0]; default: maximum compression")
     r.add_argument(
         "--field",
@@ -151,12 +155,24 @@ def add_render(parser) -> None:
     r.add_argument("--json", metavar="FILE", help=JSON_HELP)
 
 
+def picture_formats() -> tuple[str, ...]:
+    """The suffixes of the picture formats matplotlib writes (render's --out)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    return tuple(f".{kind}" for kind in FigureCanvasAgg(Figure()).get_supported_filetypes())
+
+
 def render_command(args) -> int:
     from ..outputs.render import animate_film, render_solids
 
     args.model = "fem"  # no option of render: its pictures are of the FE solids
-    paths.output_file("out", args.out)
-    paths.output_file("animation", args.animation)
+    paths.output_file("out", args.out, formats=picture_formats())
+    paths.output_file("animation", args.animation, formats=(".gif",))
+    if args.magnification is not None:
+        checks.positive("magnification", args.magnification)
+    if args.time is not None:
+        checks.number("time", args.time, lower=0.0)
     paths.output_file("json", args.json, stdout=True)
     result = collide(collision_inputs(args), run_config(args))
     report = report_stream(args)

@@ -117,7 +117,8 @@ def _warning_printer(command: str):
 
 def main(argv=None) -> int:
     """The ``ehdfem`` command; returns the exit status (0 done, 1 a file could not be read or
-    written, 2 bad input, 3 solver failure), the same on every MPI rank."""
+    written, 2 bad input, 3 solver failure, 130 interrupted by Ctrl-C: one line, no traceback;
+    what was written stays, and a sweep resumes from its table), the same on every MPI rank."""
     parser, commands = parsers()
     args, unknown = parser.parse_known_args(argv)
     if unknown:
@@ -135,6 +136,9 @@ def main(argv=None) -> int:
     except NormalSolverError as err:
         say(args.command, "solver failure", str(err))
         return 3
+    except KeyboardInterrupt:
+        say(args.command, "interrupted", "stopped by Ctrl-C; files already written are kept")
+        return 130
     except OSError as err:  # a file that could not be read or written, possibly on one rank
         where = f"{err.filename}: " if err.filename else ""
         print(f"ehdfem {args.command}: error: {where}{err.strerror or err}", file=sys.stderr)

@@ -22,12 +22,18 @@ from pathlib import Path
 from .. import checks
 
 
-def output_file(name: str, target: str | None, stdout: bool = False) -> None:
+def output_file(name: str, target: str | None, stdout: bool = False, formats=None) -> None:
     """Refuse the output file ``target`` of option ``name`` unless its folder exists and is
-    writable and ``target`` is not a folder; None (not asked) and, where ``stdout``, ``-`` pass."""
+    writable, ``target`` is not a folder and, where ``formats`` (suffixes such as ".png") are
+    given, its suffix is one of them; None (not asked) and, where ``stdout``, ``-`` pass."""
     if target is None or (stdout and target == "-"):
         return
     path = Path(target)
+    if formats is not None and path.suffix.lower() not in formats:
+        suffix = f"the format {path.suffix!r}" if path.suffix else "a name without a suffix"
+        raise checks.InputError(
+            f"{target!r} has {suffix}; the allowed formats are {', '.join(sorted(formats))}", name
+        )
     if path.is_dir():
         raise checks.InputError(f"{target!r} is a folder, not a file name", name)
     folder = path.parent

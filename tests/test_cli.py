@@ -720,3 +720,43 @@ def test_render_refuses_its_outputs_and_ranges_before_any_work(
     assert time.perf_counter() - start < 2.0
     err = capsys.readouterr().err
     assert err.startswith(f"ehdfem render: error: {option}:"), err
+
+
+@pytest.mark.parametrize(
+    "args,text",
+    [
+        (["--St", "10", "--eps", "1e-3", "--alpha", "0.01"], "--alpha has no effect"),
+        (
+            ["--St", "10", "--eps", "1e-3", "--p-cav=-2", "--cavitation", "none"],
+            "--p-cav has no effect with --cavitation none",
+        ),
+        (
+            ["--example", "--cavitation", "none", "--cavitation-pressure", "0"],
+            "--cavitation-pressure has no effect",
+        ),
+        (
+            ["--example", "--liquid", "water", "--viscosity", "barus"],
+            "--viscosity barus has no effect: the pressure-viscosity coefficient of water is 0",
+        ),
+    ],
+)
+def test_an_option_that_cannot_act_is_warned_of(args, text, capsys):
+    assert main(["collide", *args, "--nodes", "60"]) == 0
+    err = capsys.readouterr().err
+    assert f"ehdfem collide: warning: {text}" in err, err
+
+
+@pytest.mark.parametrize(
+    "args,option",
+    [
+        (["--json", "same.json", "--histories", "same.json"], "--histories"),
+        (["--plots", "out", "--json", "out"], "--plots"),
+        (["--field-times", "1", "2"], "--field-times"),
+    ],
+)
+def test_outputs_on_one_path_and_field_times_without_fields_are_refused(
+    args, option, tmp_path, monkeypatch, capsys
+):
+    monkeypatch.chdir(tmp_path)
+    assert main(["collide", "--St", "10", "--eps", "1e-3", *args]) == 2
+    assert capsys.readouterr().err.startswith(f"ehdfem collide: error: {option}:")

@@ -64,11 +64,20 @@ def add_collide(parser) -> None:
 
 def check_outputs(args) -> None:
     """Refuse, before any work, an output that cannot be written (:mod:`ehdfem.cli.paths`):
-    --json, --histories and --fields in existing folders, --plots a folder (made if missing)."""
+    --json, --histories and --fields in existing folders, --plots a folder (made if missing),
+    no two of them the same path; --field-times without --fields is refused (no field file
+    would take them)."""
     paths.output_file("json", args.json, stdout=True)
     paths.output_file("histories", args.histories)
     paths.output_file("fields", args.fields)
     paths.output_folder("plots", args.plots)
+    paths.distinct_outputs(
+        {name: getattr(args, name) for name in ("json", "histories", "fields", "plots")}
+    )
+    if args.field_times and not args.fields:
+        raise checks.InputError(
+            "needs --fields FILE.xdmf (the file the fields go to)", "field_times"
+        )
 
 
 def replayed_inputs(args):

@@ -7,6 +7,7 @@ dataclasses' fields (:mod:`ehdfem.cli.arguments`)."""
 from __future__ import annotations
 
 import argparse
+import warnings
 
 from .. import CollisionParameters, PhysicalCollision, RunConfig, checks, from_presets
 from ..config import LOWER_BODIES, Numerics, setting_classes
@@ -160,13 +161,40 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
             f"--viscosity {viscosity} with a liquid of your own needs its "
             "--pressure-viscosity [1/Pa], [0, 1e-6]"
         )
+    _warn_of_options_without_effect(values, "pressure_viscosity", "cavitation_pressure")
+    coefficient = values.get("pressure_viscosity", values["liquid"].pressure_viscosity)
+    if viscosity != "constant" and coefficient == 0.0:
+        warnings.warn(
+            f"--viscosity {viscosity} has no effect: the pressure-viscosity coefficient of "
+            f"{values['liquid'].name} is 0 (give --pressure-viscosity [1/Pa] for a liquid that "
+            "thickens under pressure)",
+            stacklevel=2,
+        )
     return from_presets(**values)
+
+
+def _warn_of_options_without_effect(values: dict, coefficient: str, suction: str) -> None:
+    """Warn of a given pressure-viscosity ``coefficient`` (its field name) with the constant
+    viscosity, and of a given ``suction`` limit with the cavitation model "none" (their
+    defaults are "constant" and "truncate"): such options cannot act in the run."""
+    if coefficient in values and values.get("viscosity", "constant") == "constant":
+        warnings.warn(
+            f"{_option(coefficient)} has no effect with the constant viscosity (give "
+            "--viscosity barus or roelands)",
+            stacklevel=3,
+        )
+    if suction in values and values.get("cavitation") == "none":
+        warnings.warn(
+            f"{_option(suction)} has no effect with --cavitation none (unlimited suction)",
+            stacklevel=3,
+        )
 
 
 def _dimensionless(args, sought: dict) -> CollisionParameters:
     """The dimensionless inputs (DSH scales) of the arguments (and ``sought``'s)."""
     values = {k: v for k, v in sought.items() if k in _names(CollisionParameters)}
     values.update(given(args, CollisionParameters))
+    _warn_of_options_without_effect(values, "alpha", "p_cav")
     example = ", or --example" if hasattr(args, "example") else ""
     for name in ("St", "eps"):
         if name not in values:

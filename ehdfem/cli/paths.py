@@ -47,6 +47,23 @@ def output_file(name: str, target: str | None, stdout: bool = False, formats=Non
     _writable(folder, name)
 
 
+def distinct_outputs(targets: dict) -> None:
+    """Refuse two output options (``targets``: option name to path or None) that name the same
+    file or folder: the second would overwrite the first."""
+    seen = {}
+    for name, target in targets.items():
+        if target is None or target == "-":
+            continue
+        key = Path(target).resolve()
+        if key in seen:
+            raise checks.InputError(
+                f"{target!r} is also the path of --{seen[key].replace('_', '-')}; give each "
+                "output its own path",
+                name,
+            )
+        seen[key] = name
+
+
 def output_folder(name: str, target: str | Path | None) -> None:
     """Refuse the output folder ``target`` of option ``name`` if it is a file, if a file stands
     where one of its parents must be, or if it (or its nearest existing parent, in which it

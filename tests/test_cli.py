@@ -1,6 +1,7 @@
 """`ehdfem collide`: results, JSON, plots, and refusal of bad inputs before any work; clean
 machine-readable output, quiet runs, custom materials and liquids."""
 
+import contextlib
 import csv
 import json
 import os
@@ -760,3 +761,32 @@ def test_outputs_on_one_path_and_field_times_without_fields_are_refused(
     monkeypatch.chdir(tmp_path)
     assert main(["collide", "--St", "10", "--eps", "1e-3", *args]) == 2
     assert capsys.readouterr().err.startswith(f"ehdfem collide: error: {option}:")
+
+
+@pytest.mark.parametrize(
+    "args,line",
+    [
+        (["collide", "--St", "x", "--eps", "1e-3"], "ehdfem collide: error: --St: invalid float"),
+        (["collide", "--example", "--liquid", "honey"], "ehdfem collide: error: --liquid: unknown"),
+        (
+            ["collide", "--example", "--sphere", "unobtainium"],
+            "ehdfem collide: error: --sphere: unknown material preset",
+        ),
+        (
+            ["critical", "--eps", "1e-3", "--bracket", "100", "10"],
+            "ehdfem critical: error: --bracket: 100 .. 10 must be increasing",
+        ),
+        (["collide", "--from", "no_inputs.json"], "ehdfem collide: error: --from: 'no_inputs"),
+        (["collide", "--from", "no_parameters.json"], "ehdfem collide: error: --from: 'no_param"),
+    ],
+)
+def test_refusals_are_one_line_naming_the_option(args, line, tmp_path, monkeypatch, capsys):
+    """A type error, an unknown preset, a decreasing bracket, a --from file without readable
+    inputs: one line in the documented form, no usage text, no traceback."""
+    monkeypatch.chdir(tmp_path)
+    Path("no_inputs.json").write_text('{"a": 1}')
+    Path("no_parameters.json").write_text('{"inputs": {"St": 1}}')
+    with pytest.raises(SystemExit) if "invalid float" in line else contextlib.nullcontext():
+        assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(line) and len(err.strip().splitlines()) == 1, err

@@ -37,12 +37,15 @@ class Parser(argparse.ArgumentParser):
         self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str):
-        """Exit with status 2 after ``<usage>`` and ``<prog>: error: --flag: message`` (the
-        form of every refused input; argparse's own says ``argument --flag: message``), printed
-        by MPI rank 0 only."""
+        """Exit with status 2 after the one line ``<prog>: error: --flag: message`` (the form of
+        every refused input; argparse's own says ``argument --flag: message`` after the whole
+        usage, 30 lines for collide), printed by MPI rank 0 only; a refusal that names no
+        option points to --help."""
         if rank() == 0:
-            self.print_usage(sys.stderr)
-            print(f"{self.prog}: error: {message.removeprefix('argument ')}", file=sys.stderr)
+            text = message.removeprefix("argument ")
+            if not text.startswith("-"):
+                text += f" (see {self.prog} --help)"
+            print(f"{self.prog}: error: {text}", file=sys.stderr)
         sys.exit(2)
 
 

@@ -97,13 +97,14 @@ def replayed_inputs(args):
                 inputs = json.loads(str(stored["inputs"]))
         else:
             inputs = json.loads(path.read_text())["inputs"]
+        return read_inputs(inputs)
     except (KeyError, TypeError, ValueError, OSError) as err:
+        what = f"no {err.args[0]!r} entry" if isinstance(err, KeyError) else str(err)
         raise checks.InputError(
-            f"{args.from_file!r} holds no collision inputs (a JSON of collide with its "
-            f'"inputs", or a --histories file): {err}',
+            f"{args.from_file!r} holds no collision inputs that can be read (a JSON of collide "
+            f'with its "inputs", or a --histories file): {what}',
             "from_file",
         ) from err
-    return read_inputs(inputs)
 
 
 def collide_command(args) -> int:

@@ -17,6 +17,8 @@ from ..inputs.presets import (
     MATERIAL_RANGES,
     custom_liquid,
     custom_material,
+    liquid,
+    material,
 )
 from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
@@ -243,6 +245,11 @@ def body_of(args, name: str, preset: str | None):
     values = {dest: getattr(args, dest) for dest in options if getattr(args, dest) is not None}
     if preset is None and not values:
         return None
+    if isinstance(preset, str):
+        try:  # the preset alone first, so that an unknown name is refused by its option
+            (liquid if name == "liquid" else material)(preset)
+        except checks.InputError as err:
+            raise checks.InputError(str(err), name) from None
     field = {dest: spec[0] for dest, spec in options.items()}
     labels = {field[dest]: _option(dest) for dest in options}
     return build(preset, labels=labels.get, **{field[dest]: v for dest, v in values.items()})

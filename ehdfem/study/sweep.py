@@ -449,7 +449,9 @@ def critical_stokes(
         checks.positive("bracket high", bracket[1]),
     )
     if lo >= hi:
-        raise checks.InputError(f"bracket = {bracket} must be increasing")
+        raise checks.InputError(
+            f"bracket = {bracket[0]:g} .. {bracket[1]:g} must be increasing", "bracket"
+        )
     checks.number("rtol", rtol, lower=1e-8, upper=0.5)
     values = {name: getattr(params, name) for name in PARAMETERS}
     widest = CollisionParameters(**{**values, "St": 4 * hi})

@@ -777,6 +777,10 @@ def test_outputs_on_one_path_and_field_times_without_fields_are_refused(
             "ehdfem critical: error: --bracket: 100 .. 10 must be increasing",
         ),
         (["collide", "--from", "no_inputs.json"], "ehdfem collide: error: --from: 'no_inputs"),
+        (
+            ["collide", "--example", "--spin-rate", "nan"],
+            "ehdfem collide: error: --spin-rate: must be finite",
+        ),
         (["collide", "--from", "no_parameters.json"], "ehdfem collide: error: --from: 'no_param"),
     ],
 )

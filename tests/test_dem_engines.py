@@ -143,6 +143,21 @@ def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):
     assert f"error: {flag}:" in capsys.readouterr().err
 
 
+def test_each_engine_runs_its_example(tmp_path, capsys):
+    """``dem --example`` with either engine: LIGGGHTS's two equal spheres take the example's
+    sphere material for the wall and a head-on impact (the example is steel on glass at 30
+    degrees), unless the user gives them; both conflicts are named in one refusal."""
+    for engine in ("liggghts", "yade"):
+        folder = tmp_path / engine
+        assert main(["dem", "--engine", engine, "--example", "--folder", str(folder)]) == 0
+        assert "full model" in capsys.readouterr().out
+    args = ["dem", "--engine", "liggghts", "--example", "--folder", str(tmp_path / "conflict"),
+            "--wall", "glass", "--angle", "20"]  # fmt: skip
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ehdfem dem: error: --wall:") and "head-on only" in err
+
+
 STUDY = Path(__file__).resolve().parents[1] / "studies/results/dem_engines.json"
 CASE = "steel, 100 cSt oil, 0.1 mm"
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s, those of studies/dem_engines.py

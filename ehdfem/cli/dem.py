@@ -9,9 +9,10 @@ from __future__ import annotations
 
 from .. import CollisionParameters, checks
 from ..dem.engines.compare import ENGINES, compare, engine_law
+from ..inputs.presets import EXAMPLE
 from . import paths
 from .arguments import JSON_HELP, add_fields, given, report_stream, write_json
-from .inputs import add_collision_arguments, collision_inputs, run_config
+from .inputs import MATERIAL_OPTIONS, add_collision_arguments, collision_inputs, run_config
 
 HELP = "run a DEM engine (Yade, LIGGGHTS) on one collision beside the full model"
 
@@ -47,6 +48,8 @@ def dem_command(args) -> int:
         if other is not law_class and given(args, other):
             name = next(iter(given(args, other)))
             raise checks.InputError(f"is a setting of another engine than {args.engine}", name)
+    if args.engine == "liggghts" and getattr(args, "example", False):
+        _two_equal_spheres_example(args)
     collision = collision_inputs(args)
     if isinstance(collision, CollisionParameters):
         raise checks.InputError(
@@ -59,6 +62,19 @@ def dem_command(args) -> int:
     print_comparison(result, report)
     write_json(result, args.json)
     return 0
+
+
+def _two_equal_spheres_example(args) -> None:
+    """The main job's example as LIGGGHTS can run it (two equal spheres, head-on): the wall of
+    the sphere's material and angle 0 where the user gave neither (a given one is refused by
+    the engine with the reason)."""
+    own_wall = args.wall is not None or any(
+        getattr(args, f"wall_{suffix}", None) is not None for suffix in MATERIAL_OPTIONS
+    )
+    if not own_wall:
+        args.wall = args.sphere or EXAMPLE["sphere"]
+    if not hasattr(args, "angle"):
+        args.angle = 0.0
 
 
 def print_comparison(result: dict, report) -> None:

@@ -22,7 +22,7 @@ from ..inputs.presets import (
 )
 from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
-from .arguments import add_fields, given
+from .arguments import add_fields, destination, given
 
 BODIES = ("sphere", "wall", "liquid")
 PHYSICAL_TRIGGERS = ("radius", "speed", "layer_thickness")  # with a body: physical inputs
@@ -172,7 +172,14 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
             "thickens under pressure)",
             stacklevel=2,
         )
-    return from_presets(**values)
+    try:
+        return from_presets(**values)
+    except checks.InputError as err:  # a physical field whose option is spelt otherwise
+        renamed = {f.name: destination(f) for f in described(PhysicalCollision)}
+        if renamed.get(err.name, err.name) != err.name:
+            text = str(err).removeprefix(f"{err.name} = ").removeprefix(f"{err.name} ")
+            raise checks.InputError(text, renamed[err.name]) from None
+        raise
 
 
 def _warn_of_options_without_effect(values: dict, coefficient: str, suction: str) -> None:

@@ -102,18 +102,22 @@ def liquid_content(collision: PhysicalCollision, law: LiggghtsLaw) -> float:
 
 
 def check_equal_spheres(collision: PhysicalCollision) -> None:
-    """Refuse a collision whose wall differs from its sphere: LIGGGHTS collides two equal
-    spheres (its liquid bridge on a wall is dry only)."""
+    """Refuse a collision whose wall differs from its sphere (LIGGGHTS collides two equal
+    spheres; its liquid bridge on a wall is dry only) or that is oblique, naming every
+    conflict in one refusal."""
+    conflicts = []
     if collision.wall != collision.sphere:
-        raise checks.InputError(
-            f"LIGGGHTS collides two equal spheres: the wall ({collision.wall.name}) must be "
-            f"the sphere's material ({collision.sphere.name})",
-            "wall",
+        conflicts.append(
+            (
+                "wall",
+                f"LIGGGHTS collides two equal spheres: the wall ({collision.wall.name}) must be "
+                f"the sphere's material ({collision.sphere.name})",
+            )
         )
     if collision.angle != 0.0:
-        raise checks.InputError(
-            "LIGGGHTS's liquid bridge is compared head-on only (angle = 0)", "angle"
-        )
+        conflicts.append(("angle", "LIGGGHTS's liquid bridge is compared head-on only (angle 0)"))
+    if conflicts:
+        raise checks.InputError("; ".join(text for _, text in conflicts), conflicts[0][0])
 
 
 def script(collision: PhysicalCollision, law: LiggghtsLaw) -> str:

@@ -18,7 +18,7 @@ from ehdfem.cli.main import main
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.dem import closedform as cf
-from ehdfem.dem import fitting, lookup
+from ehdfem.dem import export, fitting, lookup
 from ehdfem.dem import forms as shape
 from ehdfem.dem.box import wetted_reach
 from ehdfem.dem.table import table_rows
@@ -471,3 +471,20 @@ def test_shipped_module_gives_the_dimensionless_groups():
         physical.liquid.vapour_pressure, physical.ambient_pressure,
     )  # fmt: skip
     np.testing.assert_allclose(groups, (p.St, p.eps, p.delta, p.p_cav), rtol=1e-13)
+
+
+def test_written_module_checks_only_the_inputs_each_function_takes():
+    """The module of a fit whose St box is [5, 500] gives St_c wherever eps and P_cav are in
+    the box, even where St_c falls outside the St range (St_c is an output, not an input), and
+    normal_restitution takes the delta the module's docstring lists, checked against the box."""
+    fits = json.loads((SHIPPED / "dem_closed_forms_fit.json").read_text())["closed_forms"]
+    fits = {**fits, "box": {**fits["box"], "St": [5.0, 500.0]}}
+    module = {}
+    exec(export.python_source(fits, "table.csv", "test", None), module)  # noqa: S102
+    assert 0.0 < module["critical_stokes"](0.1, -10.0, "thin") < 5.0
+    e_n = module["normal_restitution"](100.0, 1e-4, -10.0, "thin")
+    assert module["normal_restitution"](100.0, 1e-4, -10.0, "thin", delta=0.01) == e_n
+    with pytest.raises(ValueError, match="delta = 5"):
+        module["normal_restitution"](100.0, 1e-4, -10.0, "thin", delta=5.0)
+    with pytest.raises(ValueError, match="St = 1000"):
+        module["normal_restitution"](1000.0, 1e-4, -10.0, "thin")

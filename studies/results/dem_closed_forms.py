@@ -31,8 +31,10 @@ def _check(St, eps, delta, p_cav, layer, k):
         raise ValueError(f"p_cav = {p_cav!r} is outside the box {BOX['p_cav']}")
     for name, value in (("St", St), ("eps", eps), ("delta", delta)):
         low, high = BOX[name]
-        if not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
+        if value is not None and not low * (1 - 1e-9) <= value <= high * (1 + 1e-9):
             raise ValueError(f"{name} = {value!r} is outside the box [{low:g}, {high:g}]")
+    if St is None or delta is None:
+        return
     compression = (13.87913118903191 * eps * St) ** 0.4
     if layer == "thin" and 2.0 * delta * (1.0 + compression) > 1.0:
         raise ValueError(
@@ -68,15 +70,17 @@ def _q(form, f):
 
 
 def critical_stokes(eps, p_cav, layer="thin"):
-    """St_c = (2/5 + h) L + Q_c(v, h): no rebound below it."""
-    _check(1.0, eps, BOX["delta"][0], p_cav, layer, 0.4)
+    """St_c = (2/5 + h) L + Q_c(v, h): no rebound below it (eps, P_cav and the layer checked
+    against the box; St_c itself may lie outside the St range of the fit)."""
+    _check(None, eps, None, p_cav, layer, 0.4)
     f = _features(1.0, eps, p_cav)
     return (0.4 + f["h"]) * f["L"] + _q(FORMS[layer]["St_c"], f)
 
 
-def normal_restitution(St, eps, p_cav, layer="thin"):
-    """e_n = 1 - (St_c/St)^m above St_c, else 0; m = exp(Q_m(v, h))."""
-    _check(St, eps, BOX["delta"][0], p_cav, layer, 0.4)
+def normal_restitution(St, eps, p_cav, layer="thin", delta=None):
+    """e_n = 1 - (St_c/St)^m above St_c, else 0; m = exp(Q_m(v, h)). e_n does not depend on
+    delta; a delta given is checked against the box as for e_t."""
+    _check(St, eps, delta, p_cav, layer, 0.4)
     f = _features(St, eps, p_cav)
     St_c = (0.4 + f["h"]) * f["L"] + _q(FORMS[layer]["St_c"], f)
     if St <= St_c:

@@ -41,6 +41,8 @@ from .tangential.superposition import (
 from .threads import one_blas_thread
 
 HARD_IMPACT = 1000.0  # St above which the film grid's rim is refined (contact_spacings)
+SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real surfaces are rough
+NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
@@ -362,9 +364,50 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
         if result.halfspace_range.flagged:
             warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)
     _check_barus_range(params, physical, normal)
+    _check_result_range(params, physical, normal)
     if params.tangential_speed == 0:
         return result
     return _slide(result, given_mode_one)
+
+
+class ResultRangeWarning(UserWarning):
+    """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
+    error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
+    Newtonian liquids."""
+
+
+def _check_result_range(params, physical, normal: NormalResult) -> None:
+    """Warn (ResultRangeWarning) of e_n > 1, and, for physical inputs, of a smooth collision's
+    thinnest film below SMOOTHEST_SURFACE (polished glass and steel have rms roughnesses of
+    1-100 nm: their asperities would touch first; --roughness models them) and of a liquid
+    viscosity outside NEWTONIAN_VISCOSITY."""
+    if normal.e_n > 1.0:
+        warnings.warn(
+            f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
+            f"error (energy error {normal.energy_error:.2g}); refine --nodes or --rtol",
+            ResultRangeWarning,
+            stacklevel=4,
+        )
+    if physical is None:
+        return
+    thinnest = normal.min_film_thickness * physical.layer_thickness
+    if params.roughness == 0.0 and thinnest < SMOOTHEST_SURFACE:
+        warnings.warn(
+            f"the thinnest film is {thinnest * 1e9:.3g} nm, below the roughness of any real "
+            "surface (1-100 nm rms): the asperities would touch first (--roughness)",
+            ResultRangeWarning,
+            stacklevel=4,
+        )
+    low, high = NEWTONIAN_VISCOSITY
+    mu = physical.liquid.viscosity
+    if not low <= mu <= high:
+        warnings.warn(
+            f"the liquid viscosity {mu:.3g} Pa s is outside the Newtonian liquids "
+            f"({low:g}-{high:g} Pa s): "
+            + ("below any liquid at room temperature" if mu < low else "such liquids shear-thin"),
+            ResultRangeWarning,
+            stacklevel=4,
+        )
 
 
 def _check_barus_range(params, physical, normal: NormalResult) -> None:

@@ -794,3 +794,30 @@ def test_refusals_are_one_line_naming_the_option(args, line, tmp_path, monkeypat
         assert main(args) == 2
     err = capsys.readouterr().err
     assert err.startswith(line) and len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize(
+    "args,text",
+    [
+        (["--liquid-viscosity", "5e-5"], "the liquid viscosity 5e-05 Pa s is outside"),
+        (["--liquid-viscosity", "5e-5"], "the thinnest film is 1.1"),
+    ],
+)
+def test_results_a_user_should_look_at_twice_are_warned_of(args, text, capsys):
+    """A physical collision through a liquid thinner than any liquid at room temperature: its
+    viscosity and its nanometre film (below any real surface's roughness) are warned of."""
+    assert main(["collide", "--example", *args, "--nodes", "120"]) == 0
+    assert f"ehdfem collide: warning: {text}" in capsys.readouterr().err
+
+
+def test_a_restitution_above_one_is_warned_of():
+    """e_n > 1 can only be a discretisation error of pure EHD: warned of with the energy
+    error."""
+    from types import SimpleNamespace
+
+    from ehdfem.collision import ResultRangeWarning, _check_result_range
+    from ehdfem.inputs.scales import CollisionParameters
+
+    params = CollisionParameters(St=10.0, eps=1e-3)
+    with pytest.warns(ResultRangeWarning, match=r"e_n = 1.01 is above 1.*energy error 0.02"):
+        _check_result_range(params, None, SimpleNamespace(e_n=1.01, energy_error=0.02))

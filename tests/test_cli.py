@@ -346,7 +346,7 @@ def test_presets_version_and_help(capsys):
 
 @pytest.mark.slow
 def test_critical_json_to_stdout_is_the_json_alone(capsys):
-    args = ["critical", "--eps", "1e-3", "--p-cav=-2", "--nodes", "80", "--rtol", "0.05"]
+    args = ["critical", "--eps", "1e-3", "--p-cav=-2", "--nodes", "80", "--bracket-rtol", "0.05"]
     args += ["--bracket", "1", "30"]
     assert main([*args, "--json", "-"]) == 0
     captured = capsys.readouterr()
@@ -452,15 +452,15 @@ def test_histories_file_holds_the_histories_with_their_units(tmp_path, capsys):
 def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):
     """Physical inputs: the critical impact speed [m/s] by bisection, the sphere sticking at
     the bracket's low end and rebounding at its high end (checked by two collisions); the
-    speed, which is sought, is refused by name, as are scaled inputs. --rtol is the final
-    bracket's width, not the time step's tolerance."""
+    speed, which is sought, is refused by name, as are scaled inputs. --bracket-rtol is the
+    final bracket's width; --rtol, the time step's tolerance, is left at its default."""
     from dataclasses import replace
 
     from ehdfem import collide, from_presets
 
     bodies = ["--sphere", "glass", "--wall", "glass", "--liquid", "water"]
     sizes = ["--radius", "3e-3", "--layer-thickness", "2e-4", "--nodes", "60"]
-    args = ["critical", *bodies, *sizes, "--rtol", "0.05", "--bracket", "0.002", "0.05"]
+    args = ["critical", *bodies, *sizes, "--bracket-rtol", "0.05", "--bracket", "0.002", "0.05"]
     assert main([*args, "--json", "-"]) == 0
     found = json.loads(capsys.readouterr().out)
     low, high = found["bracket"]
@@ -474,7 +474,7 @@ def test_critical_with_physical_inputs_gives_the_critical_speed(capsys):
     at = replace(physical, speed=found["speed"]).dimensionless()
     assert found["St_c"] == pytest.approx(at.St, rel=1e-12)
     assert found["sphere"]["name"] == "glass" and found["run"]["nodes"] == 60
-    assert found["run"]["rtol"] == RunConfig().options.rtol  # --rtol is the bracket's only
+    assert found["bracket_rtol"] == 0.05 and found["run"]["rtol"] == RunConfig().options.rtol
     with pytest.raises(SystemExit):
         main(["critical", *bodies, *sizes, "--speed", "1"])
     assert "--speed" in capsys.readouterr().err

@@ -7,8 +7,6 @@ from dataclasses import asdict
 
 from ..film import cavitation
 from ..inputs.scales import CollisionParameters, PhysicalCollision
-from ..inputs.settings import described
-from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
 from ..study.sweep import critical_speed, critical_stokes
 from . import paths
@@ -38,14 +36,13 @@ def add_critical(parser) -> None:
         "until it holds the critical value; default: 1 1000 (St), 0.01 10 (m/s)",
     )
     search.add_argument(
-        "--rtol",
-        dest="bracket_rtol",  # not the time step's rtol, a run setting read by run_config
+        "--bracket-rtol",
         type=float,
         default=1e-3,
-        help="relative width of the final bracket; default: 0.001",
+        help="relative width of the final bracket, [1e-8, 0.5]; default: 0.001 (--rtol is "
+        "each collision's time-step tolerance, as in collide)",
     )
-    # the time-step settings are left out: --rtol is the bracket's here
-    add_run_arguments(parser, exclude=[*NO_EFFECT, *(f.name for f in described(IntegratorOptions))])
+    add_run_arguments(parser, exclude=NO_EFFECT)
     parser.add_argument(
         "--json",
         metavar="FILE",
@@ -80,7 +77,7 @@ def critical_command(args) -> int:
     }
     low, high = found["bracket"]
     print(
-        f"{where} (bracket {low:.6g} .. {high:.6g}{unit}, rtol {args.bracket_rtol:g}, "
+        f"{where} (bracket {low:.6g} .. {high:.6g}{unit}, bracket rtol {args.bracket_rtol:g}, "
         f"{found['collisions']} collisions)",
         file=report_stream(args),
     )

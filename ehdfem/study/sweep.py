@@ -452,7 +452,7 @@ def critical_stokes(
         raise checks.InputError(
             f"bracket = {bracket[0]:g} .. {bracket[1]:g} must be increasing", "bracket"
         )
-    checks.number("rtol", rtol, lower=1e-8, upper=0.5)
+    checks.number("bracket_rtol", rtol, lower=1e-8, upper=0.5)
     values = {name: getattr(params, name) for name in PARAMETERS}
     widest = CollisionParameters(**{**values, "St": 4 * hi})
     config = RunConfig() if config is None else config
@@ -469,7 +469,7 @@ def critical_stokes(
     return {
         "St_c": math.sqrt(lo * hi),
         "bracket": [lo, hi],
-        "rtol": rtol,
+        "bracket_rtol": rtol,
         "collisions": evaluations,
     }
 
@@ -534,7 +534,7 @@ def critical_speed(
     log speed on the rebound outcome. ``rebounds(speed)``: the outcome (default: a collision
     computed as ``config`` says; pass a cached one to resume a study). ``progress_label``: as
     for :func:`critical_stokes`."""
-    checks.number("rtol", rtol, lower=1e-8, upper=0.5)
+    checks.number("bracket_rtol", rtol, lower=1e-8, upper=0.5)
     lo, hi = (
         checks.positive("bracket low", bracket[0]),
         checks.positive("bracket high", bracket[1]),
@@ -553,6 +553,6 @@ def critical_speed(
         "speed": speed,
         "St_c": replace(physical, speed=speed).dimensionless().St,
         "bracket": [lo, hi],
-        "rtol": rtol,
+        "bracket_rtol": rtol,
         "collisions": evaluations,
     }

@@ -43,6 +43,8 @@ from .threads import one_blas_thread
 HARD_IMPACT = 1000.0  # St above which the film grid's rim is refined (contact_spacings)
 SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real surfaces are rough
 NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
+LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which an impact is
+# flagged: the impact model assumes solids unloaded at the touch
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
@@ -373,7 +375,8 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
 class ResultRangeWarning(UserWarning):
     """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
     error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
-    Newtonian liquids."""
+    Newtonian liquids, a rough contact the impact model does not hold for (a touch where it
+    puts no load, an impact through loaded solids)."""
 
 
 def _check_result_range(params, physical, normal: NormalResult) -> None:
@@ -385,6 +388,24 @@ def _check_result_range(params, physical, normal: NormalResult) -> None:
         warnings.warn(
             f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
             f"error (energy error {normal.energy_error:.2g}); refine --nodes or --rtol",
+            ResultRangeWarning,
+            stacklevel=4,
+        )
+    if normal.unloaded_touch:
+        warnings.warn(
+            f"the film went below the roughness (thinnest {normal.min_film_thickness:.4g} x0, "
+            f"sigma {params.roughness:.4g} x0) where the impact model puts no load on the "
+            "asperities (during the rebound or after the impact): that contact, its dry loss "
+            "and friction are not in the result (docs/model.md, rough surfaces)",
+            ResultRangeWarning,
+            stacklevel=4,
+        )
+    impact = normal.solid_impact
+    if impact is not None and impact.stored_share > LOADED_IMPACT:
+        warnings.warn(
+            f"the asperities' impact came through loaded solids: they held "
+            f"{100 * impact.stored_share:.0f} % of the impact energy, where the impact model "
+            "assumes them unloaded (its e_dry acts on the sphere's velocity alone)",
             ResultRangeWarning,
             stacklevel=4,
         )

@@ -260,3 +260,46 @@ def test_a_film_thinner_than_the_roughness_after_a_rebound_is_no_impact():
     assert after < 0.5 * before and smooth.status == "stick"
     rough = collide(replace(params, roughness=0.5 * (before + after)), nodes=80).normal
     assert rough.status == "stick" and rough.solid_impact is None
+
+
+def test_a_roughness_the_film_never_reaches_changes_nothing():
+    """e_dry has one meaning (docs/model.md, "Decisions"): without a solid impact it multiplies
+    V_exit for rough surfaces as for smooth ones, so a roughness the film never reaches (1e-6
+    x0, the film's thinnest is 0.017) leaves e_n, e_t and the spin change bit-identical to the
+    smooth collision with the same e_dry (before, e_n was 0.3306 instead of 0.2645)."""
+    smooth = CollisionParameters(St=10.0, eps=1e-3, layer="thin", e_dry=0.8, angle=30.0)
+    results = [collide(p) for p in (smooth, replace(smooth, roughness=1e-6))]
+    assert results[1].normal.solid_impact is None and not results[1].normal.unloaded_touch
+    for part, name in (("normal", "e_n"), ("tangential", "e_t"), ("tangential", "spin_change")):
+        values = [getattr(getattr(r, part), name) for r in results]
+        assert values[0] == values[1], name
+    assert results[0].normal.e_n == pytest.approx(0.2645, abs=1e-4)
+
+
+def test_a_touch_the_impact_model_does_not_load_is_flagged():
+    """St 50, eps 1e-2: the film first reaches sigma = 0.06 at the exit constriction during the
+    rebound (thinnest 0.039), where the impact model puts no load on the asperities: flagged
+    and warned of, not silently dropped. The result keeps e_n = e_dry V_exit (no impact)."""
+    from ehdfem.collision import ResultRangeWarning
+
+    params = CollisionParameters(St=50.0, eps=1e-2, layer="thin", e_dry=0.9, roughness=0.06)
+    with pytest.warns(ResultRangeWarning, match="below the roughness"):
+        result = collide(params)
+    normal = result.normal
+    assert normal.solid_impact is None and normal.unloaded_touch
+    assert normal.min_film_thickness < 0.06
+    assert normal.e_n == pytest.approx(0.9 * normal.exit_velocity, rel=1e-15)
+    assert registry.computed(result)["asperity_unloaded_touch"] is True
+
+
+def test_an_impact_through_loaded_solids_is_flagged():
+    """St 10, eps 1e-3, sigma 0.05: the asperities touch at X < 0, when the solids hold 45 % of
+    the impact energy, against the impact model's unloaded solids: warned of, with the share
+    as an output."""
+    from ehdfem.collision import ResultRangeWarning
+
+    params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", e_dry=0.9, roughness=0.05)
+    with pytest.warns(ResultRangeWarning, match="loaded solids: they held 4"):
+        result = collide(params)
+    assert result.normal.solid_impact.stored_share == pytest.approx(0.45, abs=0.01)
+    assert registry.computed(result)["impact_stored_share"] > 0.1

@@ -27,8 +27,10 @@ This module runs them in time, detects the events and collects the result; the h
 Events: the sphere leaves the layer when X returns to 1 (or to the options' larger ``exit_gap``,
 immersed films only) with V > 0 (exit); it sticks when its
 velocity returns to <= 0 after it had started to rebound, or when it comes to rest (|V| below
-1e-10 or the time limit); e_n = e_dry * V_exit for smooth surfaces (e_dry = 1 is pure EHD;
-docs/model.md).
+1e-10 or the time limit). e_dry, the dry restitution of the solids' contact, acts once: at
+the asperities' solid impact if the approach ends in one (e_n = V_exit), otherwise on the exit
+velocity, e_n = e_dry * V_exit (smooth surfaces, a roughness the film never reaches, the mixed
+model's elastic asperities; e_dry = 1 is pure EHD; docs/model.md, "Decisions").
 
 Rough surfaces (roughness sigma > 0, by x0; docs/model.md, "Rough surfaces"), two asperity
 models. "impact": when the thinnest film reaches sigma while the sphere approaches (V < 0), the
@@ -39,15 +41,17 @@ film stay: the solids' elastic state is continuous), the kinetic energy lost,
 touching state (order 1, a first step of first_step sigma; the dissipation rate before the
 impact is not used after it). The film then acts on the rebound (suction, cavitation) until
 exit, or stops the sphere (stick: the sphere then rests on its asperities, since a film that
-brings it back to V <= 0 ends the motion before a second touch). e_n = V_exit (e_dry acted at
-the impact). "greenwood-tripp": the asperities' pressure shares the load with the film
-(:mod:`ehdfem.film.asperities`, in the implicit step); the motion stays continuous, the energy
-they store is in the elastic energy and e_n = V_exit (they return it).
+brings it back to V <= 0 ends the motion before a second touch). A film that goes below sigma
+where no impact acts (during the rebound, after the impact) is flagged (``unloaded_touch``),
+as the impact model puts no load on the asperities there. "greenwood-tripp": the asperities'
+pressure shares the load with the film (:mod:`ehdfem.film.asperities`, in the implicit step);
+the motion stays continuous and the energy they store is in the elastic energy (they return
+it; e_dry stands for the plastic loss they leave out).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -99,12 +103,15 @@ class SolidImpact:
     recorded step ``index`` (time ``time``, by x0/V0) the sphere meets the wall at the
     approach velocity ``approach_velocity`` (V < 0, by V0) and leaves at
     -e_dry approach_velocity; ``normal_impulse`` = St (1 + e_dry) |V| is the asperities'
-    impulse on the sphere (by 6 pi mu a^2, the force scale times the time scale)."""
+    impulse on the sphere (by 6 pi mu a^2, the force scale times the time scale);
+    ``stored_share``: the elastic energy the solids hold at the impact over the impact energy
+    St/2 (the impact model assumes unloaded solids: a large share means it does not hold)."""
 
     index: int
     time: float
     approach_velocity: float
     normal_impulse: float
+    stored_share: float = 0.0
 
 
 class FilmClosedError(NormalSolverError):
@@ -117,8 +124,10 @@ class NormalResult:
     """Outcome of the normal collision (scaled; see the module docstring).
 
     ``rebound``: the sphere left the layer (X back to 1 with V > 0). ``exit_velocity``: V there
-    (the pure EHD restitution), ``e_n`` = e_dry * exit_velocity for smooth surfaces,
-    exit_velocity for rough ones (0 if it sticks).
+    (the pure EHD restitution), ``e_n`` = exit_velocity after a solid impact, e_dry *
+    exit_velocity without one (0 if it sticks). ``unloaded_touch``: the film went below the
+    roughness where the impact model puts no load on the asperities (rebound, after the
+    impact): that contact is not in the result.
     ``max_rebound_velocity``: the largest V > 0 reached (DSH 1986's restitution for immersed
     spheres). ``min_film_thickness``: min over R and T of H (by x0). ``max_force``: by
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
@@ -162,6 +171,7 @@ class NormalResult:
     gap: Paraboloid
     asperity_force: np.ndarray | None = None
     solid_impact: SolidImpact | None = None
+    unloaded_touch: bool = False
 
     @property
     def compression_by_radius(self) -> float:
@@ -216,6 +226,7 @@ class _NormalIntegration:
         law = GreenwoodTripp.of(params) if rough and asperities == "greenwood-tripp" else None
         self.touch = params.roughness if rough and asperities == "impact" else None
         self.impact, self.restart = None, 0  # the solid impact; the history's first usable step
+        self.unloaded_touch = False  # the film went below sigma where no impact acts
         self.radii = np.asarray(compliance.radii, dtype=float)
         gap = params.gap or default_gap(compliance.model, params.layer)
         self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
@@ -460,7 +471,13 @@ class _NormalIntegration:
             dissipated += self._solid_impact(t_new)
             self._advance_sphere(t_new, thickness[0])  # the velocity's jump, into any memory
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
+        below = self.touch is not None and thinnest < self.touch * (1 - TOUCH_TOL)
+        self.unloaded_touch = self.unloaded_touch or below
         if touches:
+            stored = (self.hist.elastic[-1] - self.hist.elastic[0]) / self.sphere.kinetic_energy(
+                1.0
+            )
+            self.impact = replace(self.impact, stored_share=float(stored))
             self.restart = len(self.hist.time)
             self.stepper.restart(self.options.first_step * self.touch)
         self.rebounding = self.rebounding or self.velocity > 0
@@ -507,7 +524,7 @@ class _NormalIntegration:
         kinetic0 = self.sphere.kinetic_energy(IMPACT_VELOCITY)
         stored = hist.elastic[-1] - hist.elastic[0]  # from first touch (asperities at X = 1)
         balance = hist.kinetic[-1] + stored + hist.dissipated[-1] - hist.work[-1]
-        restitution = 1.0 if params.roughness > 0.0 else params.e_dry  # e_dry is the impact's
+        restitution = 1.0 if self.impact is not None else params.e_dry  # e_dry acts once
         return NormalResult(
             params=params,
             radii=self.radii,
@@ -531,6 +548,7 @@ class _NormalIntegration:
             gap=self.shape,
             asperity_force=self._asperity_force(),
             solid_impact=self.impact,
+            unloaded_touch=self.unloaded_touch,
         )
 
     def _largest(self, values) -> float:

@@ -235,8 +235,9 @@ OUTPUTS: tuple[Output, ...] = (
            lambda r: r.normal.rebound),
     Output("status", "how the normal motion ended: rebound, stick or stalled", "-", None,
            lambda r: r.normal.status),
-    Output("e_n", "normal restitution e_dry V_exit, rough: V_exit (0 if it sticks)", "V0", "m/s",
-           lambda r: r.normal.e_n, "rebound_normal_speed_m_s", lambda p: p.scales().velocity),
+    Output("e_n", "normal restitution e_dry V_exit, after a solid impact V_exit (0: sticks)",
+           "V0", "m/s", lambda r: r.normal.e_n, "rebound_normal_speed_m_s",
+           lambda p: p.scales().velocity),
     Output("exit_velocity", "normal velocity V_exit when the gap is back to x0, before e_dry",
            "V0", "m/s", lambda r: r.normal.exit_velocity),
     Output("max_rebound_velocity", "largest rebound velocity (DSH 1986's immersed restitution)",
@@ -326,6 +327,10 @@ OUTPUTS: tuple[Output, ...] = (
            "-", None, _rough(_solid_impulse_share), optional=True),
     Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
            "x0/V0", "s", _rough(_contact_end), optional=True),
+    Output("asperity_unloaded_touch", "the film went below sigma where no impact loads them",
+           "-", None, _rough(lambda n, s: n.unloaded_touch), optional=True),
+    Output("impact_stored_share", "solids' elastic energy at the impact over St/2",
+           "-", None, _impact("stored_share"), optional=True),
 )
 # fmt: on
 

@@ -64,10 +64,17 @@ def test_dimensionless_collision_writes_json_and_plots(tmp_path, capsys):
 
 
 def test_physical_collision_reports_si_values(capsys):
+    """The JSON holds the SI values; the report's header names the physical inputs (sphere,
+    radius, speed, angle, wall, layer, liquid), not only the scaled groups."""
     code = main(["collide", "--example", "--json", "-"])
     assert code == 0
-    result = json.loads(capsys.readouterr().out)
+    captured = capsys.readouterr()
+    result = json.loads(captured.out)
     assert result["si"]["contact_time_s"] > 0 and result["St"] > 1
+    assert (
+        "physical inputs: steel sphere of radius 6.35 mm at 1 m/s, 30 deg from the normal, on "
+        "glass through a thin layer of 0.3 mm of silicone_oil_100cst (0.0965 Pa s)"
+    ) in captured.err
 
 
 def test_sliding_film_options_reach_the_collision(capsys):

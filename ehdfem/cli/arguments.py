@@ -115,6 +115,9 @@ def print_table(summary: dict, stream) -> None:
     """The collision's groups, models and time-step control, one per line, then its outputs
     with their scale and meaning, the SI values last (:func:`ehdfem.outputs.registry.format_table`;
     an output that does not apply shows n/a and why; the inputs are in the JSON only)."""
+    physical = summary.get("inputs", {}).get("physical")
+    if physical:
+        print(f"  {physical_inputs_line(physical)}", file=stream)
     outputs = set(registry.names()) | {"not_applicable"}
     rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict) and k not in outputs]
     width = max(len(k) for k, _ in rows)
@@ -122,6 +125,19 @@ def print_table(summary: dict, stream) -> None:
         text = f"{value:.6g}" if isinstance(value, float) else str(value)
         print(f"  {key:<{width}}  {text}", file=stream)
     print(registry.format_table(summary), file=stream)
+
+
+def physical_inputs_line(physical: dict) -> str:
+    """One line of a physical collision's inputs (SI, as the JSON's "physical" inputs hold
+    them): the sphere, its radius, speed, angle and spin, the wall, the layer and the liquid."""
+    sphere, wall, liquid = (physical[k]["name"] for k in ("sphere", "wall", "liquid"))
+    spin = f", spin {physical['spin']:.4g} rad/s" if physical.get("spin") else ""
+    return (
+        f"physical inputs: {sphere} sphere of radius {physical['radius'] * 1e3:.4g} mm at "
+        f"{physical['speed']:.4g} m/s, {physical['angle']:.4g} deg from the normal{spin}, on "
+        f"{wall} through a {physical['layer']} layer of {physical['layer_thickness'] * 1e3:.4g} "
+        f"mm of {liquid} ({physical['liquid']['viscosity']:.4g} Pa s)"
+    )
 
 
 def json_ready(value):

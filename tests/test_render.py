@@ -82,7 +82,7 @@ def test_render_with_the_si_scales_is_in_pascal_and_metres(fe_collision, tmp_pat
     assert np.allclose(
         si.colour_range, np.multiply(UNITS.pressure, scaled.colour_range), rtol=1e-12
     )
-    assert all(label.split()[1] in ("m", "mm", "um", "nm") for label in si.scale_bars)
+    assert all(label.split()[1] in ("m", "mm", "µm", "nm") for label in si.scale_bars)
     displacement = render_solids(
         fe_collision.compliance,
         pressure,
@@ -98,7 +98,7 @@ def test_scale_bar_is_a_round_length_in_the_stated_unit():
     """1, 2 or 5 times a power of ten, not longer than asked: 0.0123 a of a = 3 mm is
     36.9 um, so the bar is 20 um = 2e-5 / 3e-3 a; without scales 0.0123 a gives 0.01 a."""
     length, label = scale_bar(0.0123, UNITS)
-    assert label == "20 um" and length == pytest.approx(2e-5 / 3e-3, rel=1e-14)
+    assert label == "20 µm" and length == pytest.approx(2e-5 / 3e-3, rel=1e-14)
     assert scale_bar(0.0123) == (pytest.approx(0.01, rel=1e-14), "0.01 a")
     assert scale_bar(2.0)[1] == "2 a" and scale_bar(0.5, UNITS)[1] == "1 mm"
     with pytest.raises(InputError, match="scale bar"):

@@ -67,7 +67,7 @@ def scale_bar(longest: float, units=None) -> tuple[float, str]:
     length = max(m * power for m in (1, 2, 5) if m * power <= longest * (1 + 1e-12))
     if not units:
         return length, f"{length:.3g} a"
-    prefixes = ((1.0, "m"), (1e-3, "mm"), (1e-6, "um"), (1e-9, "nm"))
+    prefixes = ((1.0, "m"), (1e-3, "mm"), (1e-6, "µm"), (1e-9, "nm"))
     factor, prefix = next(((f, p) for f, p in prefixes if length >= 0.999 * f), prefixes[-1])
     return length / metres, f"{length / factor:.3g} {prefix}"
 

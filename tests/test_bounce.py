@@ -472,8 +472,9 @@ def test_command_names_a_missing_or_bad_input(capsys):
         "1e-3",
         "--release-height",
         "0.01",
-        "--added-mass",
+        "--added-mass-coefficient",
         "3",
     ]
     assert main(bad) == 2
-    assert "--added-mass: 3.0 is outside the allowed range [0, 1]" in capsys.readouterr().err
+    err = capsys.readouterr().err
+    assert "--added-mass-coefficient: 3.0 is outside the allowed range [0, 1]" in err

@@ -42,10 +42,12 @@ def add_bounce(b) -> None:
     )
     model.add_argument("--drag", choices=DRAG_LAWS, default=DRAG_LAWS[0], help="steady drag law")
     model.add_argument(
-        "--added-mass",
+        "--added-mass-coefficient",
+        dest="added_mass",
         type=float,
         default=0.5,
-        help="added-mass coefficient C_M far from the wall, [0, 1]",
+        help="added-mass coefficient C_M far from the wall, [0, 1] (collide's --added-mass is "
+        "a mass in kg)",
     )
     model.add_argument("--gravity", type=float, default=GRAVITY, help="g [m/s^2]")
     model.add_argument(
@@ -59,10 +61,12 @@ def add_bounce(b) -> None:
     )
     _add_flight_choices(model)
     model.add_argument(
-        "--model",
+        "--contact-solids",
+        dest="model",
         choices=BOUNCE_MODELS,
         default="halfspace",
-        help="solids of the contacts: elastic half-spaces, or rigid (eps -> 0)",
+        help="solids of the contacts: elastic half-spaces, or rigid (eps -> 0); collide's "
+        "--model chooses between half-spaces and FE solids",
     )
     num = b.add_argument_group("numerics and output")
     num.add_argument(

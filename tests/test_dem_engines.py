@@ -90,8 +90,12 @@ def test_dem_command_prints_the_engine_beside_the_full_model(tmp_path, capsys):
             "glass", "--liquid", "silicone_oil_100cst", "--radius", "2e-3", "--speed", "1",
             "--layer-thickness", "1e-4", "--angle", "20", "--json", str(out)]  # fmt: skip
     assert main(args) == 0
-    assert "full model" in capsys.readouterr().out
+    report = capsys.readouterr().out
+    assert "yade beside ehdfem's half-space model" in report
+    assert "collision.py, history.csv, rebound.json" in report  # every file the run wrote
     result = json.loads(out.read_text())
+    assert result["provenance"]["command"][:4] == ["ehdfem", "dem", "--engine", "yade"]
+    assert result["inputs"]["physical"]["radius"] == 2e-3
     assert {p.name for p in folder.iterdir()} >= {"collision.py", "history.csv", "rebound.json"}
     assert result["engine"]["e_t"] is not None and result["full_model"]["e_t"] is not None
 
@@ -150,7 +154,7 @@ def test_each_engine_runs_its_example(tmp_path, capsys):
     for engine in ("liggghts", "yade"):
         folder = tmp_path / engine
         assert main(["dem", "--engine", engine, "--example", "--folder", str(folder)]) == 0
-        assert "full model" in capsys.readouterr().out
+        assert "beside ehdfem's half-space model" in capsys.readouterr().out
     args = ["dem", "--engine", "liggghts", "--example", "--folder", str(tmp_path / "conflict"),
             "--wall", "glass", "--angle", "20"]  # fmt: skip
     assert main(args) == 2

@@ -7,14 +7,17 @@ and the engine's asperity parameter, unless given, is set from it
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from .. import CollisionParameters, checks
 from ..dem.engines.compare import ENGINES, compare, engine_law
 from ..inputs.presets import EXAMPLE
+from ..outputs import provenance
 from . import paths
 from .arguments import JSON_HELP, add_fields, given, report_stream, write_json
 from .inputs import MATERIAL_OPTIONS, add_collision_arguments, collision_inputs, run_config
 
-HELP = "run a DEM engine (Yade, LIGGGHTS) on one collision beside the full model"
+HELP = "run a DEM engine (Yade, LIGGGHTS) on one collision beside ehdfem's model"
 
 
 def add_dem(parser) -> None:
@@ -60,7 +63,7 @@ def dem_command(args) -> int:
     result = compare(args.engine, collision, law, args.folder, run_config(args))
     report = report_stream(args)
     print_comparison(result, report)
-    write_json(result, args.json)
+    write_json({**result, "provenance": provenance.record(args.command_line)}, args.json)
     return 0
 
 
@@ -78,10 +81,12 @@ def _two_equal_spheres_example(args) -> None:
 
 
 def print_comparison(result: dict, report) -> None:
-    """The engine's e_n (e_t, spin change) beside the full model's, one line each."""
+    """The engine's e_n (e_t, spin change) beside ehdfem's model's, one line each, and every
+    file in the engine's folder."""
     engine, model = result["engine"], result["full_model"]
+    solids = {"halfspace": "half-space", "fem": "FE"}[model["model"]]
     print(
-        f"ehdfem dem: {engine['engine']} beside the full model (St = {model['St']:.4g}, "
+        f"ehdfem dem: {engine['engine']} beside ehdfem's {solids} model (St = {model['St']:.4g}, "
         f"eps = {model['eps']:.3g}, delta = {model['delta']:.3g}, "
         f"sigma/x0 = {model['roughness']:.3g}, asperities {model['asperities']})",
         file=report,
@@ -90,5 +95,9 @@ def print_comparison(result: dict, report) -> None:
         if engine[key] is None and key != "e_n":
             continue
         full = "n/a" if model[key] is None else f"{model[key]:.6g}"
-        print(f"  {key:<12} {engine['engine']} {engine[key]:.6g}   full model {full}", file=report)
-    print(f"  files in {engine['folder']} ({engine['script']}, rebound.json)", file=report)
+        print(
+            f"  {key:<12} {engine['engine']} {engine[key]:.6g}   ehdfem {solids} {full}",
+            file=report,
+        )
+    written = ", ".join(sorted(path.name for path in Path(engine["folder"]).iterdir()))
+    print(f"  files in {engine['folder']}: {written} (rerun {engine['script']} there)", file=report)

@@ -84,8 +84,9 @@ def compare(
 ) -> dict:
     """``engine`` run on ``collision`` with ``law`` in ``folder``, and the full model (run with
     ``config``) at the same inputs: the engine's rebound, the full model's e_n, e_t and spin
-    change, its St, eps, delta, roughness sigma / x0 and asperity model, and the difference
-    e_n(engine) - e_n(full model)."""
+    change, its solids ("model": halfspace or fem), St, eps, delta, roughness sigma / x0 and
+    asperity model, the difference e_n(engine) - e_n(full model), and the inputs of ehdfem's
+    collision (as collide's JSON holds them: ``collide --from`` runs it again)."""
     config = config or RunConfig()
     if engine == "liggghts" and config.model != "halfspace":
         raise checks.InputError(
@@ -99,6 +100,7 @@ def compare(
     params = full.dimensionless()
     tangential = result.tangential
     model = {
+        "model": result.model,
         "St": params.St,
         "eps": params.eps,
         "delta": params.delta,
@@ -113,4 +115,5 @@ def compare(
         "law": dataclasses.asdict(law),
         "full_model": model,
         "e_n_difference": rebound.e_n - model["e_n"],
+        "inputs": result.inputs(),
     }

@@ -788,6 +788,10 @@ def test_outputs_on_one_path_and_field_times_without_fields_are_refused(
             ["collide", "--example", "--spin-rate", "nan"],
             "ehdfem collide: error: --spin-rate: must be finite",
         ),
+        (
+            ["collide", "--model", "fem", "--St", "10", "--eps", "1e-3", "--delta", "0.5"],
+            "ehdfem collide: error: --delta: the film reaches r = 1.27 a",
+        ),
         (["collide", "--from", "no_parameters.json"], "ehdfem collide: error: --from: 'no_param"),
     ],
 )

@@ -55,8 +55,10 @@ class MeshedBodies:
         limit = 0.7 * min(lower.sphere_radius, lower.radius or math.inf)
         if self.radii[-1] * math.sqrt(self.delta) >= limit:
             raise checks.InputError(
-                f"the film reaches r = {self.radii[-1] * math.sqrt(self.delta):.3g} a; the FE "
-                f"solids need it within 0.7 of the smaller sphere radius ({limit:.3g} a)"
+                f"the film reaches r = {self.radii[-1] * math.sqrt(self.delta):.3g} a at delta = "
+                f"x0/a = {self.delta:.3g}; the FE solids need it within 0.7 of the smaller "
+                f"sphere radius ({limit:.3g} a): a thinner layer, or the half-space model",
+                "delta",
             )
         self.build, self.mesh_arguments = lower.geometry(self.delta, self.radii_a, size)
         self.mesh, self.cell_tags, self.facet_tags = contact_mesh(

@@ -233,3 +233,24 @@ def test_docs_list_every_output():
     assert registry.markdown_table() in text
     for name in registry.names():
         assert f"| `{name}` |" in text
+
+
+def test_a_physical_collision_is_plotted_in_si(monkeypatch):
+    """histories.png and profiles.png of a physical collision: the axes in SI (m, m/s, N, Pa,
+    s) with the values scaled by its Scales; the legend of the profiles beside the plots."""
+    from ehdfem.outputs import plots
+
+    result = collide(from_presets(**EXAMPLE), RunConfig.from_settings(nodes=80))
+    units = result.physical.scales()
+    monkeypatch.setattr(plots, "_save", lambda fig, path: fig)
+    histories = plots.plot_histories(result.normal, "h.png", units)
+    labels = [ax.get_ylabel() for ax in histories.axes]
+    assert labels == ["gap x [m]", "velocity v [m/s]", "force F [N]", "film h [m]"]
+    assert histories.axes[0].get_xlabel() == "" and histories.axes[2].get_xlabel() == "t [s]"
+    gap = histories.axes[0].lines[0].get_ydata()
+    assert gap[0] == pytest.approx(units.gap * result.normal.history.gap[0], rel=1e-12)
+    profiles = plots.plot_profiles(result.normal, "p.png", units)
+    assert profiles.axes[0].get_xlabel() == "r [m]"
+    assert profiles.axes[0].get_ylabel().startswith("pressure p [Pa]")
+    legend = profiles.axes[1].get_legend()
+    assert legend.get_texts()[0].get_text().endswith(" s") and legend.get_bbox_to_anchor()

@@ -132,8 +132,9 @@ def collide_command(args) -> int:
         wrote.append(f"{args.fields} ({'t [s]' if units else 'T'} = {times})")
     if args.plots:
         out = Path(args.plots)
-        wrote.append(plots.plot_histories(result.normal, out / "histories.png"))
-        wrote.append(plots.plot_profiles(result.normal, out / "profiles.png"))
+        units = result.physical.scales() if result.physical else None
+        wrote.append(plots.plot_histories(result.normal, out / "histories.png", units))
+        wrote.append(plots.plot_profiles(result.normal, out / "profiles.png", units))
         if result.tangential is not None:
             wrote.append(plots.plot_tangential(result, out / "tangential.png"))
     for path in wrote:

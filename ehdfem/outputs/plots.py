@@ -1,5 +1,6 @@
-"""Plots of a collision (matplotlib, PNG). All axes are in the scaled units of
-ehdfem.inputs.scales."""
+"""Plots of a collision (matplotlib, PNG): the normal motion's histories and profiles in SI for
+a physical collision (given its :class:`ehdfem.inputs.scales.Scales`), else in the scaled
+units of ehdfem.inputs.scales; the tangential motion in its scaled units (by U0)."""
 
 from __future__ import annotations
 
@@ -10,6 +11,31 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+
+def axes(units=None) -> dict:
+    """{quantity: (factor, axis label)} of the normal motion's plots and animation: SI given
+    ``units`` (:class:`ehdfem.inputs.scales.Scales`), else the scaled variables and their
+    scales."""
+    if units:
+        return {
+            "radius": (units.radius, "r [m]"),
+            "film": (units.gap, "film h [m]"),
+            "pressure": (units.pressure, "pressure p [Pa]"),
+            "gap": (units.gap, "gap x [m]"),
+            "velocity": (units.velocity, "velocity v [m/s]"),
+            "force": (units.force, "force F [N]"),
+            "time": (units.time, "t [s]"),
+        }
+    return {
+        "radius": (1.0, "R (by sqrt(a x0))"),
+        "film": (1.0, "film H (by x0)"),
+        "pressure": (1.0, "pressure P (by mu V0 a / x0^2)"),
+        "gap": (1.0, "gap X (by x0)"),
+        "velocity": (1.0, "velocity V (by V0)"),
+        "force": (1.0, "force F (by 6 pi mu V0 a^2 / x0)"),
+        "time": (1.0, "T (by x0/V0)"),
+    }
 
 
 def profile_instants(result) -> list[tuple[int, str]]:
@@ -55,38 +81,42 @@ def _first(condition) -> int | None:
     return int(hits[0]) if len(hits) else None
 
 
-def plot_histories(result, path: Path) -> Path:
-    """Gap X, velocity V, force F and film thickness (central and minimum) against time T."""
-    hist = result.history
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
-    panels = [
-        (axes[0, 0], hist.gap, "gap X (by $x_0$)"),
-        (axes[0, 1], hist.velocity, "normal velocity V (by $V_0$)"),
-        (axes[1, 0], hist.force, r"force F (by $6\pi\mu V_0 a^2/x_0$)"),
-    ]
-    for ax, values, label in panels:
-        ax.plot(hist.time, values, lw=1.5)
-        ax.set_ylabel(label)
+def plot_histories(result, path: Path, units=None) -> Path:
+    """Gap, velocity, force and film thickness (central and minimum) against time, in SI given
+    ``units`` (:func:`axes`)."""
+    hist, of = result.history, axes(units)
+    time = of["time"][0] * hist.time
+    fig, panels = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
+    for ax, (values, name) in zip(
+        panels.flat,
+        ((hist.gap, "gap"), (hist.velocity, "velocity"), (hist.force, "force")),
+        strict=False,
+    ):
+        ax.plot(time, of[name][0] * values, lw=1.5)
+        ax.set_ylabel(of[name][1])
         ax.grid(alpha=0.3)
-    ax = axes[1, 1]
-    ax.semilogy(hist.time, hist.central_film, label="on the axis")
-    ax.semilogy(hist.time, hist.min_film, "--", label="minimum")
-    ax.set_ylabel("film thickness H (by $x_0$)")
-    ax.legend()
+    ax = panels[1, 1]
+    film = of["film"][0]
+    ax.semilogy(time, film * hist.central_film, label="on the axis")
+    ax.semilogy(time, film * hist.min_film, "--", label="minimum")
+    ax.set_ylabel(of["film"][1])
+    ax.legend(loc="best")
     ax.grid(alpha=0.3, which="both")
-    for ax in axes[1]:
-        ax.set_xlabel("time T (by $x_0/V_0$)")
+    for ax in panels[1]:
+        ax.set_xlabel(of["time"][1])
     fig.suptitle(_title(result))
     return _save(fig, path)
 
 
-def plot_profiles(result, path: Path) -> Path:
-    """Pressure P(R) (by mu V0 a / x0^2) and film thickness H(R) (by x0) against R (by
-    sqrt(a x0)) at the instants where the film changes (:func:`profile_instants`: approach,
-    X = 0, maximum force, maximum compression, rebound, strongest suction, exit), each
-    labelled with its phase and T (by x0/V0)."""
-    hist = result.history
-    fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(12, 4.8))
+def plot_profiles(result, path: Path, units=None) -> Path:
+    """Pressure and film thickness against the radius at the instants where the film changes
+    (:func:`profile_instants`: approach, X = 0, maximum force, maximum compression, rebound,
+    strongest suction, exit), each labelled with its phase and time; in SI given ``units``
+    (:func:`axes`), else by mu V0 a / x0^2, x0, sqrt(a x0) and x0/V0."""
+    hist, of = result.history, axes(units)
+    (p_unit, p_label), (h_unit, h_label) = of["pressure"], of["film"]
+    (r_unit, r_label), (t_unit, t_label) = of["radius"], of["time"]
+    fig, (ax_p, ax_h) = plt.subplots(1, 2, figsize=(14.5, 4.8))
     instants = profile_instants(result)
     steps = [step for step, _ in instants]
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(steps)))
@@ -94,23 +124,28 @@ def plot_profiles(result, path: Path) -> Path:
     pressure = np.abs(hist.pressure[steps])
     loaded = result.radii[(pressure > 0.01 * pressure.max()).any(axis=0)]
     shown = result.radii <= 1.5 * (loaded.max() if len(loaded) else result.radii[-1])
+    radii = r_unit * result.radii[shown]
+    symbol, _, unit = t_label.partition(" ")
+    unit = unit.removeprefix("[").removesuffix("]")
     for colour, (i, phase) in zip(colours, instants, strict=True):
-        label = f"{phase}, T = {hist.time[i]:.4g}"
-        ax_p.plot(result.radii[shown], hist.pressure[i][shown], color=colour, label=label)
-        ax_h.semilogy(result.radii[shown], hist.film_thickness[i][shown], color=colour, label=label)
+        label = f"{phase}, {symbol} = {t_unit * hist.time[i]:.4g} {unit}".rstrip()
+        ax_p.plot(radii, p_unit * hist.pressure[i][shown], color=colour, label=label)
+        ax_h.semilogy(radii, h_unit * hist.film_thickness[i][shown], color=colour, label=label)
     ax_p.axhline(0.0, color="0.6", lw=0.8)
-    ax_p.set_ylabel("pressure P (by $\\mu V_0 a/x_0^2$)")
-    suction = -float(hist.pressure[steps][:, shown].min())
+    ax_p.set_ylabel(p_label)
+    suction = -p_unit * float(hist.pressure[steps][:, shown].min())
     if suction > 0:  # linear through the suction, logarithmic above it: both show
-        linear = max(suction, 1e-6 * float(pressure.max()))
+        linear = max(suction, 1e-6 * p_unit * float(pressure.max()))
         ax_p.set_yscale("symlog", linthresh=linear)
         ax_p.set_ylim(bottom=-2 * linear)
-        ax_p.set_ylabel(f"{ax_p.get_ylabel()}; linear within $\\pm${linear:.3g}")
-    ax_h.set_ylabel("film thickness H (by $x_0$)")
+        ax_p.set_ylabel(f"{p_label}; linear within $\\pm${linear:.3g}")
+    ax_h.set_ylabel(h_label)
     for ax in (ax_p, ax_h):
-        ax.set_xlabel("radius R (by $\\sqrt{a x_0}$)")
+        ax.set_xlabel(r_label)
         ax.grid(alpha=0.3)
-    ax_h.legend(fontsize=8, title="phase", title_fontsize=8)
+    ax_h.legend(  # beside the plots: the curves stay visible
+        fontsize=8, title="phase", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0)
+    )
     fig.suptitle(_title(result))
     return _save(fig, path)
 

@@ -30,6 +30,7 @@ import numpy as np
 from .. import checks
 from ..console.quiet import quiet_vtk
 from ..solids.fe.solids import solids_of
+from . import plots
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
 BAR_WIDTH = 160  # pixels kept for the colour bar
@@ -269,38 +270,17 @@ def film_frames(history, frames: int) -> np.ndarray:
     return np.unique(np.searchsorted(time, instants).clip(0, len(time) - 1))
 
 
-def film_axes(units=None) -> dict:
-    """{quantity: (factor, axis label)} of the animation: SI given ``units``
-    (:class:`ehdfem.inputs.scales.Scales`), else the scaled variables and their scales."""
-    if units:
-        return {
-            "radius": (units.radius, "r [m]"),
-            "film": (units.gap, "film h [m]"),
-            "pressure": (units.pressure, "pressure p [Pa]"),
-            "gap": (units.gap, "gap x [m]"),
-            "velocity": (units.velocity, "velocity v [m/s]"),
-            "time": (units.time, "t [s]"),
-        }
-    return {
-        "radius": (1.0, "R (by sqrt(a x0))"),
-        "film": (1.0, "film H (by x0)"),
-        "pressure": (1.0, f"pressure P (by {PRESSURE_UNIT})"),
-        "gap": (1.0, "gap X (by x0)"),
-        "velocity": (1.0, "velocity V (by V0)"),
-        "time": (1.0, "T (by x0/V0)"),
-    }
-
-
 def animate_film(normal, path, frames: int = 40, fps: int = 10, units=None) -> int:
     """GIF of H(R) and P(R) next to X(T) and V(T) at the steps :func:`film_frames` picks, in
-    SI given ``units`` (:func:`film_axes`); returns the number of frames written."""
+    SI given ``units`` (:func:`ehdfem.outputs.plots.axes`); returns the number of frames
+    written."""
     import imageio.v2 as imageio
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    hist, axes_of = normal.history, film_axes(units)
+    hist, axes_of = normal.history, plots.axes(units)
     (r_unit, r_label), (h_unit, h_label), (p_unit, p_label) = (
         axes_of[name] for name in ("radius", "film", "pressure")
     )

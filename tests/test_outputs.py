@@ -193,6 +193,9 @@ def test_a_new_entry_reaches_the_summary_the_study_row_and_the_table(tmp_path, m
         physical["central_film_at_exit"] * EXAMPLE["layer_thickness"], rel=1e-15
     )
     assert "central_film_at_exit_m" in registry.format_table(physical)
+    si_rows = {row[0]: row for row in registry.table_rows(physical)}
+    assert si_rows["central_film_at_exit_m"][2:] == ("m", "central_film_at_exit times x0")
+    assert si_rows["rebound_normal_speed_m_s"][3] == "e_n times V0"  # its SI value, not e_n
 
 
 @pytest.mark.parametrize(

@@ -396,8 +396,10 @@ def _text(value) -> str:
 
 def table_rows(summary: dict) -> list[tuple[str, str, str, str]]:
     """The result table of a summary: (name, value, scale, meaning) of every output it holds,
-    then (SI key, value, unit, meaning) of its SI values; values as text (6 digits, "-" for
-    None, "n/a" for an output that does not apply, its reason after its meaning)."""
+    then (SI key, value, unit, what it is) of its SI values, what it is being the scaled
+    output times its scale (``rebound_normal_speed_m_s``: e_n times V0); values as text (6
+    digits, "-" for None, "n/a" for an output that does not apply, its reason after its
+    meaning)."""
     reasons = summary.get("not_applicable", {})
     si = summary.get("si", {})
     rows, si_rows = [], []
@@ -409,7 +411,8 @@ def table_rows(summary: dict) -> list[tuple[str, str, str, str]]:
             value = "n/a" if o.name in reasons else _text(summary[o.name])
             rows.append((o.name, value, o.scale, meaning))
         if o.si_key in si:
-            si_rows.append((o.si_key, _text(si[o.si_key]), o.unit, o.meaning))
+            meaning = f"{o.name} times {o.scale}" if o.scale != "-" else o.meaning
+            si_rows.append((o.si_key, _text(si[o.si_key]), o.unit, meaning))
     return rows + si_rows
 
 

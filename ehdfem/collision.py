@@ -294,6 +294,7 @@ def collide(
     physical = params if isinstance(params, PhysicalCollision) else None
     if physical is not None:
         params = physical.dimensionless()
+        _check_liquid(physical)
     if not isinstance(params, CollisionParameters):
         raise checks.InputError(
             f"params must be CollisionParameters or PhysicalCollision, got {params!r}"
@@ -379,11 +380,26 @@ class ResultRangeWarning(UserWarning):
     puts no load, an impact through loaded solids)."""
 
 
+def _check_liquid(physical) -> None:
+    """Warn (ResultRangeWarning), before any work, of a liquid viscosity outside
+    NEWTONIAN_VISCOSITY (physical inputs only)."""
+    low, high = NEWTONIAN_VISCOSITY
+    mu = physical.liquid.viscosity
+    if not low <= mu <= high:
+        warnings.warn(
+            f"the liquid viscosity {mu:.3g} Pa s is outside the Newtonian liquids "
+            f"({low:g}-{high:g} Pa s): "
+            + ("below any liquid at room temperature" if mu < low else "such liquids shear-thin"),
+            ResultRangeWarning,
+            stacklevel=3,
+        )
+
+
 def _check_result_range(params, physical, normal: NormalResult) -> None:
-    """Warn (ResultRangeWarning) of e_n > 1, and, for physical inputs, of a smooth collision's
-    thinnest film below SMOOTHEST_SURFACE (polished glass and steel have rms roughnesses of
-    1-100 nm: their asperities would touch first; --roughness models them) and of a liquid
-    viscosity outside NEWTONIAN_VISCOSITY."""
+    """Warn (ResultRangeWarning) of e_n > 1, of a rough contact the impact model does not hold
+    for, and, for physical inputs, of a smooth collision's thinnest film below
+    SMOOTHEST_SURFACE (polished glass and steel have rms roughnesses of 1-100 nm: their
+    asperities would touch first; --roughness models them)."""
     if normal.e_n > 1.0:
         warnings.warn(
             f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
@@ -416,16 +432,6 @@ def _check_result_range(params, physical, normal: NormalResult) -> None:
         warnings.warn(
             f"the thinnest film is {thinnest * 1e9:.3g} nm, below the roughness of any real "
             "surface (1-100 nm rms): the asperities would touch first (--roughness)",
-            ResultRangeWarning,
-            stacklevel=4,
-        )
-    low, high = NEWTONIAN_VISCOSITY
-    mu = physical.liquid.viscosity
-    if not low <= mu <= high:
-        warnings.warn(
-            f"the liquid viscosity {mu:.3g} Pa s is outside the Newtonian liquids "
-            f"({low:g}-{high:g} Pa s): "
-            + ("below any liquid at room temperature" if mu < low else "such liquids shear-thin"),
             ResultRangeWarning,
             stacklevel=4,
         )

@@ -51,6 +51,7 @@ _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
 # five-fold over an element, 1e-7 where it doubles.
 _FLUX_XI, _FLUX_W = np.polynomial.legendre.leggauss(6)
 _FLUX_XI, _FLUX_W = 0.5 + 0.5 * _FLUX_XI, 0.5 * _FLUX_W
+_POINTS = {"gauss": _GAUSS_XI, "flux": _FLUX_XI}  # the film's quadrature points, by name
 
 
 def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
@@ -423,6 +424,7 @@ class Film:
     P ~ H^-2 at the last node). ``viscosity``: a :class:`ehdfem.film.viscosity.Viscosity` (default
     constant). ``gap``: the undeformed gap S(R) of :mod:`ehdfem.film.gap` (default the paraboloid
     R^2/2), kept exactly between the nodes; the immersed far field assumes the paraboloid.
+    ``undeformed``: S at the nodes (by x0).
     """
 
     def __init__(
@@ -447,12 +449,12 @@ class Film:
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
         self._recent_elements = []  # (H, the wetted elements) of the two latest H
-        # S at the nodes, and S minus its chord at the quadrature points of the whole cells
-        # by the points' id (a gap that has no value at a node, as a true sphere beyond its
-        # equator, refuses the grid here)
-        self._node_height = self.gap.height(self.radii)
+        # S at the nodes, and S minus its chord at the quadrature points of the whole cells (a
+        # gap that has no value at a node, as a true sphere beyond its equator, refuses the
+        # grid here)
+        self.undeformed = self.gap.height(self.radii)
         self._cell_between = {
-            id(xi): self.gap.between_nodes(left, self._length, xi) for xi in (_FLUX_XI, _GAUSS_XI)
+            name: self.gap.between_nodes(left, self._length, xi) for name, xi in _POINTS.items()
         }
 
     @property
@@ -489,7 +491,7 @@ class Film:
         k (h_left < 1 <= h_right): Newton from the linear crossing, which lies left of the root
         (S lies below its chord) on a convex H, so the iterates bracket it after one step."""
         left, length = float(self.radii[k]), float(self._length[k])
-        s_left, s_right = (float(value) for value in self._node_height[k : k + 2])
+        s_left, s_right = (float(value) for value in self.undeformed[k : k + 2])
         chord = (s_right - s_left) / length
         xi = (1.0 - h_left) / (h_right - h_left)
         for _ in range(6):
@@ -542,7 +544,7 @@ class Film:
         k, dk_dh, dk_dp = _conductance(
             self.radii[el.left],
             el.length,
-            self._gauss_thickness(el, _FLUX_XI),
+            self._gauss_thickness(el, "flux"),
             p_left,
             p_right,
             self.viscosity,
@@ -722,23 +724,17 @@ class Film:
         load = _cell_hat_weights(el, self.radii, traction)
         return load / self._full_mass
 
-    def _gauss_thickness(self, el: _Elements, xi=_GAUSS_XI):
-        """H at the points ``xi`` (on [0, 1], the Gauss points unless given) of the elements:
-        the undeformed gap S is kept exactly between the nodes, H = X + S + W with only W
-        linear (the linear interpolant of H plus S minus its own interpolant)."""
-        return _gauss_values(el.h_left, el.h_right, xi) + self._between(el, xi)
-
-    def _between(self, el: _Elements, xi) -> np.ndarray:
-        """S minus its chord at the points ``xi`` of the elements (a prefix of the cells, the
-        last one possibly cut at the wetted edge), from the cells' table where it has them."""
-        cells = self._cell_between.get(id(xi))
-        if cells is None:  # other points than the film's quadrature
-            return self.gap.between_nodes(self.radii[el.left], el.length, xi)
-        out = cells[: len(el.left)]
+    def _gauss_thickness(self, el: _Elements, points: str = "gauss"):
+        """H at the quadrature points ``points`` of the elements ("gauss": _GAUSS_XI, "flux":
+        _FLUX_XI): the undeformed gap S is kept exactly between the nodes, H = X + S + W with
+        only W linear (the linear interpolant of H plus S minus its own interpolant); S minus
+        its chord comes from the cells' table, but on a cut last element."""
+        xi = _POINTS[points]
+        between = self._cell_between[points][: len(el.left)]
         if len(el.left) and el.right[-1] < 0:
-            out = out.copy()
-            out[-1] = self.gap.between_nodes(self.radii[el.left[-1:]], el.length[-1:], xi)[0]
-        return out
+            between = between.copy()
+            between[-1] = self.gap.between_nodes(self.radii[el.left[-1:]], el.length[-1:], xi)[0]
+        return _gauss_values(el.h_left, el.h_right, xi) + between
 
     def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
         """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of

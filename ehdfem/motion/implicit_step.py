@@ -162,7 +162,6 @@ class ImplicitStep:
         self.cavitation = cavitation
         self.sphere = sphere
         self.options = options or IntegratorOptions()
-        self.undeformed = film.gap.height(film.radii)
         self.asperities = asperities
         self.asperity_weights = film.full_mass / 3.0
         self._loaded_at = None  # the latest iterate's H, with asperities
@@ -201,7 +200,7 @@ class ImplicitStep:
 
     def _thickness_parts(self, pressure, gap, loaded):
         """:meth:`thickness_parts`, computed."""
-        h0 = gap + self.undeformed + self._deflection(pressure)
+        h0 = gap + self.film.undeformed + self._deflection(pressure)
         motion = self.surface_motion
         radial = None if motion is None else motion.displacement(pressure)
         opening = None

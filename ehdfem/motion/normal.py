@@ -474,10 +474,9 @@ class _NormalIntegration:
         below = self.touch is not None and thinnest < self.touch * (1 - TOUCH_TOL)
         self.unloaded_touch = self.unloaded_touch or below
         if touches:
-            stored = (self.hist.elastic[-1] - self.hist.elastic[0]) / self.sphere.kinetic_energy(
-                1.0
-            )
-            self.impact = replace(self.impact, stored_share=float(stored))
+            stored = self.hist.elastic[-1] - self.hist.elastic[0]
+            share = stored / self.sphere.kinetic_energy(IMPACT_VELOCITY)
+            self.impact = replace(self.impact, stored_share=float(share))
             self.restart = len(self.hist.time)
             self.stepper.restart(self.options.first_step * self.touch)
         self.rebounding = self.rebounding or self.velocity > 0

@@ -12,6 +12,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+PRESSURE_UNIT = "mu V0 a / x0^2"  # the film pressure scale
+
 
 def axes(units=None) -> dict:
     """{quantity: (factor, axis label)} of the normal motion's plots and animation: SI given
@@ -30,7 +32,7 @@ def axes(units=None) -> dict:
     return {
         "radius": (1.0, "R (by sqrt(a x0))"),
         "film": (1.0, "film H (by x0)"),
-        "pressure": (1.0, "pressure P (by mu V0 a / x0^2)"),
+        "pressure": (1.0, f"pressure P (by {PRESSURE_UNIT})"),
         "gap": (1.0, "gap X (by x0)"),
         "velocity": (1.0, "velocity V (by V0)"),
         "force": (1.0, "force F (by 6 pi mu V0 a^2 / x0)"),

@@ -34,7 +34,6 @@ from . import plots
 
 FIELDS = ("von_mises", "hydrostatic", "displacement", "pressure")
 BAR_WIDTH = 160  # pixels kept for the colour bar
-PRESSURE_UNIT = "mu V0 a / x0^2"
 
 
 @dataclass(frozen=True)
@@ -55,7 +54,7 @@ def field_unit(field: str, units=None) -> tuple[float, str]:
     (:class:`ehdfem.inputs.scales.Scales`), else the scales themselves."""
     if field == "displacement":
         return (units.gap, "m") if units else (1.0, "x0")
-    return (units.pressure, "Pa") if units else (1.0, PRESSURE_UNIT)
+    return (units.pressure, "Pa") if units else (1.0, plots.PRESSURE_UNIT)
 
 
 def scale_bar(longest: float, units=None) -> tuple[float, str]:

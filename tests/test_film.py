@@ -16,17 +16,22 @@ pytestmark = pytest.mark.serial
 
 
 def quasi_steady(film, gap, velocity):
-    """Solve m V + K(H) P = 0 for P (dry nodes P = 0) on a rigid film at gap X."""
+    """Solve m V + K(H) P = 0 for P (dry nodes P = 0) on a rigid film at gap X, by the fluxes:
+    the rows up to node i sum to k_i (P_i - P_i+1) = -V (m_0 + ... + m_i) (k_i the conductance
+    of the element right of node i, K's upper band negated), and all the wet rows to k_end P_last
+    = -V (m_0 + ... + m_last) (k_end the cut element's conductance or the immersed far field's
+    Robin coefficient). Every term has one sign, so P is exact to rounding where an LU of K
+    (condition number up to 1e6 on the immersed grids) lost 2e-10 of the force."""
     h = gap + film.gap.height(film.radii)
     state = film.assemble(h, np.zeros_like(h))
-    lower, diag, upper = state.conductance
-    matrix = np.diag(diag) + np.diag(lower[1:], -1) + np.diag(upper[:-1], 1)
-    rhs = -state.mass * velocity
-    fixed = np.flatnonzero(state.dry)
-    matrix[fixed] = 0.0
-    matrix[fixed, fixed] = 1.0
-    rhs[fixed] = 0.0
-    pressure = np.linalg.solve(matrix, rhs)
+    lower, diagonal, upper = state.conductance
+    last = np.flatnonzero(~state.dry)[-1]
+    squeezed = -velocity * np.cumsum(state.mass[: last + 1])
+    end = diagonal[last] + (lower[last] if last > 0 else 0.0)
+    pressure = np.zeros_like(h)
+    pressure[last] = squeezed[last] / end
+    drops = squeezed[:last] / -upper[:last]
+    pressure[:last] = pressure[last] + np.cumsum(drops[::-1])[::-1]
     return pressure, float(state.force_weights @ pressure), state
 
 

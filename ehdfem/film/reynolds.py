@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
+from .elements import assemble_bands
 from .gap import Paraboloid
 from .viscosity import Viscosity
 
@@ -52,6 +53,7 @@ _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
 _FLUX_XI, _FLUX_W = np.polynomial.legendre.leggauss(6)
 _FLUX_XI, _FLUX_W = 0.5 + 0.5 * _FLUX_XI, 0.5 * _FLUX_W
 _POINTS = {"gauss": _GAUSS_XI, "flux": _FLUX_XI}  # the film's quadrature points, by name
+_NO_POINTS = np.zeros((0, len(_FLUX_XI)))  # no fluidity at the points: constant viscosity
 
 
 def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
@@ -533,46 +535,51 @@ class Film:
         return result
 
     def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
-        """Assemble the film for thickness H and pressure P (both at the nodes, scaled)."""
+        """Assemble the film for thickness H and pressure P (both at the nodes, scaled): the
+        element loop is :func:`ehdfem.film.elements.assemble_bands`; the viscosity law gives
+        its fluidity at the elements' points."""
         h = film_thickness
         n = len(self.radii)
-        n_wet, edge, el = self._elements(h)
-        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-        mass = np.zeros(n)
-        regular = el.right >= 0
-        p_left, p_right = pressure[el.left], np.where(regular, pressure[el.right], 0.0)
-        k, dk_dh, dk_dp = _conductance(
-            self.radii[el.left],
-            el.length,
-            self._gauss_thickness(el, "flux"),
-            p_left,
-            p_right,
-            self.viscosity,
+        n_wet, edge = self.wetted_edge(h)
+        regular = max(n_wet - 1, 0)
+        cut_length, cut_between = 0.0, _NO_POINTS[0:1].reshape(-1)
+        if self.layer == "thin" and n_wet > 0:
+            cut_length = edge - self.radii[regular]
+            cut_between = self.gap.between_nodes(
+                self.radii[regular : regular + 1], np.array([cut_length]), _FLUX_XI
+            )[0]
+        fluidity = dfluidity = _NO_POINTS
+        if not self.viscosity.constant:
+            fluidity, dfluidity = self._fluidity(pressure, regular, cut_length > 0.0)
+        mass, conductance, dflux_dH, dflux_dP = assemble_bands(
+            self.radii,
+            h,
+            pressure,
+            regular,
+            cut_length,
+            cut_between,
+            self._cell_between["flux"],
+            fluidity,
+            dfluidity,
+            _FLUX_XI,
+            _FLUX_W,
         )
-        diagonal[el.left] += k
-        r_left = self.radii[el.left]
-        mass[el.left] += _descending_mass(r_left, r_left + el.length)
-        left, right = el.left[regular], el.right[regular]
-        diagonal[right] += k[regular]
-        upper[left] -= k[regular]
-        lower[right] -= k[regular]
-        mass[right] += _ascending_mass(self.radii[left], self.radii[right])
-        jump = p_left - p_right
-        dflux_dH = _derivative_bands(n, el, regular, dk_dh, jump)
-        dflux_dP = _derivative_bands(n, el, regular, dk_dp, jump)
         force_weights = mass / 3.0
         if self.layer == "immersed":
-            self._add_far_field(h, pressure, diagonal, dflux_dH[1], force_weights)
+            self._add_far_field(h, pressure, conductance[1], dflux_dH[1], force_weights)
         dry = np.arange(n) >= n_wet
-        return FilmState(
-            mass,
-            (lower, diagonal, upper),
-            dflux_dH,
-            dflux_dP,
-            force_weights,
-            dry,
-            edge,
-        )
+        return FilmState(mass, conductance, dflux_dH, dflux_dP, force_weights, dry, edge)
+
+    def _fluidity(self, pressure, regular: int, cut: bool):
+        """(mu0/mu, d(mu0/mu)/dP) at the flux points of the wetted elements (the whole cells
+        0..``regular``-1, then the ``cut`` one, whose edge holds P = 0), P linear on each."""
+        p_left = pressure[: regular + int(cut)]
+        p_right = np.concatenate([pressure[1 : regular + 1], np.zeros(int(cut))])
+        ratio, dlog = self.viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
+        if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
+            raise FilmError(self.viscosity.overflow(np.maximum(p_left, p_right)))
+        fluidity = 1.0 / ratio
+        return fluidity, -fluidity * dlog
 
     def _add_far_field(self, h, pressure, diagonal, d_diagonal, force_weights):
         """Robin condition R H^3/12 dP/dR = -R^2 H^2 P / 6 at the last node (P ~ H^-2, dH/dR = R)
@@ -745,58 +752,6 @@ class Film:
 def _gauss_values(left, right, xi=_GAUSS_XI):
     """A linear nodal field at the points ``xi`` (on [0, 1]) of elements, (elements, points)."""
     return left[:, None] * (1.0 - xi) + right[:, None] * xi
-
-
-def _conductance(left_radius, length, h, p_left, p_right, viscosity: Viscosity):
-    """Element conductance k = A^2 / int_e 3 R^3 / H^3 dR times the element's mean fluidity
-    <mu0/mu(P)> over P linear on the element, H at the points of _FLUX_XI, and its derivatives
-    ((dk/dH_left, dk/dH_right), (dk/dP_left, dk/dP_right)) by the nodal values.
-    A = R_l^2/2 + L (3 R_l + L)/6 is the flux through the element when every node's squeeze
-    rate is 1 (the lumped masses m_j, j <= left, summed) and int_e 3 R^3/H^3 dR =
-    int_e q^2 / (R H^3/12) dR the exact dissipation of the flux q = R^2/2 of a uniform
-    squeeze: the film's dissipation P.K P and force (1/3) m.P are then exact for a rigid
-    sphere at any gap and grid. The mean fluidity is the exact factor of a piezoviscous
-    element that carries a constant flux, q int 12/(R H^3) dR = int mu0/mu dP over its
-    pressure drop. To leading order in L, k = (1/(12 L^2)) int R H^3 mu0/mu dR, the P1
-    Galerkin conductance."""
-    radius = left_radius[:, None] + length[:, None] * _FLUX_XI
-    squeeze_flux = 0.5 * left_radius**2 + _descending_mass(left_radius, left_radius + length)
-    density = 3.0 * _FLUX_W * length[:, None] * radius**3 / h**3
-    resistance = density.sum(axis=1)
-    geometric = squeeze_flux**2 / resistance
-    slope = (geometric / resistance)[:, None] * 3.0 * density / h  # dk_geometric/dH there
-    if viscosity.constant:
-        return geometric, _ends(slope), None
-    ratio, dlog = viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
-    if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
-        raise FilmError(viscosity.overflow(np.maximum(p_left, p_right)))
-    fluidity = 1.0 / ratio
-    mean = (_FLUX_W * fluidity).sum(axis=1)
-    dk_dp = _ends(-geometric[:, None] * _FLUX_W * fluidity * dlog)
-    return geometric * mean, _ends(slope * mean[:, None]), dk_dp
-
-
-def _ends(values):
-    """(sum over the points of values (1 - xi), of values xi): an element's point values shared
-    between its left and right nodes, P or H linear on the element."""
-    return (values * (1.0 - _FLUX_XI)).sum(axis=1), (values * _FLUX_XI).sum(axis=1)
-
-
-def _derivative_bands(n, el: _Elements, regular, dk, jump):
-    """Tridiagonal bands of sum_e (dk_e/dy) (P_left - P_right) for the element conductances'
-    derivatives dk = (dk/dy_left, dk/dy_right) by a nodal field y (H, or P for the viscosity;
-    None: zero bands). The cut element's right end is the edge, which is no unknown."""
-    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    if dk is None:
-        return lower, diagonal, upper
-    dk_left, dk_right = dk
-    diagonal[el.left] += dk_left * jump
-    left, right = el.left[regular], el.right[regular]
-    dk_left, dk_right, jump = dk_left[regular], dk_right[regular], jump[regular]
-    upper[left] += dk_right * jump
-    lower[right] -= dk_left * jump
-    diagonal[right] -= dk_right * jump
-    return lower, diagonal, upper
 
 
 class FilmError(RuntimeError):

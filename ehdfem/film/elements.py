@@ -29,7 +29,17 @@ from numba import njit
 
 @njit(cache=True)
 def assemble_bands(
-    radii, thickness, pressure, regular, cut_length, cut_between, between, fluidity, dfluidity, xi, w
+    radii,
+    thickness,
+    pressure,
+    regular,
+    cut_length,
+    cut_between,
+    between,
+    fluidity,
+    dfluidity,
+    xi,
+    w,
 ):
     """(mass, conductance, dflux_dH, dflux_dP) on ``len(radii)`` nodes, each band triple
     (lower, diagonal, upper) with lower[0] and upper[-1] unused (module docstring).

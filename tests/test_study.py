@@ -277,5 +277,23 @@ def test_the_restitution_guides_the_threshold_search_to_the_same_bracket(critica
     other = threshold(kinked, 1.0, 1000.0, rtol, "v", (1e-3, 1e7))
     for low, high, _ in (guided, plain, other):
         assert low < critical <= high and high / low - 1 <= rtol
-    assert plain[2] == 2 + bisections(1.0, 1000.0, rtol)
-    assert guided[2] <= 6 and other[2] <= plain[2]  # measured 5 and 12-14 against 15
+    assert plain[2] == bisections(1.0, 1000.0, rtol)  # the trials replace both ends
+    assert guided[2] <= 6 and other[2] <= plain[2]  # measured 5 and 12-14 against 13
+
+
+@pytest.mark.parametrize("critical", [0.3, 999.9, 1000.0, 2500.0])
+def test_the_threshold_search_computes_an_end_it_kept_and_widens_past_it(critical):
+    """Where the threshold lies at or beyond an end of the starting bracket [1, 1000], the
+    trials never replace that end: it is computed, and where its outcome is the wrong one the
+    bracket widens by 4 beyond it. Every end of the final bracket is a computed outcome on its
+    side of the threshold (recorded here)."""
+    seen = {}
+
+    def outcome(v):
+        seen[v] = v >= critical
+        return seen[v]
+
+    low, high, evaluations = threshold(outcome, 1.0, 1000.0, 1e-3, "v", (1e-3, 1e7))
+    assert low < critical <= high and high / low - 1 <= 1e-3
+    assert seen[low] is False and seen[high] is True and evaluations == len(seen)
+    assert (1000.0 in seen) == (critical >= 999.9) and (1.0 in seen) == (critical < 1.0)

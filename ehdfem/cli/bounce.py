@@ -14,7 +14,6 @@ from ..config import DEFAULT_NODES
 from ..film import cavitation
 from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..inputs.scales import ATMOSPHERE
-from ..outputs import plots
 from ..study.sweep import write_csv
 from . import paths
 from .arguments import report_stream, write_json
@@ -214,6 +213,8 @@ def bounce_command(args) -> int:
     write_json(summary, args.json)
     if args.out:
         out = Path(args.out)
+        from ..outputs import plots  # matplotlib costs 0.25 s to import: only when plotting
+
         out.mkdir(parents=True, exist_ok=True)
         write_json(summary, str(out / "bounce.json"))
         wrote = [

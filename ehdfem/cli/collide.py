@@ -11,7 +11,6 @@ import numpy as np
 
 from .. import checks, collide
 from ..config import read_inputs
-from ..outputs import plots
 from ..outputs.fields import field_snapshots, write_fields
 from ..outputs.histories import write_histories
 from . import paths
@@ -132,6 +131,8 @@ def collide_command(args) -> int:
         wrote.append(f"{args.fields} ({'t [s]' if units else 'T'} = {times})")
     if args.plots:
         out = Path(args.plots)
+        from ..outputs import plots  # matplotlib costs 0.25 s to import: only when plotting
+
         units = result.physical.scales() if result.physical else None
         wrote.append(plots.plot_histories(result.normal, out / "histories.png", units))
         wrote.append(plots.plot_profiles(result.normal, out / "profiles.png", units))

@@ -10,6 +10,7 @@ from it: a new field appears there with its help, unit and default without furth
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import get_type_hints
 
 from .. import checks
@@ -69,10 +70,17 @@ def _scalar(cls, f: dataclasses.Field) -> bool:
     return True
 
 
+@functools.cache
+def _type_hints(cls) -> dict:
+    """The resolved annotations of ``cls`` (resolving them costs 0.3 ms a class, and the
+    command line asks for every field's)."""
+    return get_type_hints(cls)
+
+
 def kind(cls, f: dataclasses.Field) -> type:
     """The value type of field ``f`` of ``cls``: bool, int, float or str (None allowed too
     when the annotation says ``| None``)."""
-    hint = get_type_hints(cls)[f.name]
+    hint = _type_hints(cls)[f.name]
     for base in (bool, int, float, str):
         if hint is base or base in getattr(hint, "__args__", ()):
             return base
@@ -106,7 +114,7 @@ def validate(instance) -> None:
     cls = type(instance)
     for f in (f for f in described(cls) if f.metadata.get("checked")):
         value = getattr(instance, f.name)
-        hint = get_type_hints(cls)[f.name]
+        hint = _type_hints(cls)[f.name]
         if value is None and type(None) in getattr(hint, "__args__", ()):
             continue
         base = kind(cls, f)

@@ -45,6 +45,7 @@ from dataclasses import dataclass, replace
 from functools import partial
 
 import numpy as np
+from numba import njit
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
 from ..film.reynolds import Film, FilmState
@@ -63,21 +64,24 @@ def _remaining(norm: float, ratio: float | None) -> float:
     return ratio / (1.0 - ratio) * norm
 
 
+@njit(cache=True)
 def _band_rows(bands, matrix, rows) -> np.ndarray:
     """The rows ``rows`` of tridiag(lower, diagonal, upper) @ ``matrix`` (n x m) for the bands
-    (lower, diagonal, upper) of an n x n tridiagonal matrix (lower[0] and upper[-1] unused):
-    by shifted slices when ``rows`` are all the rows, by gathered rows otherwise."""
+    (lower, diagonal, upper) of an n x n tridiagonal matrix (lower[0] and upper[-1] unused),
+    one compiled pass over the three rows each output row combines."""
     lower, diagonal, upper = bands
-    n = len(diagonal)
-    if len(rows) == n:
-        out = diagonal[:, None] * matrix
-        out[1:] += lower[1:, None] * matrix[:-1]
-        out[:-1] += upper[:-1, None] * matrix[1:]
-        return out
-    below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
-    out = diagonal[rows, None] * matrix[rows]
-    out += np.where(rows > 0, lower[rows], 0.0)[:, None] * matrix[below]
-    out += np.where(rows < n - 1, upper[rows], 0.0)[:, None] * matrix[above]
+    n, m = matrix.shape
+    out = np.empty((len(rows), m))
+    for j in range(len(rows)):
+        i = rows[j]
+        for k in range(m):
+            out[j, k] = diagonal[i] * matrix[i, k]
+        if i > 0:
+            for k in range(m):
+                out[j, k] += lower[i] * matrix[i - 1, k]
+        if i < n - 1:
+            for k in range(m):
+                out[j, k] += upper[i] * matrix[i + 1, k]
     return out
 
 

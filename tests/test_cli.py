@@ -690,7 +690,8 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
     import time
 
     process = subprocess.Popen(
-        [sys.executable, "-m", "ehdfem", "critical", "--eps", "1e-3"],
+        # a bracket of 1e-7 takes some 20 collisions, well past the signal
+        [sys.executable, "-m", "ehdfem", "critical", "--eps", "1e-3", "--bracket-rtol", "1e-7"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

@@ -28,6 +28,39 @@ from numba import njit
 
 
 @njit(cache=True)
+def _conductance(r_left, length, h_points, fluidity, dfluidity, e, xi, w, density):
+    """(k, dk/dH_left, dk/dH_right, dk/dP_left, dk/dP_right) of element ``e`` from its left
+    radius, its length and H at its points (module docstring); ``fluidity`` and ``dfluidity``
+    mu0/mu and d(mu0/mu)/dP at the elements' points, or empty (constant viscosity);
+    ``density``: room for the resistance's terms at the points."""
+    points = len(xi)
+    squeeze_flux = 0.5 * r_left * r_left + length * (3.0 * r_left + length) / 6.0
+    resistance = 0.0
+    for q in range(points):
+        radius = r_left + length * xi[q]
+        h = h_points[q]
+        density[q] = 3.0 * w[q] * length * (radius * radius * radius) / (h * h * h)
+        resistance += density[q]
+    geometric = squeeze_flux * squeeze_flux / resistance
+    mean = 1.0
+    dk_dp_left = dk_dp_right = 0.0
+    if fluidity.shape[0] > 0:
+        mean = 0.0
+        for q in range(points):
+            mean += w[q] * fluidity[e, q]
+            share = geometric * w[q] * dfluidity[e, q]
+            dk_dp_left += share * (1.0 - xi[q])
+            dk_dp_right += share * xi[q]
+    factor = 3.0 * geometric / resistance * mean
+    dk_dh_left = dk_dh_right = 0.0
+    for q in range(points):
+        slope = factor * density[q] / h_points[q]
+        dk_dh_left += slope * (1.0 - xi[q])
+        dk_dh_right += slope * xi[q]
+    return geometric * mean, dk_dh_left, dk_dh_right, dk_dp_left, dk_dp_right
+
+
+@njit(cache=True)
 def assemble_bands(
     radii,
     thickness,
@@ -52,71 +85,41 @@ def assemble_bands(
     the elements' points (elements, len(xi)); an empty array: constant viscosity, E = 0."""
     n = len(radii)
     mass = np.zeros(n)
-    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    h_lower, h_diagonal, h_upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    p_lower, p_diagonal, p_upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    piezoviscous = fluidity.shape[0] > 0
-    points = len(xi)
-    density = np.empty(points)
-    h_points = np.empty(points)
+    k_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    h_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    p_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    h_points, density = np.empty(len(xi)), np.empty(len(xi))
     for e in range(regular + (1 if cut_length > 0.0 else 0)):
-        r_left = radii[e]
-        is_regular = e < regular
-        if is_regular:
-            length, r_right = radii[e + 1] - r_left, radii[e + 1]
-            h_right, p_right = thickness[e + 1], pressure[e + 1]
-            for q in range(points):
-                h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + between[e, q]
+        r_left, whole = radii[e], e < regular
+        if whole:
+            length, p_right = radii[e + 1] - r_left, pressure[e + 1]
+            h_right, excess = thickness[e + 1], between[e]
         else:
-            length, r_right = cut_length, r_left + cut_length
-            p_right = 0.0
-            for q in range(points):
-                h_points[q] = thickness[e] * (1.0 - xi[q]) + xi[q] + cut_between[q]
+            length, p_right, h_right, excess = cut_length, 0.0, 1.0, cut_between
+        for q in range(len(xi)):
+            h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + excess[q]
+        k, dh_left, dh_right, dp_left, dp_right = _conductance(
+            r_left, length, h_points, fluidity, dfluidity, e, xi, w, density
+        )
         jump = pressure[e] - p_right
-        # int phi R dR of the falling (left) and rising (right) hats over the element
-        falling = length * (2.0 * r_left + (r_left + length)) / 6.0
-        rising = length * (r_left + 2.0 * r_right) / 6.0
-        squeeze_flux = 0.5 * r_left * r_left + falling
-        resistance = 0.0
-        for q in range(points):
-            radius = r_left + length * xi[q]
-            density[q] = 3.0 * w[q] * length * radius**3.0 / h_points[q] ** 3.0
-            resistance += density[q]
-        geometric = squeeze_flux * squeeze_flux / resistance
-        mean = 1.0
-        dk_dp_left = dk_dp_right = 0.0
-        if piezoviscous:
-            mean = 0.0
-            for q in range(points):
-                mean += w[q] * fluidity[e, q]
-                share = geometric * w[q] * dfluidity[e, q]
-                dk_dp_left += share * (1.0 - xi[q])
-                dk_dp_right += share * xi[q]
-        dk_dh_left = dk_dh_right = 0.0
-        for q in range(points):
-            slope = geometric / resistance * 3.0 * density[q] / h_points[q] * mean
-            dk_dh_left += slope * (1.0 - xi[q])
-            dk_dh_right += slope * xi[q]
-        k = geometric * mean
-        mass[e] += falling
-        diagonal[e] += k
-        h_diagonal[e] += dk_dh_left * jump
-        p_diagonal[e] += dk_dp_left * jump
-        if is_regular:
-            right = e + 1
-            mass[right] += rising
-            diagonal[right] += k
-            upper[e] -= k
-            lower[right] -= k
-            h_upper[e] += dk_dh_right * jump
-            h_lower[right] -= dk_dh_left * jump
-            h_diagonal[right] -= dk_dh_right * jump
-            p_upper[e] += dk_dp_right * jump
-            p_lower[right] -= dk_dp_left * jump
-            p_diagonal[right] -= dk_dp_right * jump
-    return (
-        mass,
-        (lower, diagonal, upper),
-        (h_lower, h_diagonal, h_upper),
-        (p_lower, p_diagonal, p_upper),
-    )
+        # int phi R dR of the falling (left) hat over the element, and of the rising one
+        mass[e] += length * (2.0 * r_left + (r_left + length)) / 6.0
+        if whole:
+            mass[e + 1] += length * (r_left + 2.0 * radii[e + 1]) / 6.0
+        _add_flux(k_bands, e, k, -k, whole)
+        _add_flux(h_bands, e, dh_left * jump, dh_right * jump, whole)
+        _add_flux(p_bands, e, dp_left * jump, dp_right * jump, whole)
+    return mass, k_bands, h_bands, p_bands
+
+
+@njit(cache=True)
+def _add_flux(bands, e, left, right, whole):
+    """Add to the bands the derivatives (d/dy_left, d/dy_right) = (``left``, ``right``) of the
+    flux q out of element e's left node (and, on a ``whole`` element, into its right node:
+    that row takes -q's)."""
+    lower, diagonal, upper = bands
+    diagonal[e] += left
+    if whole:
+        upper[e] += right
+        lower[e + 1] -= left
+        diagonal[e + 1] -= right

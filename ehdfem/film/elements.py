@@ -123,3 +123,71 @@ def _add_flux(bands, e, left, right, whole):
         upper[e] += right
         lower[e + 1] -= left
         diagonal[e + 1] -= right
+
+
+@njit(cache=True)
+def _thickness_at(thickness, e, whole, between, cut_between, xi, q):
+    """H at point xi[q] of element e: linear between its ends (H = 1 at a cut element's edge)
+    plus the undeformed gap's excess over its chord."""
+    if whole:
+        return thickness[e] * (1.0 - xi[q]) + thickness[e + 1] * xi[q] + between[e, q]
+    return thickness[e] * (1.0 - xi[q]) + xi[q] + cut_between[q]
+
+
+@njit(cache=True)
+def squeeze_shear_load(
+    radii, thickness, pressure, regular, cut_length, cut_between, between, xi, w
+):
+    """int phi_j T R dR at the nodes for the element-wise traction T = -(H/2) dP/dR, P linear
+    on each wetted element (P = 0 at a cut element's edge), H at the points ``xi`` (weights
+    ``w``), phi_j the hats of the grid's whole cells (a cut element keeps its cell's hats).
+    The wetted elements, ``thickness`` H, ``between`` and ``cut_between`` as in
+    :func:`assemble_bands`."""
+    n = len(radii)
+    load = np.zeros(n)
+    for e in range(regular + (1 if cut_length > 0.0 else 0)):
+        whole = e < regular
+        length = radii[e + 1] - radii[e] if whole else cut_length
+        cell = radii[min(e + 1, n - 1)] - radii[e] if e < n - 1 else length
+        slope = ((pressure[e + 1] if whole else 0.0) - pressure[e]) / length
+        for q in range(len(xi)):
+            h = _thickness_at(thickness, e, whole, between, cut_between, xi, q)
+            radius = radii[e] + length * xi[q]
+            rising = length * xi[q] / cell
+            weight = length * w[q] * radius * (-0.5 * h * slope)
+            load[e] += weight * (1.0 - rising)
+            load[min(e + 1, n - 1)] += weight * rising
+    return load
+
+
+@njit(cache=True)
+def surface_transport_bands(
+    radii, thickness, fill, regular, cut_length, cut_between, between, xi, w
+):
+    """Bands (lower, diagonal, upper) of B, (B v)_i = -int phi_i' R theta H v dR over the
+    wetted elements, v and the liquid fraction theta (``fill``, 1 at a cut element's edge)
+    linear on the grid's cells (a cut element keeps its cell's hats), H at the points ``xi``
+    (weights ``w``); the wetted elements, ``thickness`` H, ``between`` and ``cut_between`` as
+    in :func:`assemble_bands`."""
+    n = len(radii)
+    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+    for e in range(regular + (1 if cut_length > 0.0 else 0)):
+        whole = e < regular
+        length = radii[e + 1] - radii[e] if whole else cut_length
+        cell = radii[e + 1] - radii[e]
+        fill_right = fill[e + 1] if whole else 1.0
+        from_left = from_right = 0.0
+        for q in range(len(xi)):
+            h = _thickness_at(thickness, e, whole, between, cut_between, xi, q)
+            radius = radii[e] + length * xi[q]
+            theta = fill[e] * (1.0 - xi[q]) + fill_right * xi[q]
+            rising = (radius - radii[e]) / cell
+            weight = w[q] * radius * h * theta
+            from_left += weight * (1.0 - rising)
+            from_right += weight * rising
+        diagonal[e] += from_left
+        upper[e] += from_right
+        if whole:
+            lower[e + 1] -= from_left
+            diagonal[e + 1] -= from_right
+    return lower, diagonal, upper

@@ -68,15 +68,18 @@ class ExactSpheres(Paraboloid):
         self.limit = min(self.radii) / math.sqrt(self.delta)  # the smaller sphere's equator
 
     def _remainder(self, radius):
-        """D = S - R^2/2 and dD/dR (at a float R or an array of them)."""
-        if (np.asarray(radius) >= self.limit).any():
+        """D = S - R^2/2 and dD/dR (at a float R or an array of them; a float by math, which
+        the wetted edge's Newton asks for some ten times an iterate)."""
+        scalar = isinstance(radius, float)
+        if radius >= self.limit if scalar else (radius >= self.limit).any():
             raise checks.InputError(
                 f"the film reaches R = {float(np.max(radius)):.4g} sqrt(a x0), beyond the "
                 f"sphere's equator at {self.limit:.4g}: no exact gap there"
             )
+        sqrt = math.sqrt if scalar else np.sqrt
         value, slope = -0.5 * radius**2, -radius
         for rho in self.radii:
-            root = np.sqrt(rho**2 - self.delta * radius**2)
+            root = sqrt(rho**2 - self.delta * radius**2)
             value = value + radius**2 / (rho + root)
             slope = slope + radius / root
         return value, slope

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
-from .elements import assemble_bands
+from .elements import assemble_bands, squeeze_shear_load, surface_transport_bands
 from .gap import Paraboloid
 from .viscosity import Viscosity
 
@@ -451,6 +451,7 @@ class Film:
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
         self._recent_elements = []  # (H, the wetted elements) of the two latest H
+        self._recent_edges = []  # (H, (wet nodes, R_edge)) of the two latest H
         # S at the nodes, and S minus its chord at the quadrature points of the whole cells (a
         # gap that has no value at a node, as a true sphere beyond its equator, refuses the
         # grid here)
@@ -470,11 +471,21 @@ class Film:
         The crossing is found on the element's H between the last node with H < 1 and the
         next, W linear and the undeformed gap S exact (as in the conductances: a rigid film's
         edge is exact); a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0
-        there) so the cut element never degenerates.
+        there) so the cut element never degenerates. Kept for the two latest H (an iterate's
+        film, its surface transport and its shear traction ask for the same one or two).
         """
         n = len(self.radii)
         if self.layer == "immersed":
             return n, np.inf
+        for kept, result in self._recent_edges:
+            if np.array_equal(kept, film_thickness):
+                return result
+        result = self._wetted_edge(film_thickness)
+        self._recent_edges = [(film_thickness.copy(), result), *self._recent_edges[:1]]
+        return result
+
+    def _wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
+        """:meth:`wetted_edge`, computed."""
         above = np.flatnonzero(film_thickness >= 1.0)
         if len(above) == 0:
             raise FilmError("the wetted edge left the film grid: enlarge outer_radius")
@@ -540,14 +551,7 @@ class Film:
         its fluidity at the elements' points."""
         h = film_thickness
         n = len(self.radii)
-        n_wet, edge = self.wetted_edge(h)
-        regular = max(n_wet - 1, 0)
-        cut_length, cut_between = 0.0, _NO_POINTS[0:1].reshape(-1)
-        if self.layer == "thin" and n_wet > 0:
-            cut_length = edge - self.radii[regular]
-            cut_between = self.gap.between_nodes(
-                self.radii[regular : regular + 1], np.array([cut_length]), _FLUX_XI
-            )[0]
+        (n_wet, edge), regular, cut_length, cut_between = self._wetted(h, "flux")
         fluidity = dfluidity = _NO_POINTS
         if not self.viscosity.constant:
             fluidity, dfluidity = self._fluidity(pressure, regular, cut_length > 0.0)
@@ -569,6 +573,20 @@ class Film:
             self._add_far_field(h, pressure, conductance[1], dflux_dH[1], force_weights)
         dry = np.arange(n) >= n_wet
         return FilmState(mass, conductance, dflux_dH, dflux_dP, force_weights, dry, edge)
+
+    def _wetted(self, film_thickness: np.ndarray, points: str):
+        """((wet nodes, R_edge), the whole wetted cells, the cut element's length (0: none)
+        and its undeformed gap's excess over its chord at the points ``points`` ("gauss" or
+        "flux")): the wetted elements as the compiled loops of
+        :mod:`ehdfem.film.elements` take them."""
+        n_wet, edge = self.wetted_edge(film_thickness)
+        regular = max(n_wet - 1, 0)
+        if self.layer == "immersed" or n_wet == 0:
+            return (n_wet, edge), regular, 0.0, np.zeros(0)
+        cut_length = edge - self.radii[regular]
+        left, length = self.radii[regular : regular + 1], np.array([cut_length])
+        cut_between = self.gap.between_nodes(left, length, _POINTS[points])[0]
+        return (n_wet, edge), regular, cut_length, cut_between
 
     def _fluidity(self, pressure, regular: int, cut: bool):
         """(mu0/mu, d(mu0/mu)/dP) at the flux points of the wetted elements (the whole cells
@@ -696,23 +714,21 @@ class Film:
         linear theta; theta the nodal ``fill`` (1 if not given). Scaled: R by sqrt(a x0), v by
         V0; sqrt(delta) B v is in the units of the film's rows."""
         h = film_thickness
-        n = len(self.radii)
-        _, _, el = self._elements(h)
-        regular = el.right >= 0
-        full = self._length[np.minimum(el.left, n - 2)]
-        rising = (el.gauss_r - self.radii[el.left, None]) / full[:, None]
-        content = self._gauss_thickness(el) * _at_gauss_points(el, fill, 1.0)
-        weight = _GAUSS_W * el.gauss_r * content  # R theta H times the element's length over it
-        from_left = (weight * (1.0 - rising)).sum(axis=1)
-        from_right = (weight * rising).sum(axis=1)
-        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-        diagonal += _node_sums(el.left, from_left, len(diagonal))
-        upper += _node_sums(el.left, from_right, len(upper))
-        lower += _node_sums(el.right[regular], -from_left[regular], len(lower))
-        diagonal += _node_sums(el.right[regular], -from_right[regular], len(diagonal))
+        _, regular, cut_length, cut_between = self._wetted(h, "gauss")
+        liquid = np.ones_like(h) if fill is None else fill
+        lower, diagonal, upper = surface_transport_bands(
+            self.radii,
+            h,
+            liquid,
+            regular,
+            cut_length,
+            cut_between,
+            self._cell_between["gauss"],
+            _GAUSS_XI,
+            _GAUSS_W,
+        )
         if self.layer == "immersed":
-            theta = 1.0 if fill is None else fill[-1]
-            diagonal[-1] += self.radii[-1] * theta * h[-1]
+            diagonal[-1] += self.radii[-1] * liquid[-1] * h[-1]
         return lower, diagonal, upper
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
@@ -723,12 +739,18 @@ class Film:
         projection, T_j = int phi_j T R dR / int phi_j R dR over the whole grid, so a node the
         edge leaves keeps the share its part of the film gives it, and T moves continuously
         with the edge."""
-        _, _, el = self._elements(film_thickness)
-        regular = el.right >= 0
-        right = np.where(regular, el.right, 0)
-        slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / el.length
-        traction = -0.5 * self._gauss_thickness(el) * slope[:, None]
-        load = _cell_hat_weights(el, self.radii, traction)
+        _, regular, cut_length, cut_between = self._wetted(film_thickness, "gauss")
+        load = squeeze_shear_load(
+            self.radii,
+            film_thickness,
+            pressure,
+            regular,
+            cut_length,
+            cut_between,
+            self._cell_between["gauss"],
+            _GAUSS_XI,
+            _GAUSS_W,
+        )
         return load / self._full_mass
 
     def _gauss_thickness(self, el: _Elements, points: str = "gauss"):

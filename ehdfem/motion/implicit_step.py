@@ -249,6 +249,7 @@ class ImplicitStep:
         pressure, gap, velocity, fill, cavitated = guess
         fill, cavitated = self.cavitation.start(fill, cavitated)
         previous_sets = previous_norm = None
+        refresh = False
         for iteration in range(1, self.options.max_newton + 1):
             it, cavitated, fill = self._residual(
                 pressure, gap, velocity, fill, cavitated, step, a0, past, time

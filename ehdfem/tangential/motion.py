@@ -687,17 +687,19 @@ def _solve_equilibrated(matrix, rhs, u: int, omega: int):
     the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
     are then parallel to round-off (the film locks the sphere into rolling), the scaled system
     is not."""
-    basis = np.eye(len(rhs))
-    basis[u, omega] = 1.0  # z_U = (U - a Omega) + a Omega
-    transformed = matrix @ basis
+    transformed = matrix.copy()  # matrix @ B, B = I + e_u e_omega^T: z_U = (U - a Omega) + a Omega
+    transformed[:, omega] += matrix[:, u]
     column_scale = 1.0 / np.abs(transformed).max(axis=0)
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
     if rhs.ndim == 2:  # several right-hand sides, one a column
-        sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale[:, None])
-        return basis @ (column_scale[:, None] * sliding)
-    sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
-    return basis @ (column_scale * sliding)
+        z = column_scale[:, None] * scipy.linalg.solve(
+            transformed * row_scale[:, None], rhs * row_scale[:, None]
+        )
+    else:
+        z = column_scale * scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
+    z[u] += z[omega]  # back from y to z = B y
+    return z
 
 
 def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:

@@ -17,7 +17,7 @@ import numpy as np
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .film import cavitation
-from .film.reynolds import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
+from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
 from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
 from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
 from .motion.forces import SphereForce
@@ -64,7 +64,7 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
 
 def contact_spacings(St: float) -> dict:
     """The film grid's axis spacing and rim spacing (relative to the contact's) and its outlet
-    radius (by the rim radius), scaled, no unit (:func:`ehdfem.film.reynolds.contact_grid`'s
+    radius (by the rim radius), scaled, no unit (:func:`ehdfem.film.grid.contact_grid`'s
     keywords), for the Stokes number St. Up to St = HARD_IMPACT the grid's own, 0.2, 0.3 and
     1.5. Above it the thinnest film is the exit constriction at the rim of a contact flattened
     far more than the film is thick. Its width relative to the contact radius is about
@@ -87,7 +87,7 @@ def contact_spacings(St: float) -> dict:
 
 
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.reynolds.contact_grid` graded
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.grid.contact_grid` graded
     to the rim of :func:`film_extent`, with the spacings of :func:`contact_spacings` (the
     grid's own up to St = HARD_IMPACT). A thin layer's grid ends at least 1.48 rims out
     (eps^(1/5) is cut to that at tiny St and large eps); an immersed one has a node at the

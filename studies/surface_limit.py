@@ -31,7 +31,7 @@ from scipy.interpolate import CubicSpline
 
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.compliance import LinearCompliance
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient

@@ -14,7 +14,8 @@ from ehdfem.film.cavitation import (
     Truncation,
     cavitation_model,
 )
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.implicit_step import ImplicitStep
 from ehdfem.motion.normal import solve_normal

@@ -10,7 +10,8 @@ import pytest
 
 from ehdfem import CollisionParameters, film_radii
 from ehdfem.collision import film_extent
-from ehdfem.film.reynolds import Film, contact_grid, radial_grid
+from ehdfem.film.grid import contact_grid, radial_grid
+from ehdfem.film.reynolds import Film
 
 pytestmark = pytest.mark.serial
 

@@ -6,7 +6,7 @@ from scipy.optimize import brentq
 
 from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, hertz_max_compression
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions

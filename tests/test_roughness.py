@@ -29,7 +29,7 @@ from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.film.asperities import GreenwoodTripp, gaussian_integral, stiffness
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, from_presets, rigid_velocity_loss
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions

@@ -9,7 +9,7 @@ from scipy.integrate import quad
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from ehdfem.study.surface_limit import (

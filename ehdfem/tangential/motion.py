@@ -26,7 +26,7 @@ Two film models (docs/tangential.md derives them):
   model with the shear of a uniform film, the central thickness, over the Hertz contact disk
   of the normal force (:func:`flat_contact`).
 - ``lubrication`` (beyond the source): the sliding film. The sphere's sliding and rolling drive
-  an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.reynolds.ModeOneFilm`, unit
+  an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.mode_one.ModeOneFilm`, unit
   (U0/V0) sqrt(delta) mu V0 a / x0^2), which deforms the solids (mode-1 compliance,
   :class:`ehdfem.solids.compliance.ModeOneCompliance`): a mode-1 gap H1 = C q + ... that feeds back
   into the film, and, with the Couette traction, tangential surface displacements D whose rate
@@ -67,7 +67,8 @@ import scipy.integrate
 import scipy.linalg
 
 from .. import checks
-from ..film.reynolds import Film, ModeOneFilm
+from ..film.mode_one import ModeOneFilm, mode_one_operators
+from ..film.reynolds import Film
 from ..motion.normal import NormalResult, NormalSolverError
 from ..solids.compliance import ModeOneCompliance
 from .friction import ContactFriction, CoulombContact
@@ -210,7 +211,7 @@ def cavitated_nodes(normal: NormalResult, step: int) -> np.ndarray:
 def mode_one_film(
     normal: NormalResult, step: int, film: Film | None = None, unloaded=None
 ) -> ModeOneFilm:
-    """The film's mode-1 operators (:class:`ehdfem.film.reynolds.ModeOneFilm`) at one step of the
+    """The film's mode-1 operators (:class:`ehdfem.film.mode_one.ModeOneFilm`) at one step of the
     normal solution, with the viscosity at that step's pressure, its liquid fraction and q = 0
     at its cavitated nodes and at the nodes ``unloaded`` (boolean; None: none). ``film``:
     :func:`normal_film`, if built already."""
@@ -220,7 +221,8 @@ def mode_one_film(
         cavitated = cavitated | unloaded
     hist = normal.history
     outer = 1.0 / np.sqrt(normal.params.delta)
-    return film.mode_one(
+    return mode_one_operators(
+        film,
         hist.film_thickness[step],
         outer,
         hist.pressure[step],

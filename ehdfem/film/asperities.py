@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from scipy.special import gamma, pbdv
@@ -50,8 +50,18 @@ from scipy.special import gamma, pbdv
 from .. import checks
 from .reynolds import FilmError
 
-if TYPE_CHECKING:
-    from ..inputs.scales import CollisionParameters
+
+class RoughInputs(Protocol):
+    """The inputs of a rough collision the asperity law takes (as
+    :class:`ehdfem.inputs.scales.CollisionParameters` holds them, scaled): roughness sigma (by
+    x0), eta beta sigma, sigma/beta, eps and delta."""
+
+    roughness: float
+    asperity_density: float
+    asperity_slope: float
+    eps: float
+    delta: float
+
 
 MODELS = ("impact", "greenwood-tripp")
 REACH = 6.0  # H/sigma beyond which P_a is taken as 0 (F_{5/2}(6) = 3e-11, 5e-11 of F_{5/2}(0))
@@ -110,7 +120,7 @@ class GreenwoodTripp:
         checks.positive("stiffness", self.stiffness)
 
     @classmethod
-    def of(cls, params: CollisionParameters) -> GreenwoodTripp:
+    def of(cls, params: RoughInputs) -> GreenwoodTripp:
         """The law of a rough collision: sigma, eta beta sigma, sigma/beta, eps and delta."""
         k = stiffness(params.asperity_density, params.asperity_slope, params.eps, params.delta)
         return cls(params.roughness, k)

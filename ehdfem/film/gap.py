@@ -92,16 +92,25 @@ class ExactSpheres(Paraboloid):
         return 0.5 * radius**2 + value, radius + slope
 
     def between_nodes(self, left, length, xi):
-        points = left[:, None] + length[:, None] * xi
-        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        d_left, d_right, inside = self._at_points(left, length, xi)[0]
         chord = d_left[:, None] * (1.0 - xi) + d_right[:, None] * xi
-        return super().between_nodes(left, length, xi) + self._remainder(points)[0] - chord
+        return super().between_nodes(left, length, xi) + inside - chord
 
     def slope_between_nodes(self, left, length, xi):
-        points = left[:, None] + length[:, None] * xi
-        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        (d_left, d_right, _), (_, _, slope) = self._at_points(left, length, xi)
         chord = ((d_right - d_left) / length)[:, None]
-        return super().slope_between_nodes(left, length, xi) + self._remainder(points)[1] - chord
+        return super().slope_between_nodes(left, length, xi) + slope - chord
+
+    def _at_points(self, left, length, xi):
+        """(D, dD/dR), each as (at the left ends, at the right ends, at the points xi of the
+        elements (left, length)), from one evaluation of :meth:`_remainder`."""
+        points = left[:, None] + length[:, None] * xi
+        every = np.concatenate([left, left + length, points.ravel()])
+        m = len(left)
+        return tuple(
+            (values[:m], values[m : 2 * m], values[2 * m :].reshape(points.shape))
+            for values in self._remainder(every)
+        )
 
 
 def default_gap(model: str, layer: str) -> str:

@@ -1,6 +1,5 @@
 """FE collision cost: mesh size, compliance build, collision time, and FE / half-space ratio.
 
-
 The example collision (steel on glass through 0.3 mm of silicone oil, delta = 0.047) at the
 default film resolution; run it as `mpirun -n 2 python benchmarks/fem_collision.py` to use both
 cores for the FE part (the time integration is the same code for both models). Writes

@@ -4,17 +4,17 @@ The example collision (steel on glass through 0.3 mm of silicone oil, delta = 0.
 default film resolution; run it as `mpirun -n 2 python benchmarks/fem_collision.py` to use both
 cores for the FE part (the time integration is the same code for both models). Writes
 benchmarks/results/fem_collision.json. Targets: the compliance build of the FE model's default
-(pressure and shear traction, condensed on one process: docs/fem.md) at most 5 times one half-
-space collision at the same film resolution, measured in this run (``compliance_build_ratio``),
-and an FE collision (after the build) at most twice a half-space one (each the fastest of three
-runs). The build is timed again for the pressure alone; then the mode-1 compliance of the same
-solids (the sliding film's, issue 15: its own Cholesky factorisation and 3N unit loads in
-blocks). ``condensation_error``: the largest difference, relative to its largest value, between
-the gap the built compliances give for a random film load (pressure and shear) and the one a
-solve of the whole (distributed) solids opens. The compliance cache (ehdfem.solids.fe.mesh)
-points to a new temporary directory, so every build above is computed; the same solids built
-once more then read their matrices from it (the time a rerun pays: mesh from its cache,
-assembly, and the cached matrices).
+(pressure and shear traction, condensed on one process: docs/fem.md) at most 5 times one
+half-space collision at the same film resolution, measured in this run
+(``compliance_build_ratio``), and an FE collision (after the build) at most twice a half-space
+one (each the fastest of three runs). The build is timed again for the pressure alone; then the
+mode-1 compliance of the same solids (the sliding film's, issue 15: its own Cholesky
+factorisation and 3N unit loads in blocks). ``condensation_error``: the largest difference,
+relative to its largest value, between the gap the built compliances give for a random film load
+(pressure and shear) and the one a solve of the whole (distributed) solids opens. The compliance
+cache (ehdfem.solids.fe.mesh) points to a new temporary directory, so every build above is
+computed; the same solids built once more then read their matrices from it (the time a rerun
+pays: mesh from its cache, assembly, and the cached matrices).
 """
 
 import json

@@ -16,10 +16,11 @@ import numpy as np
 
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
+from .exact import hertz
 from .film import cavitation
 from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
 from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
-from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import provenance
@@ -55,7 +56,7 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
     (gap ~ eps^(2/5)); the grid's end, for a thin layer where the wetted edge can reach,
     sqrt(2 (1 + compression)), plus 5 %, for an immersed one IMMERSED_OUTER_RADIUS (or 10 rims).
     """
-    compression = hertz_max_compression(params.eps, params.St)
+    compression = hertz.max_compression(params.eps, params.St)
     rim = max(np.sqrt(compression), params.eps**0.2)
     if params.layer == "thin":
         return rim, 1.05 * np.sqrt(2.0 * (1.0 + compression))  # > 1.48 sqrt(compression)

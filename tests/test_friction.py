@@ -29,10 +29,11 @@ import scipy.integrate
 
 from ehdfem.checks import InputError
 from ehdfem.collision import collide, with_tangential
+from ehdfem.exact.rigid_impact import frictional_impact as rigid_impact
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.motion.normal import SolidImpact
 from ehdfem.outputs import registry
-from ehdfem.tangential.friction import CoulombContact, coulomb_impulse, rigid_impact
+from ehdfem.tangential.friction import CoulombContact, coulomb_impulse
 from ehdfem.tangential.motion import MODELS
 
 pytestmark = pytest.mark.serial

@@ -28,9 +28,10 @@ from scipy.integrate import quad
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
+from ehdfem.exact.rigid_film import velocity_loss as rigid_velocity_loss
 from ehdfem.film.asperities import GreenwoodTripp, gaussian_integral, stiffness
 from ehdfem.film.grid import radial_grid
-from ehdfem.inputs.scales import CollisionParameters, from_presets, rigid_velocity_loss
+from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.outputs import histories, registry

@@ -75,3 +75,13 @@ def stopping_gap(St: float, layer: str) -> float:
         return float(velocity_loss(math.exp(log_gap), layer)) - St
 
     return math.exp(brentq(excess, -St - 2.0, 0.0, xtol=1e-15, rtol=1e-15))
+
+
+def rough_critical_stokes(roughness: float, e_dry: float, layer: str) -> float:
+    """St_c of a rigid rough sphere: its asperities (height ``roughness`` sigma, by x0) end
+    the approach at X = sigma with the speed 1 - L/St, L = velocity_loss(sigma); the impact
+    returns e_dry of it, and the rebound to X = 1 loses L/St again, so e_n = e_dry (1 - L/St)
+    - L/St and the sphere leaves the layer from St_c = (1 + 1/e_dry) L."""
+    sigma = checks.number("roughness", roughness, lower=0.0, upper=1.0, lower_open=True)
+    e_dry = checks.number("e_dry", e_dry, lower=0.0, upper=1.0, lower_open=True)
+    return (1.0 + 1.0 / e_dry) * float(velocity_loss(sigma, layer))

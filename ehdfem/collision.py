@@ -19,7 +19,7 @@ from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .exact import hertz
 from .film import cavitation
 from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
-from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
+from .film.viscosity import ViscosityRangeWarning, barus_range_warning
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
@@ -367,7 +367,7 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
         )
         if result.halfspace_range.flagged:
             warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)
-    _check_barus_range(params, physical, normal)
+    _check_viscosity_range(params, physical, normal)
     _check_result_range(params, physical, normal)
     if params.tangential_speed == 0:
         return result
@@ -438,13 +438,14 @@ def _check_result_range(params, physical, normal: NormalResult) -> None:
         )
 
 
-def _check_barus_range(params, physical, normal: NormalResult) -> None:
-    """Warn (ViscosityRangeWarning) when a Barus film's largest pressure went past the law's
-    validity, :func:`ehdfem.film.viscosity.barus_validity_pressure` (SI, Pa); physical inputs
-    only (scaled ones give no liquid to compare the Roelands law of)."""
-    if physical is None or params.viscosity != "barus":
+def _check_viscosity_range(params, physical, normal: NormalResult) -> None:
+    """Warn (ViscosityRangeWarning) when the film's largest pressure went past its viscosity
+    law's validity, :meth:`ehdfem.film.viscosity.Viscosity.validity_pressure` (SI, Pa);
+    physical inputs only (scaled ones give no liquid to compare the law with)."""
+    if physical is None:
         return
-    validity = barus_validity_pressure(physical.alpha, physical.liquid.viscosity)
+    law = params.viscosity_law()
+    validity = law.validity_pressure(physical.alpha, physical.liquid.viscosity)
     largest = float(np.max(normal.history.pressure)) * physical.scales().pressure
     if largest > validity:
         warnings.warn(barus_range_warning(largest, validity), ViscosityRangeWarning, stacklevel=4)

@@ -52,7 +52,7 @@ def _equilibrated(matrix):
     for j in range(m):
         col[j] = _power_of_two(col[j])
         inverse[j] = 1.0 / col[j]
-    scaled = np.empty((n, m))
+    scaled = np.empty((m, n)).T  # in LAPACK's column order: getrf takes it without a copy
     row = np.empty(n)
     for i in range(n):
         largest = 0.0

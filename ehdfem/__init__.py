@@ -19,7 +19,9 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
   ``from ehdfem.bounce.trajectory import ...``.
 """
 
-from .bounce.trajectory import BounceInputs, BounceResult, bounce
+from .bounce.inputs import BounceInputs
+from .bounce.result import BounceResult
+from .bounce.trajectory import bounce
 from .collision import CollisionResult, collide, elasticity, film_radii
 from .config import RunConfig
 from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets

@@ -42,15 +42,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ehdfem.bounce.trajectory import (  # noqa: E402
-    ATMOSPHERE,
-    BounceInputs,
-    FarField,
-    bounce,
-    release_height_for_speed,
-)
+from ehdfem.bounce.flight import FarField, release_height_for_speed  # noqa: E402
+from ehdfem.bounce.inputs import BounceInputs  # noqa: E402
+from ehdfem.bounce.trajectory import bounce  # noqa: E402
 from ehdfem.dem.closedform import legendre  # noqa: E402
 from ehdfem.inputs.literature import GONDRET_RUNS  # noqa: E402
+from ehdfem.inputs.scales import ATMOSPHERE  # noqa: E402
 from ehdfem.study.sweep import ResultTable, write_csv  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

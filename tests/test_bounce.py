@@ -11,16 +11,16 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from ehdfem.bounce.trajectory import (
-    BounceInputs,
+from ehdfem.bounce.flight import (
     FarField,
     FlightState,
-    bounce,
     brenner_factor,
     cavity_edge_ratio,
     drag_factor,
     release_height_for_speed,
 )
+from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.trajectory import bounce
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.motion.timestepping import IntegratorOptions

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from ehdfem.bounce.trajectory import BounceInputs, bounce
+from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.trajectory import bounce
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig, setting_names
 from ehdfem.inputs.presets import EXAMPLE

@@ -7,8 +7,9 @@ from argparse import BooleanOptionalAction
 from pathlib import Path
 
 from .. import BounceInputs, IntegratorOptions, bounce, checks
-from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, HISTORY_MEMORIES
-from ..bounce.trajectory import MODELS as BOUNCE_MODELS
+from ..bounce.contact import MODELS as BOUNCE_MODELS
+from ..bounce.flight import EHD_MULTIPLE, HANDOVER_JUMP
+from ..bounce.inputs import DRAG_LAWS, GRAVITY, HISTORY_MEMORIES
 from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation

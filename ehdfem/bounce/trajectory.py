@@ -1,5 +1,5 @@
 """A sphere settling onto a wall in a liquid and bouncing until it rests: its trajectory, each
-contact an immersed EHD collision (docs/bounce.md). :func:`bounce` computes it from the
+contact an immersed EHD collision (docs/bounce.md). :func:`bounce_sphere` computes it from the
 bounce's physical inputs (:class:`ehdfem.bounce.inputs.BounceInputs`, SI).
 
 The parts, by role: the flight between contacts, its force laws and the hand-over criterion
@@ -21,7 +21,7 @@ from .loop import BounceLoop
 from .result import BounceResult
 
 
-def bounce(
+def bounce_sphere(
     inputs: BounceInputs,
     model: str = "halfspace",
     nodes: int = DEFAULT_NODES,

@@ -152,9 +152,9 @@ class ImmersedCollision:
         thickness x0) and approach ``speed`` (m/s, its V0), with the inertia ``mass`` [kg]
         (the sphere's own mass plus its added mass there), gravity and buoyancy if
         ``contact_gravity``, the history force from the flight's memory if ``contact_history``
-        (:meth:`contact_history_force`), the surfaces' roughness (SI, scaled by the collision
-        by this contact's x0) and asperity model, leaving at ``exit_gap`` [m]; returns the
-        collision result (scaled) and its SI scales."""
+        (:meth:`FarField.contact_history_force`), the surfaces' roughness (SI, scaled by the
+        collision by this contact's x0) and asperity model, leaving at ``exit_gap`` [m]; returns
+        the collision result (scaled) and its SI scales."""
         far, inputs, gap = self.far, self.far.inputs, start.gap
         physical = PhysicalCollision(
             radius=inputs.radius,

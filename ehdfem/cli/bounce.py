@@ -6,9 +6,10 @@ from __future__ import annotations
 from argparse import BooleanOptionalAction
 from pathlib import Path
 
-from .. import BounceInputs, IntegratorOptions, bounce, checks
-from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, HISTORY_MEMORIES
-from ..bounce.trajectory import MODELS as BOUNCE_MODELS
+from .. import BounceInputs, IntegratorOptions, bounce_sphere, checks
+from ..bounce.contact import MODELS as BOUNCE_MODELS
+from ..bounce.flight import EHD_MULTIPLE, HANDOVER_JUMP
+from ..bounce.inputs import DRAG_LAWS, GRAVITY, HISTORY_MEMORIES
 from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation
@@ -184,7 +185,7 @@ def bounce_command(args) -> int:
     paths.output_file("json", args.json, stdout=True)
     paths.output_folder("out", args.out)
     inputs = _bounce_inputs(args)
-    result = bounce(
+    result = bounce_sphere(
         inputs,
         model=args.model,
         nodes=args.nodes,

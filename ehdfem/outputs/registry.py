@@ -1,7 +1,7 @@
 """Every output of a collision, once: its name, meaning, scale, SI unit and how to compute it.
 
 The summary of a collision (:meth:`ehdfem.collision.CollisionResult.summary`), the rows of a
-study (:mod:`ehdfem.study.sweep`), the contacts of a bounce (:mod:`ehdfem.bounce.trajectory`)
+study (:mod:`ehdfem.study.sweep`), the contacts of a bounce (:mod:`ehdfem.bounce.contact`)
 and the command line's result table all read :data:`OUTPUTS`: a new output is one
 :class:`Output` entry here (docs/outputs.md lists them).
 

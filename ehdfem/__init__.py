@@ -27,7 +27,8 @@ from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from .motion.normal import NormalResult, solve_normal
 from .motion.timestepping import IntegratorOptions
 from .study.sweep import critical_speed, critical_stokes
-from .tangential.motion import TangentialResult, solve_tangential
+from .tangential.motion import solve_tangential
+from .tangential.result import TangentialResult
 from .version import __version__
 
 __all__ = [

@@ -33,7 +33,8 @@ from .solids.halfspace import (
     HalfSpaceRangeWarning,
     halfspace_range,
 )
-from .tangential.motion import TangentialEnergyWarning, TangentialResult, solve_tangential
+from .tangential.motion import solve_tangential
+from .tangential.result import TangentialEnergyWarning, TangentialResult
 from .tangential.superposition import (
     SuperpositionValidity,
     SuperpositionWarning,
@@ -176,7 +177,7 @@ def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, phy
 @dataclass
 class CollisionResult:
     """A collision's outcome: the normal motion (:class:`ehdfem.motion.normal.NormalResult`), the
-    tangential motion (:class:`ehdfem.tangential.motion.TangentialResult`, None for a head-on
+    tangential motion (:class:`ehdfem.tangential.result.TangentialResult`, None for a head-on
     impact), the elasticity model used, for physical inputs the inputs (to convert back to SI), and
     the compliance used (:class:`ehdfem.solids.compliance.Compliance`; an FE compliance keeps its
     solids, for the fields of :mod:`ehdfem.outputs.fields` and the pictures of

@@ -18,12 +18,9 @@ from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.solids.compliance import RigidSolids
-from ehdfem.tangential.motion import (
-    SlidingFilmError,
-    TangentialEnergyWarning,
-    solve_tangential,
-    viscosity_tilt,
-)
+from ehdfem.tangential.motion import solve_tangential
+from ehdfem.tangential.result import TangentialEnergyWarning
+from ehdfem.tangential.sliding_film import SlidingFilmError, viscosity_tilt
 
 pytestmark = pytest.mark.serial
 

@@ -15,12 +15,12 @@ from ehdfem.motion.normal import solve_normal
 from ehdfem.solids.compliance import RigidSolids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
 from ehdfem.tangential.motion import (
-    film_integrals,
     flat_contact,
     gcb_resistance,
     integrate_resistance,
     solve_tangential,
 )
+from ehdfem.tangential.normal_film import film_integrals
 
 pytestmark = pytest.mark.serial
 

@@ -26,7 +26,7 @@ small against what it is superposed on:
 :func:`superposition_validity` evaluates both at every step of a collision, cheaply, and flags
 the collision when the cavitation-rule sensitivity or a tilt exceeds its limit
 (SENSITIVITY_LIMIT, TILT_LIMIT); the sliding film itself stops when a tilt reaches 1
-(:class:`ehdfem.tangential.motion.SlidingFilmError`). The limits come from
+(:class:`ehdfem.tangential.sliding_film.SlidingFilmError`). The limits come from
 :func:`check_superposition`, which solves the full Reynolds equation on the disk
 (:mod:`ehdfem.tangential.disk`, with the sliding term and the cavitation limit imposed pointwise) at
 chosen instants and compares the mode-1 pressure's moment int P X dA and slope force
@@ -44,15 +44,9 @@ import numpy as np
 
 from .. import checks
 from ..film.reynolds import Film
-from .motion import (
-    TangentialResult,
-    cavitated_nodes,
-    gap_tilt,
-    mode_one_film,
-    normal_film,
-    sliding_amplitude,
-    viscosity_tilt,
-)
+from .normal_film import cavitated_nodes, mode_one_film, normal_film
+from .result import TangentialResult
+from .sliding_film import gap_tilt, sliding_amplitude, viscosity_tilt
 
 SENSITIVITY_LIMIT = 0.02  # flag above this change of 1 - e_t or of the spin change
 TILT_LIMIT = 0.3  # flag above this largest s |H1| / H0
@@ -71,9 +65,9 @@ class SuperpositionValidity:
     P0 - s |q| < P_cav; ``alternative`` (e_t, spin change) with q = 0 also there, and
     ``sensitivity`` the larger relative change that makes in 1 - e_t or in the spin change
     (0 without overlap); ``viscosity_tilt`` at the steps and ``largest_viscosity_tilt``:
-    :func:`ehdfem.tangential.motion.viscosity_tilt`; ``flagged`` when the sensitivity exceeds
+    :func:`ehdfem.tangential.sliding_film.viscosity_tilt`; ``flagged`` when the sensitivity exceeds
     SENSITIVITY_LIMIT or either tilt TILT_LIMIT (at BREAKDOWN_TILT the sliding film stops with
-    :class:`ehdfem.tangential.motion.SlidingFilmError`)."""
+    :class:`ehdfem.tangential.sliding_film.SlidingFilmError`)."""
 
     sliding_amplitude: float
     overlap: np.ndarray

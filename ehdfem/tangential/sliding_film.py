@@ -1,0 +1,346 @@
+"""The sliding film (tangential model "lubrication"): the linear differential-algebraic system
+in (q, v, U, a Omega) over the normal solution's steps, its mode-1 deformation and its energy
+balance (:mod:`ehdfem.tangential.motion` gives the equations, docs/tangential.md derives
+them), and the checks that its linearisation holds.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.integrate
+import scipy.linalg
+
+from ..film.mode_one import ModeOneFilm
+from ..film.reynolds import Film
+from ..motion.normal import NormalSolverError
+from ..solids.compliance import ModeOneCompliance
+from .friction import CoulombContact
+from .normal_film import mode_one_films
+from .result import TangentialEnergy, TangentialResult, initial_spin, tangential_result
+
+_BDF2_GROWTH = 1.0 + np.sqrt(2.0)  # largest step ratio for which variable-step BDF2 is stable
+
+
+BREAKDOWN_TILT = 1.0  # a linearisation tilt (gap_tilt, viscosity_tilt) at which it fails
+
+
+class SlidingFilmError(NormalSolverError):
+    """The sliding film's linearisation broke down: a tilt (:func:`gap_tilt`,
+    :func:`viscosity_tilt`) reached BREAKDOWN_TILT or its linear system had no finite solution.
+    Where this happens (a film frozen by a pressure-dependent viscosity, docs/tangential.md)
+    only the Couette model applies."""
+
+
+def sliding_amplitude(params) -> float:
+    """s = (U0/V0) sqrt(delta): the factor of the mode-1 pressure q and gap H1 (scaled)."""
+    return params.tangential_speed * np.sqrt(params.delta)
+
+
+def gap_tilt(params, film_thickness, mode_one_gap):
+    """s |H1| / H0 at the wetted nodes (0 elsewhere; H by x0, any leading shape): the mode-1
+    gap against the film thickness it is superposed on; at 1 the film closes on one side."""
+    wet = film_thickness < 1.0 if params.layer == "thin" else np.ones(film_thickness.shape, bool)
+    return np.where(wet, sliding_amplitude(params) * np.abs(mode_one_gap) / film_thickness, 0.0)
+
+
+def viscosity_tilt(params, pressure, mode_one_pressure):
+    """s |q| d ln(mu/mu0)/dP at P0 (pressures by mu V0 a / x0^2, any leading shape): the change of
+    ln mu the mode-1 pressure makes, which the sliding film linearises (mu = mu(P0)
+    (1 + s q cos(phi) d ln mu/dP)); 0 at constant viscosity, and at 1 exp differs from its
+    linearisation by a factor e/2."""
+    slope = params.viscosity_law().ratio(pressure)[1]
+    return sliding_amplitude(params) * np.abs(mode_one_pressure) * slope
+
+
+class SlidingFilm:
+    """The lubrication model's linear system over the normal solution's steps.
+
+    Unknowns z = (q, v_r, v_phi, U, a Omega) at a step (v only with deformation "full"; else
+    the nodal slip is u_s). Loads on the solids L = (q, a_r, a_phi), the Couette traction
+    a = -(j / m) v on the sphere (m the lumped mass, j the Couette weights; by mu U0 / x0,
+    i.e. (U0/V0) sqrt(delta) times the traction unit of the mode-1 compliance) and -a on the
+    wall. Relative displacements of the faces: the gap H1, the sum Sigma1 and the tangential
+    D = (D_r, D_phi) of sphere minus wall, each the compliance times L."""
+
+    def __init__(self, normal, mode_one, surface_sum, deformation):
+        params = normal.params
+        self.normal, self.deformation = normal, deformation
+        self.St, self.k, self.delta = params.St, params.inertia_factor, params.delta
+        n = self.n = len(normal.radii)
+        self.mass_full = Film(normal.radii).full_mass
+        self.size = n + (2 * n if deformation == "full" else 0) + 2
+        self.u, self.omega = self.size - 2, self.size - 1
+        # (N, 3N) face combinations of the loads L: gap and sum of the normal displacements,
+        # and with "full" the relative tangential ones (r, phi); zero for rigid mode-1 solids
+        deformed = mode_one is not None and deformation != "none"
+        combinations = {"gap": ("normal", (1.0, -1.0)), "sum": ("normal", (1.0, 1.0))}
+        if deformation == "full":
+            combinations.update(r=("radial", (1.0, -1.0)), phi=("hoop", (1.0, -1.0)))
+        self.compliance = {
+            name: _face_combination(mode_one, *combination) if deformed else np.zeros((n, 3 * n))
+            for name, combination in combinations.items()
+        }
+        self.compliance.setdefault("r", None)
+        self.compliance.setdefault("phi", None)
+        self.surface_sum = surface_sum
+
+    def solve(self, unloaded=None) -> TangentialResult:
+        """Step through the normal solution; the tangential result with its energy balance
+        (``unloaded``: further nodes with q = 0, as for :func:`mode_one_films`)."""
+        normal, n = self.normal, self.n
+        hist = normal.history
+        steps = len(hist.time)
+        z = np.zeros((steps, self.size))
+        z[0, self.u], z[0, self.omega] = 1.0, initial_spin(normal.params)
+        z[0, n:-2] = z[0, self.u] - z[0, self.omega]  # v = u_s (nothing deformed yet)
+        displacements = {name: np.zeros((steps, n)) for name in ("gap", "r", "phi")}
+        shear, force = np.zeros(steps), np.zeros(steps)
+        rates = np.zeros((steps, 2))  # dissipation and exchange rates
+        elastic = np.zeros(steps)
+        contact = CoulombContact.of(normal)
+        for i, mf in enumerate(mode_one_films(normal, unloaded)):
+            shear[i] = mf.shear_weights.sum() + mf.tail
+            ops = self._operators(mf, i)
+            if i > 0:
+                step = hist.time[i] - hist.time[i - 1]
+                ratio = np.inf  # BDF1 on the first step and after the solid impact's jump
+                if i >= 2 and not (contact is not None and contact.is_impact(i - 1)):
+                    ratio = step / (hist.time[i - 1] - hist.time[i - 2])
+                alpha = (1.0, -1.0, 0.0)  # BDF1
+                if ratio <= _BDF2_GROWTH:
+                    alpha = ((1 + 2 * ratio) / (1 + ratio), -(1 + ratio), ratio**2 / (1 + ratio))
+                past = {
+                    name: (alpha[1] * values[i - 1] + alpha[2] * values[i - 2]) / step
+                    for name, values in (*displacements.items(), ("z", z))
+                }
+                z[i] = self._step(mf, ops, alpha[0] / step, past, i, contact)
+                for name, values in displacements.items():
+                    if ops[name] is not None:
+                        values[i] = ops[name] @ z[i]
+                self._check_tilts(z[i], displacements["gap"][i], i)
+                if contact is not None and contact.is_impact(i):
+                    self._impact_acts(contact, z[i], i)
+            force[i] = ops["force"] @ z[i]
+            *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
+        velocity, spin = z[:, self.u], z[:, self.omega]
+        kinetic = 0.5 * self.St * (velocity**2 + self.k * spin**2)
+        dissipated, exchanged = scipy.integrate.cumulative_trapezoid(
+            rates, hist.time, axis=0, initial=0.0
+        ).T
+        friction = np.zeros(steps) if contact is None else contact.record().dissipated
+        lost = max(kinetic[0] - kinetic[-1], dissipated[-1] + friction[-1], np.finfo(float).tiny)
+        residual = kinetic[0] - kinetic[-1] - dissipated[-1] - elastic[-1] + exchanged[-1]
+        residual -= friction[-1]
+        balance = abs(residual) / lost
+        energy = TangentialEnergy(kinetic, dissipated, elastic, exchanged, friction, balance)
+        return tangential_result(
+            normal,
+            "lubrication",
+            self.deformation,
+            (velocity, spin, shear, force),
+            energy,
+            (z[:, :n], displacements["gap"]),
+            contact=contact,
+        )
+
+    def _impact_acts(self, contact: CoulombContact, z: np.ndarray, i: int) -> None:
+        """The solid impact's Coulomb impulse at step i on U and a Omega in z (in place); with
+        deformation "full" the nodal slips v = u_s + sqrt(delta) dD/dT change by the same jump
+        of u_s (the faces' displacements D do not jump)."""
+        slip = z[self.u] - z[self.omega]
+        z[self.u], z[self.omega] = contact.act(i, z[self.u], z[self.omega], load=False)
+        if self.deformation == "full":
+            z[self.n : -2] += (z[self.u] - z[self.omega]) - slip
+
+    def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int, contact=None):
+        """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution;
+        with the asperities' friction force of ``contact`` (a :class:`CoulombContact`; None:
+        none) in the rows of U and a Omega (St dU/dT = F + F_f, k St d(a Omega)/dT = T - F_f)."""
+        try:
+            matrix, rhs = self._system(mf, ops, rate, past)
+            if contact is None or contact.force_bounds[i] == 0.0:
+                z = _solve_equilibrated(matrix, rhs, self.u, self.omega)
+            else:
+                unit = np.zeros(self.size)
+                unit[self.u], unit[self.omega] = 1.0, -1.0
+                rhs = np.column_stack([rhs, unit])
+                free, response = _solve_equilibrated(matrix, rhs, self.u, self.omega).T
+                slips = [y[self.u] - y[self.omega] for y in (free, response)]
+                z = free + contact.resist(i, *slips) * response
+        except (np.linalg.LinAlgError, ValueError):
+            z = np.full(self.size, np.nan)
+        if not np.isfinite(z).all():
+            raise SlidingFilmError(
+                f"the sliding film has no finite solution at T = {self.normal.history.time[i]:.4g}"
+                f" (mu/mu0 up to {self._viscosity_ratio(i):.3g}); use tangential = 'couette'"
+            )
+        return z
+
+    def _check_tilts(self, z: np.ndarray, mode_one_gap: np.ndarray, i: int) -> None:
+        """SlidingFilmError where a tilt of the linearisation reaches BREAKDOWN_TILT at step i."""
+        params, hist = self.normal.params, self.normal.history
+        tilts = {
+            "s |H1| / H0": gap_tilt(params, hist.film_thickness[i], mode_one_gap),
+            "s |q| d ln(mu)/dP": viscosity_tilt(params, hist.pressure[i], z[: self.n]),
+        }
+        for name, tilt in tilts.items():
+            if tilt.max() >= BREAKDOWN_TILT:
+                raise SlidingFilmError(
+                    f"the sliding film's linearisation broke down at T = {hist.time[i]:.4g}:"
+                    f" {name} = {tilt.max():.3g} >= {BREAKDOWN_TILT} (mu/mu0 up to"
+                    f" {self._viscosity_ratio(i):.3g}); the film is not a small perturbation"
+                    " of the normal one (a film frozen by the pressure-dependent viscosity,"
+                    " docs/tangential.md); use tangential = 'couette'"
+                )
+
+    def _viscosity_ratio(self, i: int) -> float:
+        """The largest mu/mu0 of the normal film at step i."""
+        law = self.normal.params.viscosity_law()
+        return float(law.ratio(self.normal.history.pressure[i])[0].max())
+
+    def _operators(self, mf: ModeOneFilm, i: int) -> dict:
+        """Row operators on z at step i: q, the Couette weights, the loads L, the face
+        displacements (gap, sum, r, phi), the force and the torque."""
+        n, size, delta = self.n, self.size, self.delta
+        full = self.deformation == "full"
+        rolling, sliding = np.zeros(size), np.zeros(size)
+        rolling[[self.u, self.omega]] = 1.0, 1.0
+        sliding[[self.u, self.omega]] = 1.0, -1.0
+        traction = -mf.shear_weights / self.mass_full  # a = traction * v, by mu U0 / x0
+
+        def slip(component):  # nodal slip velocity v_r or v_phi as rows on z
+            if full:
+                rows = np.zeros((n, size))
+                rows[:, n * (1 + component) : n * (2 + component)] = np.eye(n)
+                return rows
+            return np.outer(np.ones(n), sliding)
+
+        def displacement(compliance):  # compliance (n, 3n) @ L as rows on z
+            if compliance is None:
+                return None
+            rows = np.zeros((n, size))
+            rows[:, :n] = compliance[:, :n]
+            for component in range(2):
+                part = compliance[:, n * (1 + component) : n * (2 + component)] * traction
+                if full:
+                    rows[:, n * (1 + component) : n * (2 + component)] += part
+                else:
+                    rows += np.outer(part.sum(axis=1), sliding)
+            return rows
+
+        ops = {"slip_r": slip(0), "slip_phi": slip(1)}
+        ops.update({name: displacement(c) for name, c in self.compliance.items()})
+        surface_sum = None
+        if self.surface_sum is not None:
+            surface_sum = self.surface_sum @ self.normal.history.pressure[i]
+        slope_weights = mf.surface_slope_weights(surface_sum)
+        gradient_weights = mf.gradient_weights()
+        force = (delta / 12.0) * (gradient_weights @ ops["sum"])
+        force[:n] -= (delta / 12.0) * slope_weights
+        force -= (delta / 6.0) * (mf.shear_weights @ (ops["slip_r"] + ops["slip_phi"]))
+        force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * rolling)
+        torque = -force - 0.4 * delta * mf.tail * rolling
+        torque[:n] -= (delta / 6.0) * mf.torque_weights
+        ops.update(
+            force=force,
+            torque=torque,
+            gradient_weights=gradient_weights,
+            rolling=rolling,
+            sliding=sliding,
+            traction=traction,
+            slope_weights=slope_weights,
+        )
+        return ops
+
+    def _system(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict):
+        """The step's matrix and right-hand side; d/dT of Y is rate Y + past[Y]."""
+        n, size = self.n, self.size
+        matrix, rhs = np.zeros((size, size)), np.zeros(size)
+        free = np.flatnonzero(mf.free)
+        gap = ops["gap"]
+        film = (mf.conductance + mf.pressure_coupling)[free]
+        rows = mf.thickness_coupling[free] @ gap
+        rows[:, :n] += film
+        rows += rate * mf.mass[free, None] * gap[free]
+        rows -= 0.5 * np.outer(mf.drive[free], ops["rolling"])
+        matrix[free] = rows
+        rhs[free] = -mf.mass[free] * past["gap"][free]
+        fixed = np.flatnonzero(~mf.free)
+        matrix[fixed, fixed] = 1.0
+        if self.deformation == "full":
+            root = np.sqrt(self.delta)
+            for component, name in enumerate(("r", "phi")):
+                block = slice(n * (1 + component), n * (2 + component))
+                matrix[block] = ops["slip_" + name] - np.outer(np.ones(n), ops["sliding"])
+                matrix[block] -= root * rate * ops[name]
+                rhs[block] = root * past[name]
+        matrix[self.u] = -ops["force"]
+        matrix[self.u, self.u] += self.St * rate
+        rhs[self.u] = -self.St * past["z"][self.u]
+        matrix[self.omega] = -ops["torque"]
+        matrix[self.omega, self.omega] += self.k * self.St * rate
+        rhs[self.omega] = -self.k * self.St * past["z"][self.omega]
+        return matrix, rhs
+
+    def _energy_terms(self, mf: ModeOneFilm, ops: dict, z: np.ndarray, i: int, displacements):
+        """(dissipation rate, exchange rate X, elastic energy) at a step (module docstring)."""
+        n, delta = self.n, self.delta
+        q = z[:n]
+        u_s, w = ops["sliding"] @ z, ops["rolling"] @ z
+        v_r, v_phi = ops["slip_r"] @ z, ops["slip_phi"] @ z
+        h1 = displacements["gap"][i]
+        sigma1 = ops["sum"] @ z
+        dissipation = (delta / 6.0) * (
+            mf.shear_weights @ (v_r**2 + v_phi**2) + q @ mf.conductance @ q
+        )
+        dissipation += delta * mf.tail * (u_s**2 / 3.0 + w**2 / 5.0)
+        pressure_force = (delta / 12.0) * (
+            ops["gradient_weights"] @ sigma1 - ops["slope_weights"] @ q
+        )
+        exchange = u_s * (pressure_force + (delta / 12.0) * (mf.torque_weights @ q))
+        exchange -= (delta / 6.0) * (q @ mf.thickness_coupling @ h1 + q @ mf.pressure_coupling @ q)
+        exchange += (delta / 12.0) * w * ((mf.drive - mf.torque_weights) @ q)
+        work = self.mass_full @ (q * h1)
+        if self.deformation == "full":
+            loads = ops["traction"] * np.stack([v_r, v_phi])
+            shifts = np.stack([displacements["r"][i], displacements["phi"][i]])
+            work += np.sqrt(delta) * (self.mass_full * loads * shifts).sum()
+        return dissipation, exchange, (delta / 12.0) * work
+
+
+def _solve_equilibrated(matrix, rhs, u: int, omega: int):
+    """Solve matrix z = rhs (``rhs`` a vector, or one right-hand side per column) in the
+    unknowns y = z except the sliding velocity U - a Omega in
+    place of U (index ``u``; ``omega`` that of a Omega), with every column of the transformed
+    matrix and then every row scaled to unit largest entry. A piezoviscous film's Reynolds rows
+    are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
+    the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
+    are then parallel to round-off (the film locks the sphere into rolling), the scaled system
+    is not."""
+    transformed = matrix.copy()  # matrix @ B, B = I + e_u e_omega^T: z_U = (U - a Omega) + a Omega
+    transformed[:, omega] += matrix[:, u]
+    column_scale = 1.0 / np.abs(transformed).max(axis=0)
+    transformed *= column_scale
+    row_scale = 1.0 / np.abs(transformed).max(axis=1)
+    if rhs.ndim == 2:  # several right-hand sides, one a column
+        z = column_scale[:, None] * scipy.linalg.solve(
+            transformed * row_scale[:, None], rhs * row_scale[:, None]
+        )
+    else:
+        z = column_scale * scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
+    z[u] += z[omega]  # back from y to z = B y
+    return z
+
+
+def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:
+    """(N, 3N): sign_s (sphere) + sign_w (wall) of a displacement ``component`` ("normal",
+    "radial", "hoop") under the loads L = (q, a_r, a_phi): the pressure q on both faces, the
+    traction (a_r, a_phi) on the sphere and its opposite on the wall."""
+    blocks = []
+    for loads in (("pressure",), ("sphere_radial", "wall_radial"), ("sphere_hoop", "wall_hoop")):
+        total = 0.0
+        for face, sign in zip(("sphere", "wall"), signs, strict=True):
+            for load, load_sign in zip(loads, (1.0, -1.0), strict=False):
+                total = total + sign * load_sign * mode_one.block(f"{face}_{component}", load)
+        blocks.append(total)
+    return np.hstack(blocks)

@@ -20,7 +20,7 @@ roughness against the EHD film, and the two asperity models compared.
 
 Writes studies/results/roughness.csv and docs/figures/roughness.png; prints the St_c table of
 docs/validation.md. Resumable: finished points are kept in the CSV.
-Run: nice -n 10 .venv/bin/python studies/roughness.py [--plot-only]   (about 10 minutes)
+Run: nice -n 10 .venv/bin/python studies/roughness.py [--plot-only]   (about 2 minutes)
 """
 
 import sys

@@ -225,16 +225,17 @@ def roughness_lines() -> list[str]:
         "thin-layer values at P_cav = -10 to the experiments' ~10. Without the suction limit "
         "the rigid closed form gives 11 thin and 14 immersed at sigma/x0 = 1e-3 (Gondret's "
         "1e-4 a with x0 ~ 0.1 a), and the immersed model, whose film has no suction limit, gives "
-        "9.5-16 for sigma/x0 = 0.01-0.001 at eps = 1e-6: the cap on suction, more than the "
+        "9.6-16 for sigma/x0 = 0.01-0.001 at eps = 1e-6: the cap on suction, more than the "
         "missing roughness, keeps the thin-layer St_c low (the smooth thin collision at "
         "eps = 1e-6 first rebounds between St = 9 and 14 without the cap, figures/roughness.png "
-        "right, against 6.7 at P_cav = -10). The regime map "
+        "right, against 6.6 at P_cav = -10). The regime map "
         "(figures/roughness.png, middle) puts Gondret's roughness above the thinnest smooth film "
         "of a steel ball on glass through 80 % glycerol at every speed from 0.03 to 3 m/s, while "
         "a ground surface of 0.1 um lies below it; Nijssen, Ottens & Padding 2022's h_eps is "
         "within a factor 2 of the model's thinnest film between 0.1 and 3 m/s. The mixed model "
-        "(Greenwood & Tripp, right) stays close to the smooth collision's EHD e_n (V_exit): its "
-        "film carries the load down to well below sigma.",
+        "(Greenwood & Tripp, right; at its corrected prefactor, docs/model.md) stays within "
+        "0.006 of the smooth collision's EHD e_n (V_exit): its film carries the load down to "
+        "well below sigma.",
         "",
         "![roughness](figures/roughness.png)",
         "",

@@ -59,29 +59,52 @@ _TRAPEZOID_ANGLES = np.linspace(0.0, np.pi, 17)  # half a period: the integrands
 _TRAPEZOID_WEIGHTS = np.full(17, 2.0 * np.pi / 16) * np.r_[0.5, np.ones(15), 0.5]
 
 
+# the entries [part, displacement, load] of (k0, k_beta, k_gamma) that are not zero
+_NONZERO = (
+    (0, 0, 0), (0, 1, 1), (0, 0, 1), (0, 1, 0), (0, 2, 2),
+    (1, 0, 0), (1, 0, 1), (1, 1, 0), (1, 1, 1),
+    (2, 0, 2), (2, 1, 2), (2, 2, 0), (2, 2, 1),
+)  # fmt: skip
+
+
+def _nonzero_parts(radius, offset) -> np.ndarray:
+    """The entries _NONZERO of :func:`ring_kernel_parts`, stacked: shape (13, ...), the others
+    being zero (the 1/rho and d d/rho^3 parts act within the plane and on the normal alone,
+    the d/rho^2 part couples the two)."""
+    r, off = np.broadcast_arrays(np.asarray(radius, dtype=float), np.asarray(offset, dtype=float))
+    s = r + off
+    parts = np.zeros((len(_NONZERO),) + r.shape)
+    closed = np.minimum(r, s) >= _CLOSED_FORM_RATIO * np.maximum(r, s)
+    for mask, integrals in ((closed, _elliptic_integrals), (~closed, _trapezoid_integrals)):
+        if np.any(mask):
+            ring, beta_part = integrals(r[mask], off[mask])
+            for row, (part, a, b) in enumerate(_NONZERO[:9]):
+                parts[row][mask] = (ring if part == 0 else beta_part)[a, b]
+    below = off < 0  # rings inside R
+    ratio = np.where(below, s / np.where(below, r, 1.0), r / s)  # min(R, S)/max(R, S)
+    quarter_pi = np.pi / 4
+    parts[9] = quarter_pi * np.where(below, ratio**2, -1.0)
+    parts[10] = -quarter_pi * np.where(below, ratio**2, 1.0)
+    parts[11] = -quarter_pi * np.where(below, ratio, -ratio)
+    parts[12] = -quarter_pi * ratio
+    return parts
+
+
+def _expanded(nonzero: np.ndarray) -> np.ndarray:
+    """(3, 3, 3, ...) [part, displacement, load] from the stacked _NONZERO entries."""
+    parts = np.zeros((3, 3, 3) + nonzero.shape[1:])
+    for row, index in enumerate(_NONZERO):
+        parts[index] = nonzero[row]
+    return parts
+
+
 def ring_kernel_parts(radius, offset) -> np.ndarray:
     """(k0, k_beta, k_gamma) of the module docstring at S = R + offset: shape (3, 3, 3, ...)
     as [part, displacement (U_r, U_phi, U_z), load (A, B, Z)], broadcast over ``radius`` and
     ``offset`` (R >= 0 and S > 0 by sqrt(a x0), or any common length). The offset is carried
     separately so that S next to R keeps its full relative accuracy. Unit: displacement per unit
     traction, by 4 (1 - nu^2)/(pi E) (a length: k is per unit S)."""
-    r, off = np.broadcast_arrays(np.asarray(radius, dtype=float), np.asarray(offset, dtype=float))
-    s = r + off
-    parts = np.zeros((3, 3, 3) + r.shape)
-    closed = np.minimum(r, s) >= _CLOSED_FORM_RATIO * np.maximum(r, s)
-    for mask, integrals in ((closed, _elliptic_integrals), (~closed, _trapezoid_integrals)):
-        if np.any(mask):
-            ring, beta_part = integrals(r[mask], off[mask])
-            parts[0][:, :, mask] = ring
-            parts[1][:2, :2][:, :, mask] = beta_part
-    below = off < 0  # rings inside R
-    ratio = np.where(below, s / np.where(below, r, 1.0), r / s)  # min(R, S)/max(R, S)
-    quarter_pi = np.pi / 4
-    parts[2, 0, 2] = quarter_pi * np.where(below, ratio**2, -1.0)
-    parts[2, 1, 2] = -quarter_pi * np.where(below, ratio**2, 1.0)
-    parts[2, 2, 0] = -quarter_pi * np.where(below, ratio, -ratio)
-    parts[2, 2, 1] = -quarter_pi * ratio
-    return parts
+    return _expanded(_nonzero_parts(radius, offset))
 
 
 def ring_kernel(radius, offset, poisson: float) -> np.ndarray:
@@ -153,8 +176,8 @@ def response_parts(radii) -> np.ndarray:
     """(3, 3N, 3N): the parts (k0, k_beta, k_gamma) of :func:`surface_response`, which is
     their sum weighted by (1, beta, gamma) (module docstring)."""
     r = film_nodes(radii)
-    matrix = hat_integrals(r, ring_kernel_parts, 27)
-    return _stacked(matrix.reshape(3, 3, 3, len(r), len(r)))
+    matrix = _expanded(hat_integrals(r, _nonzero_parts, len(_NONZERO)))
+    return _stacked(matrix)
 
 
 def surface_response(radii, poisson: float) -> np.ndarray:

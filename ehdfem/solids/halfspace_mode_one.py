@@ -79,7 +79,7 @@ def _nonzero_parts(radius, offset) -> np.ndarray:
         if np.any(mask):
             ring, beta_part = integrals(r[mask], off[mask])
             for row, (part, a, b) in enumerate(_NONZERO[:9]):
-                parts[row][mask] = (ring if part == 0 else beta_part)[a, b]
+                parts[row, ...][mask] = (ring if part == 0 else beta_part)[a, b]
     below = off < 0  # rings inside R
     ratio = np.where(below, s / np.where(below, r, 1.0), r / s)  # min(R, S)/max(R, S)
     quarter_pi = np.pi / 4

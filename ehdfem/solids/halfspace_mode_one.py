@@ -46,7 +46,10 @@ lose digits and the integrand is smooth: error below 1e-15).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 from scipy.special import ellipe, ellipkm1
 
 from ..checks import InputError, number, positive
@@ -145,24 +148,38 @@ def _elliptic_integrals(r, off):
 def _trapezoid_integrals(r, off):
     """The same integrals as :func:`_elliptic_integrals` by the periodic trapezoidal rule
     (min(R, S)/max(R, S) < 1/4: the integrand is analytic and smooth in psi)."""
-    s = (r + off)[:, None]
-    r = r[:, None]
-    c = np.cos(_TRAPEZOID_ANGLES)
-    sin2 = 1.0 - c**2
-    rho = np.sqrt((r - s) ** 2 + 2 * r * s * (1 - c))
-    w = _TRAPEZOID_WEIGHTS * s / 4
-    along, across = r - s * c, r * c - s  # d along the field and the ring radial directions
+    sums = _trapezoid_sums(r, off, _TRAPEZOID_ANGLES, _TRAPEZOID_WEIGHTS)
     ring = np.zeros((3, 3, len(r)))
-    ring[0, 0] = ring[1, 1] = (w * c**2 / rho).sum(axis=1)
-    ring[0, 1] = ring[1, 0] = (w * sin2 / rho).sum(axis=1)
-    ring[2, 2] = (w * c / rho).sum(axis=1)
-    w3 = w / rho**3
-    beta = np.empty((2, 2, len(r)))
-    beta[0, 0] = (w3 * along * across * c).sum(axis=1)
-    beta[0, 1] = (w3 * r * along * sin2).sum(axis=1)
-    beta[1, 0] = (w3 * -s * across * sin2).sum(axis=1)
-    beta[1, 1] = (w3 * r * s * sin2 * c).sum(axis=1)
-    return ring, beta
+    ring[0, 0] = ring[1, 1] = sums[0]
+    ring[0, 1] = ring[1, 0] = sums[1]
+    ring[2, 2] = sums[2]
+    return ring, sums[3:].reshape(2, 2, len(r))
+
+
+@njit(cache=True)
+def _trapezoid_sums(r, off, angles, weights):
+    """(7, M): the trapezoidal sums over psi of (S/4) (cos^2, sin^2, cos) / rho and of the
+    d d/rho^3 parts (along across cos, R along sin^2, -S across sin^2, R S sin^2 cos) / rho^3,
+    d = (along, across) the offset along the field's and the ring's radial directions, for
+    each (R, S = R + offset), one pass without temporaries."""
+    sums = np.zeros((7, len(r)))
+    for i in range(len(r)):
+        radius, ring_radius = r[i], r[i] + off[i]
+        for j in range(len(angles)):
+            c = math.cos(angles[j])
+            sin2 = 1.0 - c * c
+            rho = math.sqrt((radius - ring_radius) ** 2 + 2 * radius * ring_radius * (1 - c))
+            w = weights[j] * ring_radius / 4
+            along, across = radius - ring_radius * c, radius * c - ring_radius
+            sums[0, i] += w * c * c / rho
+            sums[1, i] += w * sin2 / rho
+            sums[2, i] += w * c / rho
+            w3 = w / rho**3
+            sums[3, i] += w3 * along * across * c
+            sums[4, i] += w3 * radius * along * sin2
+            sums[5, i] += w3 * -ring_radius * across * sin2
+            sums[6, i] += w3 * radius * ring_radius * sin2 * c
+    return sums
 
 
 def _stacked(blocks):

@@ -191,3 +191,24 @@ def surface_transport_bands(
             lower[e + 1] -= from_left
             diagonal[e + 1] -= from_right
     return lower, diagonal, upper
+
+
+@njit(cache=True)
+def tridiagonal_rows(bands, matrix, rows) -> np.ndarray:
+    """The rows ``rows`` of tridiag(lower, diagonal, upper) @ ``matrix`` (n x m) for the bands
+    (lower, diagonal, upper) of an n x n tridiagonal matrix (lower[0] and upper[-1] unused),
+    one compiled pass over the three rows each output row combines."""
+    lower, diagonal, upper = bands
+    n, m = matrix.shape
+    out = np.empty((len(rows), m))
+    for j in range(len(rows)):
+        i = rows[j]
+        for k in range(m):
+            out[j, k] = diagonal[i] * matrix[i, k]
+        if i > 0:
+            for k in range(m):
+                out[j, k] += lower[i] * matrix[i - 1, k]
+        if i < n - 1:
+            for k in range(m):
+                out[j, k] += upper[i] * matrix[i + 1, k]
+    return out

@@ -47,9 +47,9 @@ from dataclasses import dataclass, replace
 from functools import partial
 
 import numpy as np
-from numba import njit
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
+from ..film.elements import tridiagonal_rows
 from ..film.reynolds import Film, FilmState
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
@@ -64,27 +64,6 @@ def _remaining(norm: float, ratio: float | None) -> float:
     if ratio is None or ratio >= 0.5:
         return norm
     return ratio / (1.0 - ratio) * norm
-
-
-@njit(cache=True)
-def _band_rows(bands, matrix, rows) -> np.ndarray:
-    """The rows ``rows`` of tridiag(lower, diagonal, upper) @ ``matrix`` (n x m) for the bands
-    (lower, diagonal, upper) of an n x n tridiagonal matrix (lower[0] and upper[-1] unused),
-    one compiled pass over the three rows each output row combines."""
-    lower, diagonal, upper = bands
-    n, m = matrix.shape
-    out = np.empty((len(rows), m))
-    for j in range(len(rows)):
-        i = rows[j]
-        for k in range(m):
-            out[j, k] = diagonal[i] * matrix[i, k]
-        if i > 0:
-            for k in range(m):
-                out[j, k] += lower[i] * matrix[i - 1, k]
-        if i < n - 1:
-            for k in range(m):
-                out[j, k] += upper[i] * matrix[i + 1, k]
-    return out
 
 
 class StepFailed(Exception):
@@ -391,7 +370,7 @@ class ImplicitStep:
         out = np.zeros((len(rows), n + 2))
         loaded = self.loaded()
         c = self.compliance if loaded is None else loaded.by_pressure
-        out[:, :n] = _band_rows(squeeze, c, rows)
+        out[:, :n] = tridiagonal_rows(squeeze, c, rows)
         below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
         j = np.arange(len(rows))
         for k_low, k_diag, k_up in (state.conductance, state.dflux_dP):
@@ -400,11 +379,11 @@ class ImplicitStep:
             out[j, above] += k_up[rows]
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
             motion = self.surface_motion
-            out[:, :n] += _band_rows(state.transport, motion.matrix, rows) * (
+            out[:, :n] += tridiagonal_rows(state.transport, motion.matrix, rows) * (
                 motion.sqrt_delta * a0 / step
             )
         by_gap = np.ones(n) if loaded is None else loaded.by_gap  # dH/dX = (I - C D)^-1 1
-        out[:, n] = _band_rows(squeeze, by_gap[:, None], rows)[:, 0]
+        out[:, n] = tridiagonal_rows(squeeze, by_gap[:, None], rows)[:, 0]
         if theta_nodes is not None:
             out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out

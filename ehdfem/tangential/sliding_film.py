@@ -10,6 +10,7 @@ import numpy as np
 import scipy.integrate
 import scipy.linalg
 
+from ..film.elements import tridiagonal_rows
 from ..film.mode_one import ModeOneFilm
 from ..film.reynolds import Film
 from ..motion.normal import NormalSolverError
@@ -259,7 +260,13 @@ class SlidingFilm:
         free = np.flatnonzero(mf.free)
         gap = ops["gap"]
         film = (mf.conductance + mf.pressure_coupling)[free]
-        rows = mf.thickness_coupling[free] @ gap
+        coupling = mf.thickness_coupling  # tridiagonal: its bands times the rows of gap
+        bands = (
+            np.r_[0.0, np.diagonal(coupling, -1)],
+            np.diagonal(coupling).copy(),
+            np.r_[np.diagonal(coupling, 1), 0.0],
+        )
+        rows = tridiagonal_rows(bands, gap, free)
         rows[:, :n] += film
         rows += rate * mf.mass[free, None] * gap[free]
         rows -= 0.5 * np.outer(mf.drive[free], ops["rolling"])

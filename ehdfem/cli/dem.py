@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import CollisionParameters, checks
-from ..dem.engines.compare import ENGINES, compare, engine_law
+from ..dem.engines.compare import ENGINES, RERUN, compare, engine_law
 from ..inputs.presets import EXAMPLE
 from ..outputs import provenance
 from . import paths
@@ -100,4 +100,5 @@ def print_comparison(result: dict, report) -> None:
             file=report,
         )
     written = ", ".join(sorted(path.name for path in Path(engine["folder"]).iterdir()))
-    print(f"  files in {engine['folder']}: {written} (rerun {engine['script']} there)", file=report)
+    rerun = RERUN[engine["engine"]]
+    print(f"  files in {engine['folder']}: {written} (rerun there: {rerun})", file=report)

@@ -1,0 +1,68 @@
+"""The command line as a user meets it (issue 49), each kind of behaviour driven through the
+installed ``ehdfem`` command in its own process: no traceback for any input, interruption or
+output path; every check before the work, named by its option; a warning for an option that
+does not act; one meaning per option name; physical runs in SI; plausibility notes in the
+report and the JSON; ``--help`` with defaults, units and ranges."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+pytestmark = pytest.mark.serial  # each test starts its own processes
+
+COMMAND = Path(sys.executable).with_name("ehdfem")  # the venv's console script
+
+
+def ehdfem(*args, cwd=None, timeout=600) -> subprocess.CompletedProcess:
+    """``ehdfem *args`` as a user runs it, its output as text; never a traceback."""
+    done = subprocess.run(
+        [str(COMMAND), *args], capture_output=True, text=True, cwd=cwd, timeout=timeout
+    )
+    assert "Traceback" not in done.stderr + done.stdout, done.stderr
+    return done
+
+
+def one_line(done: subprocess.CompletedProcess) -> str:
+    """The only line a refused command printed (on standard error; nothing on standard
+    output)."""
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and not done.stdout, done.stderr
+    return lines[0]
+
+
+def test_plausibility_notes_are_in_the_report_and_the_json():
+    """A physical collision through a liquid thinner than any liquid (5e-5 Pa s) gives a film
+    of about a nanometre: both are noted in the JSON's "notes" and after the table
+    (``note: ...``), besides the warnings; an unremarkable collision has no note."""
+    done = ehdfem(
+        "collide", "--example", "--liquid-viscosity", "5e-5", "--nodes", "120", "--json", "-"
+    )
+    assert done.returncode == 0, done.stderr
+    notes = json.loads(done.stdout)["notes"]
+    assert len(notes) == 2
+    assert notes[0].startswith("the liquid viscosity 5e-05 Pa s is outside the Newtonian")
+    assert (
+        notes[1].startswith("the thinnest film is 1.1") and " nm, below the roughness" in notes[1]
+    )
+    printed = [line for line in done.stderr.splitlines() if line.startswith("  note: ")]
+    assert printed == [f"  note: {note}" for note in notes]
+    assert f"ehdfem collide: warning: {notes[1]}" in done.stderr
+    plain = ehdfem("collide", "--St", "10", "--eps", "1e-3", "--nodes", "60", "--json", "-")
+    assert json.loads(plain.stdout)["notes"] == [] and "note:" not in plain.stderr
+
+
+def test_a_restitution_above_one_is_a_note_of_the_result():
+    """e_n > 1 (pure EHD cannot gain energy) is noted with the energy error."""
+    from ehdfem.inputs.scales import CollisionParameters
+    from ehdfem.outputs.plausibility import result_notes
+
+    normal = SimpleNamespace(
+        e_n=1.01, energy_error=0.02, unloaded_touch=False, solid_impact=None, min_film_thickness=0.1
+    )
+    notes = result_notes(CollisionParameters(St=10.0, eps=1e-3), None, normal)
+    assert len(notes) == 1 and notes[0].startswith("e_n = 1.01 is above 1")
+    assert "energy error 0.02" in notes[0]

@@ -5,8 +5,10 @@ does not act; one meaning per option name; physical runs in SI; plausibility not
 report and the JSON; ``--help`` with defaults, units and ranges."""
 
 import json
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -66,3 +68,50 @@ def test_a_restitution_above_one_is_a_note_of_the_result():
     notes = result_notes(CollisionParameters(St=10.0, eps=1e-3), None, normal)
     assert len(notes) == 1 and notes[0].startswith("e_n = 1.01 is above 1")
     assert "energy error 0.02" in notes[0]
+
+
+def test_ctrl_c_in_a_one_rank_sweep_says_what_is_saved_and_how_to_resume(tmp_path):
+    """SIGINT while a sweep on one rank computes its points: status 130 and one line giving the
+    points saved and the command that resumes; run again, the sweep computes only the rest."""
+    study = tmp_path / "small.toml"
+    study.write_text(
+        'name = "small"\n[grid]\nSt = [4.0, 8.0, 12.0, 20.0, 40.0]\neps = [1e-3, 1e-2]\n'
+        'p_cav = [-5.0]\n[numerics]\nnodes = 60\n[output]\ntable = "out/small.csv"\n'
+    )
+    from ehdfem.study.sweep import Study
+
+    points = Study(study).point_dir
+    process = subprocess.Popen(
+        [str(COMMAND), "sweep", str(study)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    deadline = time.monotonic() + 120
+    while not list(points.glob("*.json")) and time.monotonic() < deadline:
+        time.sleep(0.02)
+    assert process.poll() is None  # still computing
+    process.send_signal(signal.SIGINT)
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    saved = len(list(points.glob("*.json")))
+    assert 1 <= saved < 10
+    assert err.strip().splitlines() == [
+        f"ehdfem sweep: interrupted: stopped by Ctrl-C; {saved} of 10 points are saved in "
+        f"{points}; run the same command again to compute the other {10 - saved}"
+    ]
+    again = ehdfem("sweep", str(study))
+    assert again.returncode == 0, again.stderr
+    assert len(again.stdout.splitlines()) == 1 + (10 - saved) + 1  # header, new points, wrote
+
+
+def test_a_closed_pipe_ends_the_command_quietly():
+    """``ehdfem presets | head -1``: the reader leaves after one line; no error, no traceback."""
+    process = subprocess.Popen(
+        [str(COMMAND), "presets"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, bufsize=0
+    )
+    process.stdout.read(10)
+    process.stdout.close()
+    err = process.stderr.read().decode()
+    process.wait(timeout=60)
+    assert err == "" and process.returncode in (0, 1)

@@ -26,6 +26,7 @@ error, once (by MPI rank 0), and flagged in the result.
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 import warnings
@@ -42,6 +43,7 @@ DESCRIPTION = (
     "predicts rebound or sticking, the restitution coefficients, the film's pressure and "
     "thickness, and the critical Stokes number."
 )
+INTERRUPTED = "stopped by Ctrl-C; files already written are kept"
 VERBOSE_HELP = "show the form compiler's build log and VTK's warnings; default: hidden"
 COMMANDS = {  # name: (help, add its arguments, run it)
     "collide": (collide.COLLIDE_HELP, collide.add_collide, collide.collide_command),
@@ -117,8 +119,10 @@ def _warning_printer(command: str):
 
 def main(argv=None) -> int:
     """The ``ehdfem`` command; returns the exit status (0 done, 1 a file could not be read or
-    written, 2 bad input, 3 solver failure, 130 interrupted by Ctrl-C: one line, no traceback;
-    what was written stays, and a sweep resumes from its table), the same on every MPI rank."""
+    written, 2 bad input, 3 solver failure, 130 interrupted by Ctrl-C: one line, no traceback,
+    saying what was saved and how to resume where the command knows (a sweep resumes from its
+    points); what was written stays), the same on every MPI rank. A reader that closes the pipe
+    early (``| head``) ends the command quietly with status 1."""
     parser, commands = parsers()
     args, unknown = parser.parse_known_args(argv)
     if unknown:
@@ -136,9 +140,12 @@ def main(argv=None) -> int:
     except NormalSolverError as err:
         say(args.command, "solver failure", str(err))
         return 3
-    except KeyboardInterrupt:
-        say(args.command, "interrupted", "stopped by Ctrl-C; files already written are kept")
+    except KeyboardInterrupt as err:  # a command may say what it saved and how to resume
+        say(args.command, "interrupted", str(err) or INTERRUPTED)
         return 130
+    except BrokenPipeError:  # the reader left (| head): no more output, and no message
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except OSError as err:  # a file that could not be read or written, possibly on one rank
         where = f"{err.filename}: " if err.filename else ""
         print(f"ehdfem {args.command}: error: {where}{err.strerror or err}", file=sys.stderr)

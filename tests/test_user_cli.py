@@ -5,6 +5,7 @@ does not act; one meaning per option name; physical runs in SI; plausibility not
 report and the JSON; ``--help`` with defaults, units and ranges."""
 
 import json
+import re
 import signal
 import subprocess
 import sys
@@ -115,3 +116,91 @@ def test_a_closed_pipe_ends_the_command_quietly():
     err = process.stderr.read().decode()
     process.wait(timeout=60)
     assert err == "" and process.returncode in (0, 1)
+
+
+COMMANDS = ("collide", "render", "sweep", "critical", "fit", "presets", "bounce", "dem")
+
+
+def help_entries(command: str) -> dict[str, str]:
+    """``ehdfem <command> --help`` as {option: its usage and help as one line}."""
+    entries, current = {}, None
+    for line in ehdfem(command, "--help").stdout.splitlines():
+        start = re.match(r"^  (--[\w-]+)", line)
+        if start:
+            current = start.group(1)
+            entries[current] = line.strip()
+        elif current and line.startswith("    ") and line.strip():
+            entries[current] += " " + line.strip()
+        else:
+            current = None
+    return entries
+
+
+@pytest.fixture(scope="module")
+def helps() -> dict[str, dict[str, str]]:
+    return {command: help_entries(command) for command in COMMANDS}
+
+
+def test_every_option_of_every_command_states_its_default(helps):
+    """``--help`` of each command: every option says its default (or that it is required)."""
+    silent = [
+        f"{command} {option}"
+        for command, entries in helps.items()
+        for option, text in entries.items()
+        if option != "--help" and "default" not in text
+    ]
+    assert silent == []
+
+
+def _unit(text: str) -> str | None:
+    """The first unit or scale in brackets of a help text ([Pa], [by x0/V0]; not a range)."""
+    units = re.findall(r"\[([^\]\d(-][^\]]*)\]", text)
+    return units[0] if units else None
+
+
+def _shape(option: str, text: str) -> tuple:
+    """What must agree between two commands' options of one name: what follows the name in
+    the usage (its metavar or its choices) and its unit."""
+    taken = re.match(
+        r"(, --no-[\w-]+)?\s+(\{[^}]*\}|[A-Z][A-Z0-9_.]*(?=\s))?", text.removeprefix(option)
+    )
+    return (taken.group(1) or "") + (taken.group(2) or ""), _unit(text)
+
+
+def test_an_option_name_has_one_meaning_across_commands(helps):
+    """An option of one name takes the same kind of value (metavar or choices) in the same unit
+    in every command that has it: render's --out is a picture file and bounce writes into
+    --folder, as dem does; --rtol is the time-step tolerance everywhere; --model chooses the
+    solids among the same models; --added-mass is a mass in kg."""
+    by_name = {}
+    for command, entries in helps.items():
+        for option, text in entries.items():
+            by_name.setdefault(option, {})[command] = _shape(option, text)
+    differ = {
+        option: shapes
+        for option, shapes in by_name.items()
+        if option != "--help" and len(set(shapes.values())) > 1
+    }
+    assert differ == {}
+    assert set(by_name["--out"]) == {"render"}
+    assert set(by_name["--folder"]) == {"bounce", "dem"}
+    assert {command for command, text in by_name["--rtol"].items()} >= {"collide", "bounce"}
+    assert all("time-step tolerance" in helps[c]["--rtol"] for c in by_name["--rtol"])
+    assert "[kg]" in helps["collide"]["--added-mass"] and "--added-mass" not in helps["bounce"]
+
+
+BOUNCE = ["bounce", "--sphere", "steel", "--wall", "glass", "--liquid", "silicone_oil_10cst",
+          "--radius", "1.5e-3", "--release-height", "0.02"]  # fmt: skip
+
+
+def test_bounce_options_are_checked_before_the_bounce(tmp_path):
+    """bounce's former --out (a folder, where render's --out is a file) is refused naming
+    --folder; --json and --folder on one path are refused; each within seconds (the bounce
+    itself takes about ten)."""
+    start = time.monotonic()
+    line = one_line(ehdfem(*BOUNCE, "--out", str(tmp_path / "b")))
+    assert line.startswith("ehdfem bounce: error: --out: the bounce's output folder is --folder")
+    same = str(tmp_path / "same")
+    line = one_line(ehdfem(*BOUNCE, "--json", same, "--folder", same))
+    assert line.startswith(f"ehdfem bounce: error: --folder: {same!r} is also the path of --json")
+    assert time.monotonic() - start < 8.0 and not (tmp_path / "b").exists()

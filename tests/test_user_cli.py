@@ -204,3 +204,35 @@ def test_bounce_options_are_checked_before_the_bounce(tmp_path):
     line = one_line(ehdfem(*BOUNCE, "--json", same, "--folder", same))
     assert line.startswith(f"ehdfem bounce: error: --folder: {same!r} is also the path of --json")
     assert time.monotonic() - start < 8.0 and not (tmp_path / "b").exists()
+
+
+@pytest.mark.parametrize(
+    "args, line",
+    [
+        (
+            ["render", "--St", "10", "--eps", "1e-3", "--p-cav=-2", "--nodes", "40", "--time",
+             "1e9", "--out", "r.png"],
+            "ehdfem render: error: --time: T = 1e+09 is after the collision's end, T = ",
+        ),
+        (
+            ["collide", "--St", "10", "--eps", "1e-3", "--p-cav=-2", "--nodes", "40", "--model",
+             "fem", "--fields", "f.xdmf", "--field-times", "1", "1e3"],
+            "ehdfem collide: error: --field-times: T = 1000 is after the collision's end, T = ",
+        ),
+        (
+            ["render", "--St", "10", "--eps", "1e-3", "--json", "r.png", "--out", "r.png"],
+            "ehdfem render: error: --json: 'r.png' is also the path of --out",
+        ),
+        (
+            ["collide", "--example", "--layer-thickness", "0.1"],
+            "ehdfem collide: error: --layer-thickness: 0.1 m must be smaller than the radius",
+        ),
+    ],
+)  # fmt: skip
+def test_refusals_name_the_option_as_typed(args, line, tmp_path):
+    """An instant after the collision's end (known once the collision is computed, before any
+    picture or field is written), two outputs on one path, a layer thicker than the sphere:
+    one line in the documented form, naming the option (not "field time")."""
+    done = ehdfem(*args, cwd=tmp_path)
+    assert done.returncode == 2 and one_line(done).startswith(line)
+    assert list(tmp_path.iterdir()) == []

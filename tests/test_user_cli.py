@@ -236,3 +236,16 @@ def test_refusals_name_the_option_as_typed(args, line, tmp_path):
     done = ehdfem(*args, cwd=tmp_path)
     assert done.returncode == 2 and one_line(done).startswith(line)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_warning_each_collision_repeats_is_shown_once():
+    """A physical critical-speed search whose collisions all make a nanometre film: the first
+    warning, then one line counting the others (one per collision, before)."""
+    search = ["--sphere", "glass", "--wall", "glass", "--liquid", "water", "--radius", "3e-3",
+              "--layer-thickness", "2e-4", "--bracket-rtol", "0.05"]  # fmt: skip
+    done = ehdfem("critical", *search)
+    assert done.returncode == 0, done.stderr
+    warned = [line for line in done.stderr.splitlines() if "warning:" in line]
+    assert len(warned) == 2, done.stderr
+    assert warned[0].startswith("ehdfem critical: warning: the thinnest film is ")
+    assert re.match(r'ehdfem critical: warning: \d+ more like "the thinnest film is ', warned[1])

@@ -108,13 +108,36 @@ def say(command: str, kind: str, text: str) -> None:
         print(f"ehdfem {command}: {kind}: {text}", file=sys.stderr)
 
 
-def _warning_printer(command: str):
-    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` (rank 0)."""
+NUMBER = re.compile(r"\d+(\.\d+)?(e[-+]?\d+)?")  # what differs between repeats of a warning
 
-    def show(message, category, filename, lineno, file=None, line=None):
-        say(command, "warning", str(message))
 
-    return show
+class WarningPrinter:
+    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` (rank 0):
+    of warnings that differ only in their numbers (one per collision of a search, a sweep's
+    point or a bounce's contact) the first, and at the end (:meth:`repeats`) how many more
+    came."""
+
+    def __init__(self, command: str):
+        self.command = command
+        self.seen: dict[str, list] = {}  # the message with "#" for its numbers: [first, count]
+
+    def __call__(self, message, category, filename, lineno, file=None, line=None):
+        text = str(message)
+        first = self.seen.setdefault(NUMBER.sub("#", text), [text, 0])
+        first[1] += 1
+        if first[1] == 1:
+            say(self.command, "warning", text)
+
+    def repeats(self) -> None:
+        """One line for each warning that came more than once."""
+        for text, count in self.seen.values():
+            if count > 1:
+                shown = text if len(text) <= 60 else text[:57] + "..."
+                say(
+                    self.command,
+                    "warning",
+                    f'{count - 1} more like "{shown}", with other numbers, were not shown',
+                )
 
 
 def main(argv=None) -> int:
@@ -132,8 +155,11 @@ def main(argv=None) -> int:
     set_quiet(not args.verbose)
     try:
         with warnings.catch_warnings():
-            warnings.showwarning = _warning_printer(args.command)
-            return COMMANDS[args.command][2](args)
+            warnings.showwarning = printer = WarningPrinter(args.command)
+            try:
+                return COMMANDS[args.command][2](args)
+            finally:
+                printer.repeats()
     except checks.InputError as err:
         say(args.command, "error", error_text(err, commands[args.command]))
         return 2

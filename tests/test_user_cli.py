@@ -249,3 +249,17 @@ def test_a_warning_each_collision_repeats_is_shown_once():
     assert len(warned) == 2, done.stderr
     assert warned[0].startswith("ehdfem critical: warning: the thinnest film is ")
     assert re.match(r'ehdfem critical: warning: \d+ more like "the thinnest film is ', warned[1])
+
+
+def test_the_readmes_commands_run_from_the_clone():
+    """Every shell line of the README's examples that runs Python or ehdfem does it through the
+    set-up's venv (.venv/bin/...): Debian has no ``python`` command, and ehdfem is not on the
+    PATH."""
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    commands = []
+    for block in re.findall(r"```sh\n(.*?)```", readme, flags=re.S):
+        lines = [line.strip() for line in block.splitlines() if line.strip()]
+        prompted = [line[2:] for line in lines if line.startswith("$ ")]  # the rest: output
+        commands += prompted or [line for line in lines if not line.startswith("#")]
+    bare = [c for c in commands if re.match(r"(python3?|ehdfem)\b", c)]
+    assert bare == [] and any(c.startswith(".venv/bin/python -c") for c in commands)

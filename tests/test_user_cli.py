@@ -263,3 +263,70 @@ def test_the_readmes_commands_run_from_the_clone():
         commands += prompted or [line for line in lines if not line.startswith("#")]
     bare = [c for c in commands if re.match(r"(python3?|ehdfem)\b", c)]
     assert bare == [] and any(c.startswith(".venv/bin/python -c") for c in commands)
+
+
+@pytest.mark.parametrize(
+    "args, line",
+    [
+        (["render", "--St", "10", "--eps", "1e-3", "--out", "r.txt"],
+         "ehdfem render: error: --out: 'r.txt' has the format '.txt'"),
+        (["collide", "--St", "x", "--eps", "1e-3"], "ehdfem collide: error: --St: invalid float"),
+        (["collide", "--example", "--liquid", "honey"], "ehdfem collide: error: --liquid: unknown"),
+        (["critical", "--eps", "1e-3", "--bracket", "100", "10"],
+         "ehdfem critical: error: --bracket: 100 .. 10 must be increasing"),
+        (["collide", "--St", "10", "--eps", "1e-3", "--field-times", "1"],
+         "ehdfem collide: error: --field-times: needs --fields"),
+        (["collide", "--St", "10", "--eps", "1e-3", "--json", "same", "--histories", "same"],
+         "ehdfem collide: error: --histories: 'same' is also the path of --json"),
+        (["sweep", "missing.toml"], "ehdfem sweep: error: study: 'missing.toml' does not exist"),
+    ],
+)  # fmt: skip
+def test_refused_inputs_end_in_one_line_within_seconds(args, line, tmp_path):
+    """Inputs that gave tracebacks, usage texts or minutes of work: one line in the documented
+    form, status 2, nothing written, within seconds."""
+    start = time.monotonic()
+    done = ehdfem(*args, cwd=tmp_path)
+    assert done.returncode == 2 and one_line(done).startswith(line)
+    assert time.monotonic() - start < 10.0 and list(tmp_path.iterdir()) == []
+
+
+def test_an_option_that_cannot_act_is_warned_of_and_the_run_goes_on():
+    """--alpha with the constant viscosity and --p-cav with --cavitation none: a warning each,
+    naming the option, and the collision's results."""
+    done = ehdfem("collide", "--St", "10", "--eps", "1e-3", "--alpha", "0.01", "--p-cav=-2",
+                  "--cavitation", "none", "--nodes", "60", "--json", "-")  # fmt: skip
+    assert done.returncode == 0 and 0 < json.loads(done.stdout)["e_n"] < 1
+    warned = [line for line in done.stderr.splitlines() if ": warning: " in line]
+    assert [line.split(": warning: ")[1].split(" ")[0] for line in warned] == ["--alpha", "--p-cav"]
+
+
+def test_a_physical_collision_is_reported_in_si(tmp_path):
+    """``collide --example``: the report names the physical inputs and gives the SI values with
+    their units; the JSON holds them under "si"; the plots' axes are in SI."""
+    done = ehdfem("collide", "--example", "--nodes", "80", "--plots", "plots", "--json", "-",
+                  cwd=tmp_path)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "physical inputs: steel sphere of radius 6.35 mm at 1 m/s, 30 deg" in done.stderr
+    si = json.loads(done.stdout)["si"]
+    row = next(line for line in done.stderr.splitlines() if "contact_time_s" in line).split()
+    assert float(row[1]) == pytest.approx(si["contact_time_s"], rel=1e-5) and row[2] == "s"
+    assert sorted(p.name for p in (tmp_path / "plots").iterdir()) == [
+        "histories.png", "profiles.png", "tangential.png"
+    ]  # fmt: skip
+
+
+def test_dem_runs_its_example_and_records_where_its_result_comes_from(tmp_path):
+    """``dem --engine liggghts --example``: the engine's rebound beside ehdfem's half-space
+    model, every file the engine wrote, and a JSON with the provenance and the inputs that
+    ``collide --from`` runs again."""
+    done = ehdfem("dem", "--engine", "liggghts", "--example", "--folder", "engine", "--json",
+                  "-", cwd=tmp_path)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert "liggghts beside ehdfem's half-space model" in done.stderr
+    assert "(rerun there: liggghts -in in.collision)" in done.stderr
+    result = json.loads(done.stdout)
+    assert result["provenance"]["command"][:3] == ["ehdfem", "dem", "--engine"]
+    (tmp_path / "dem.json").write_text(done.stdout)
+    again = ehdfem("collide", "--from", "dem.json", "--json", "-", cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert json.loads(again.stdout)["e_n"] == result["full_model"]["e_n"]

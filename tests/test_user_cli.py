@@ -330,3 +330,21 @@ def test_dem_runs_its_example_and_records_where_its_result_comes_from(tmp_path):
     again = ehdfem("collide", "--from", "dem.json", "--json", "-", cwd=tmp_path)
     assert again.returncode == 0, again.stderr
     assert json.loads(again.stdout)["e_n"] == result["full_model"]["e_n"]
+
+
+def test_fit_says_which_quantity_its_errors_are_of(tmp_path):
+    """fit's report: each error is named by what it is the error of (e_n for the e_n fits and
+    the DEM formulas, St_c for the law of the critical Stokes number), since the two differ by
+    orders of magnitude; the e_n fit of an exact table has no error."""
+    rows = ["status,St,eps,e_n"] + [
+        f"ok:rebound,{St},{eps},{0.9 * (1 - 5 * (eps / 1e-3) ** -0.1 / St)!r}"
+        for eps in (1e-3, 1e-2)
+        for St in (6.0, 10.0, 20.0, 50.0, 100.0)
+    ]
+    (tmp_path / "t.csv").write_text("\n".join(rows) + "\n")
+    lines = ehdfem("fit", "t.csv", cwd=tmp_path).stdout.splitlines()
+    fits = [line for line in lines if " error: max " in line]
+    assert [line.split(" error: max ")[0].split()[-1] for line in fits] == [
+        "e_n", "e_n", "St_c", "e_n", "e_n"
+    ]  # fmt: skip
+    assert float(fits[0].split(" error: max ")[1].split(",")[0]) < 1e-12

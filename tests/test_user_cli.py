@@ -348,3 +348,12 @@ def test_fit_says_which_quantity_its_errors_are_of(tmp_path):
         "e_n", "e_n", "St_c", "e_n", "e_n"
     ]  # fmt: skip
     assert float(fits[0].split(" error: max ")[1].split(",")[0]) < 1e-12
+
+
+def test_the_liquid_presets_say_what_they_are():
+    """``ehdfem presets``: pure glycerol is glycerol (it read "pure glycerol-water"), and the
+    silicone oils' source does not state a density range their 10 cSt grade (935 kg/m^3) lies
+    outside."""
+    table = {line.split()[0]: line for line in ehdfem("presets").stdout.splitlines() if line}
+    assert "pure glycerol at 20 C" in table["glycerol"]
+    assert " 935 " in table["silicone_oil_10cst"] and "965-970" not in table["silicone_oil_10cst"]

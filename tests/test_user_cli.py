@@ -357,3 +357,31 @@ def test_the_liquid_presets_say_what_they_are():
     table = {line.split()[0]: line for line in ehdfem("presets").stdout.splitlines() if line}
     assert "pure glycerol at 20 C" in table["glycerol"]
     assert " 935 " in table["silicone_oil_10cst"] and "965-970" not in table["silicone_oil_10cst"]
+
+
+def test_tangential_and_roelands_settings_that_cannot_act_are_warned_of():
+    """A head-on impact solves no tangential motion: its film model, mode-1 deformation and
+    the sphere's inertia factor cannot act; nor the sliding film's deformation with the Couette
+    film, nor the Roelands index with the constant viscosity. A warning each, and the run."""
+    dimensionless = ["collide", "--St", "10", "--eps", "1e-3", "--nodes", "60"]
+    head_on = ehdfem(*dimensionless, "--tangential", "lubrication", "--inertia-factor", "0.5",
+                     "--roelands-index", "0.5")  # fmt: skip
+    oblique = ehdfem(*dimensionless, "--angle", "30", "--sliding-deformation", "full")
+    warned = [
+        line.split(": warning: ")[1]
+        for done in (head_on, oblique)
+        for line in done.stderr.splitlines()
+        if ": warning: " in line
+    ]
+    assert [w.split(" has no effect ")[0] for w in warned] == [
+        "--tangential", "--inertia-factor", "--roelands-index", "--sliding-deformation"
+    ]  # fmt: skip
+    assert "on a head-on impact" in warned[0] and "with --tangential couette" in warned[3]
+    assert head_on.returncode == oblique.returncode == 0
+
+
+def test_an_error_the_library_names_by_its_field_names_the_option():
+    """The time-step control's refusal of --exit-gap on a thin layer ("exit_gap = 2.0 needs an
+    immersed layer") comes in the documented form, ``--exit-gap: 2.0 needs ...``."""
+    line = one_line(ehdfem("collide", "--St", "10", "--eps", "1e-3", "--exit-gap", "2"))
+    assert line.startswith("ehdfem collide: error: --exit-gap: 2.0 needs an immersed layer")

@@ -92,8 +92,12 @@ def error_text(err: checks.InputError, parser: argparse.ArgumentParser) -> str:
     """``--flag: message`` for a refused input: the message names the options as typed on the
     command line where the library names the fields (``St = 0.0 is ...`` becomes ``--St: 0.0
     is ...``; ``vapour_pressure`` becomes ``--vapour-pressure``)."""
-    text, flag = str(err), flag_of(parser, err.name)
-    for prefix in (f"{err.name} = ", f"{err.name} ", f"{flag} "):
+    text, name = str(err), err.name
+    named = re.match(r"([a-z]\w*) = ", text)  # an unnamed error that starts with its field
+    if name is None and named and flag_of(parser, named.group(1)):
+        name = named.group(1)
+    flag = flag_of(parser, name)
+    for prefix in (f"{name} = ", f"{name} ", f"{flag} "):
         if flag and text.startswith(prefix):
             text = text[len(prefix) :]
             break

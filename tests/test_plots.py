@@ -163,3 +163,26 @@ def test_bounce_figure_labels_never_overlap(apexes):
     panel = fig.axes[1]
     assert list(panel.lines[0].get_ydata()) == [c.e for c in result.contacts]
     assert list(panel.lines[0].get_xdata()) == [c.St for c in result.contacts]
+
+
+def test_a_physical_collisions_plots_name_its_inputs_and_overlap_nowhere(tmp_path, monkeypatch):
+    """``collide --example --plots``: each figure's title names the physical inputs (sphere,
+    radius, speed, angle, wall, layer, liquid) above the scaled groups, and no text of the
+    three figures covers another."""
+    from ehdfem.cli.main import main
+
+    figures = []
+
+    def keep(fig, path):
+        fig.tight_layout()
+        figures.append(fig)
+        return path
+
+    monkeypatch.setattr(plots, "_save", keep)
+    assert main(["collide", "--example", "--nodes", "80", "--plots", str(tmp_path)]) == 0
+    assert len(figures) == 3
+    for fig in figures:
+        title = fig._suptitle.get_text()
+        assert title.startswith("steel sphere of radius 6.35 mm at 1 m/s, 30 deg from the normal")
+        assert "St = 98.52, eps = 7.14e-07, thin layer: e_n = 0.88" in title
+        assert overlapping_texts(fig) == []

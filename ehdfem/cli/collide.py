@@ -14,7 +14,7 @@ from ..config import read_inputs
 from ..outputs.fields import field_snapshots, write_fields
 from ..outputs.histories import write_histories
 from . import paths
-from .arguments import JSON_HELP, print_table, report_stream, write_json
+from .arguments import JSON_HELP, physical_inputs_line, print_table, report_stream, write_json
 from .inputs import add_collision_arguments, collision_inputs, run_config
 
 COLLIDE_HELP = "simulate one collision and print its results"
@@ -150,10 +150,13 @@ def collide_command(args) -> int:
         from ..outputs import plots  # matplotlib costs 0.25 s to import: only when plotting
 
         units = result.physical.scales() if result.physical else None
-        wrote.append(plots.plot_histories(result.normal, out / "histories.png", units))
-        wrote.append(plots.plot_profiles(result.normal, out / "profiles.png", units))
+        physical = summary["inputs"].get("physical")
+        heading = physical_inputs_line(physical).split(": ", 1)[1] if physical else None
+        normal = result.normal
+        wrote.append(plots.plot_histories(normal, out / "histories.png", units, heading))
+        wrote.append(plots.plot_profiles(normal, out / "profiles.png", units, heading))
         if result.tangential is not None:
-            wrote.append(plots.plot_tangential(result, out / "tangential.png"))
+            wrote.append(plots.plot_tangential(result, out / "tangential.png", heading))
     for path in wrote:
         print(f"  wrote {path}", file=report)
     return 0

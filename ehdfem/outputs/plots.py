@@ -4,6 +4,7 @@ units of ehdfem.inputs.scales; the tangential motion in its scaled units (by U0)
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -83,9 +84,10 @@ def _first(condition) -> int | None:
     return int(hits[0]) if len(hits) else None
 
 
-def plot_histories(result, path: Path, units=None) -> Path:
+def plot_histories(result, path: Path, units=None, heading: str | None = None) -> Path:
     """Gap, velocity, force and film thickness (central and minimum) against time, in SI given
-    ``units`` (:func:`axes`)."""
+    ``units`` (:func:`axes`); ``heading``: a line above the title (a physical collision's
+    inputs)."""
     hist, of = result.history, axes(units)
     time = of["time"][0] * hist.time
     fig, panels = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
@@ -106,15 +108,16 @@ def plot_histories(result, path: Path, units=None) -> Path:
     ax.grid(alpha=0.3, which="both")
     for ax in panels[1]:
         ax.set_xlabel(of["time"][1])
-    fig.suptitle(_title(result))
+    fig.suptitle(_title(result, heading))
     return _save(fig, path)
 
 
-def plot_profiles(result, path: Path, units=None) -> Path:
+def plot_profiles(result, path: Path, units=None, heading: str | None = None) -> Path:
     """Pressure and film thickness against the radius at the instants where the film changes
     (:func:`profile_instants`: approach, X = 0, maximum force, maximum compression, rebound,
     strongest suction, exit), each labelled with its phase and time; in SI given ``units``
-    (:func:`axes`), else by mu V0 a / x0^2, x0, sqrt(a x0) and x0/V0."""
+    (:func:`axes`), else by mu V0 a / x0^2, x0, sqrt(a x0) and x0/V0; ``heading`` as in
+    :func:`plot_histories`."""
     hist, of = result.history, axes(units)
     (p_unit, p_label), (h_unit, h_label) = of["pressure"], of["film"]
     (r_unit, r_label), (t_unit, t_label) = of["radius"], of["time"]
@@ -149,7 +152,7 @@ def plot_profiles(result, path: Path, units=None) -> Path:
     ax_h.legend(  # beside the plots: the curves stay visible
         fontsize=8, title="phase", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0)
     )
-    fig.suptitle(_title(result))
+    fig.suptitle(_title(result, heading))
     return _save(fig, path)
 
 
@@ -163,9 +166,9 @@ def symlog_threshold(suction: float, largest: float) -> float:
     return float(10.0 ** np.floor(np.log10(max(suction, 1e-6 * largest))))
 
 
-def plot_tangential(collision, path: Path) -> Path:
+def plot_tangential(collision, path: Path, heading: str | None = None) -> Path:
     """Tangential velocity U, spin a Omega, slip U - a Omega (all by U0) and the tangential
-    force (by 6 pi mu a^2 U0 / x0) against time T."""
+    force (by 6 pi mu a^2 U0 / x0) against time T; ``heading`` as in :func:`plot_histories`."""
     t = collision.tangential
     fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(11, 4.5))
     ax_v.plot(t.time, t.velocity, label="U")
@@ -179,7 +182,7 @@ def plot_tangential(collision, path: Path) -> Path:
         ax.set_xlabel("time T (by $x_0/V_0$)")
         ax.grid(alpha=0.3)
     e_t = "-" if t.e_t is None else f"{t.e_t:.5g}"
-    fig.suptitle(f"{_title(collision.normal)}; {t.model}: e_t = {e_t} ({t.at})")
+    fig.suptitle(f"{_title(collision.normal, heading)}; {t.model}: e_t = {e_t} ({t.at})")
     return _save(fig, path)
 
 
@@ -237,10 +240,12 @@ def plot_bounce(result, path: Path) -> Path:
     return _save(fig, path)
 
 
-def _title(result) -> str:
+def _title(result, heading: str | None = None) -> str:
+    """The groups and the outcome, below ``heading`` (wrapped at 100 characters) if given."""
     p = result.params
     outcome = f"e_n = {result.e_n:.4g}" if result.rebound else "sticks"
-    return f"St = {p.St:g}, eps = {p.eps:g}, {p.layer} layer: {outcome}"
+    title = f"St = {p.St:.4g}, eps = {p.eps:.3g}, {p.layer} layer: {outcome}"
+    return f"{textwrap.fill(heading, 100)}\n{title}" if heading else title
 
 
 def _save(fig, path: Path) -> Path:

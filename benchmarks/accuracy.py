@@ -7,7 +7,7 @@ twice the film nodes) and the cost of the default is compared with the old defau
 order 3, rtol 5e-5, step control on X and V only), in wall time (the fastest of REPEATS runs
 each) and in implicit steps tried. The reference's own time error is measured too: the largest
 relative change of an output when its rtol is ten times looser. The old default is the old
-control on the old film grid (the sinh grid of ehdfem.film.reynolds.radial_grid, uniform inside the
+control on the old film grid (the sinh grid of ehdfem.film.grid.radial_grid, uniform inside the
 largest contact radius and geometric beyond). Every collision is oblique (30 degrees) so that
 e_t and the spin change are measured too. Writes benchmarks/results/accuracy.json after each
 case (per case and output the relative error, per case the cost ratios; the largest of each;
@@ -41,7 +41,7 @@ from ehdfem import (  # noqa: E402
 )
 from ehdfem.collision import DEFAULT_NODES, elasticity, film_extent, film_radii  # noqa: E402
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import radial_grid  # noqa: E402
+from ehdfem.film.grid import radial_grid  # noqa: E402
 from ehdfem.motion.normal import NormalSolverError  # noqa: E402
 from ehdfem.study.sweep import (  # noqa: E402
     ResultTable,

@@ -7,12 +7,12 @@ benchmarks/results/fem_collision.json. Targets: the compliance build of the FE m
 (pressure and shear traction, condensed on one process: docs/fem.md) at most 5 times one
 half-space collision at the same film resolution, measured in this run
 (``compliance_build_ratio``), and an FE collision (after the build) at most twice a half-space
-one. The build is timed again for the pressure alone; then the mode-1 compliance of the same
-solids (the sliding film's, issue 15: its own Cholesky factorisation and 3N unit loads in
-blocks). ``condensation_error``: the largest difference, relative to its largest value, between
-the gap the built compliances give for a random film load (pressure and shear) and the one a
-solve of the whole (distributed) solids opens. The compliance cache
-(ehdfem.solids.fe.mesh) points to a new temporary directory, so every build above is
+one (each the fastest of three runs). The build is timed again for the pressure alone; then the
+mode-1 compliance of the same solids (the sliding film's, issue 15: its own Cholesky
+factorisation and 3N unit loads in blocks). ``condensation_error``: the largest difference,
+relative to its largest value, between the gap the built compliances give for a random film load
+(pressure and shear) and the one a solve of the whole (distributed) solids opens. The compliance
+cache (ehdfem.solids.fe.mesh) points to a new temporary directory, so every build above is
 computed; the same solids built once more then read their matrices from it (the time a rerun
 pays: mesh from its cache, assembly, and the cached matrices).
 """
@@ -72,9 +72,12 @@ def main():
     kernel_time = time.perf_counter() - start
     times = {}
     for name, compliance in (("fem", fem), ("halfspace", half_space)):
-        start = time.perf_counter()
-        result = solve_normal(params, compliance)
-        times[name] = (time.perf_counter() - start, result.e_n)
+        for _ in range(3):  # the fastest of three: the first loads the compiled film loops
+            start = time.perf_counter()
+            result = solve_normal(params, compliance)
+            elapsed = time.perf_counter() - start
+            if name not in times or elapsed < times[name][0]:
+                times[name] = (elapsed, result.e_n)
     out = {
         "film_nodes": len(radii),
         "cells": solids.mesh.topology.index_map(2).size_global,

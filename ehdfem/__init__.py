@@ -13,13 +13,14 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
 - :class:`RunConfig`: how a collision is computed (model, lower body, tangential film model,
   numerics; :mod:`ehdfem.config`), and :class:`IntegratorOptions`, its time-step
   tolerance and limits;
-- :func:`bounce` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a liquid and
-  bouncing until it rests, each contact an immersed EHD collision (:class:`BounceResult`). The
-  function shadows the module's name: import the module's other names with
-  ``from ehdfem.bounce.trajectory import ...``.
+- :func:`bounce_sphere` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a
+  liquid and bouncing until it rests, each contact an immersed EHD collision
+  (:class:`BounceResult`); its parts are in the subpackage :mod:`ehdfem.bounce`.
 """
 
-from .bounce.trajectory import BounceInputs, BounceResult, bounce
+from .bounce.inputs import BounceInputs
+from .bounce.result import BounceResult
+from .bounce.trajectory import bounce_sphere
 from .collision import CollisionResult, collide, elasticity, film_radii
 from .config import RunConfig
 from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets
@@ -40,7 +41,7 @@ __all__ = [
     "RunConfig",
     "TangentialResult",
     "__version__",
-    "bounce",
+    "bounce_sphere",
     "collide",
     "critical_speed",
     "critical_stokes",

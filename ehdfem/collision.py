@@ -16,10 +16,11 @@ import numpy as np
 
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
+from .exact import hertz
 from .film import cavitation
-from .film.reynolds import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
-from .film.viscosity import ViscosityRangeWarning, barus_range_warning, barus_validity_pressure
-from .inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
+from .film.viscosity import ViscosityRangeWarning, barus_range_warning
+from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import plausibility, provenance
@@ -52,7 +53,7 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
     (gap ~ eps^(2/5)); the grid's end, for a thin layer where the wetted edge can reach,
     sqrt(2 (1 + compression)), plus 5 %, for an immersed one IMMERSED_OUTER_RADIUS (or 10 rims).
     """
-    compression = hertz_max_compression(params.eps, params.St)
+    compression = hertz.max_compression(params.eps, params.St)
     rim = max(np.sqrt(compression), params.eps**0.2)
     if params.layer == "thin":
         return rim, 1.05 * np.sqrt(2.0 * (1.0 + compression))  # > 1.48 sqrt(compression)
@@ -61,7 +62,7 @@ def film_extent(params: CollisionParameters) -> tuple[float, float]:
 
 def contact_spacings(St: float) -> dict:
     """The film grid's axis spacing and rim spacing (relative to the contact's) and its outlet
-    radius (by the rim radius), scaled, no unit (:func:`ehdfem.film.reynolds.contact_grid`'s
+    radius (by the rim radius), scaled, no unit (:func:`ehdfem.film.grid.contact_grid`'s
     keywords), for the Stokes number St. Up to St = HARD_IMPACT the grid's own, 0.2, 0.3 and
     1.5. Above it the thinnest film is the exit constriction at the rim of a contact flattened
     far more than the film is thick. Its width relative to the contact radius is about
@@ -84,7 +85,7 @@ def contact_spacings(St: float) -> dict:
 
 
 def film_radii(params: CollisionParameters, nodes: int = DEFAULT_NODES) -> np.ndarray:
-    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.reynolds.contact_grid` graded
+    """Film nodes for a collision (by sqrt(a x0)): :func:`ehdfem.film.grid.contact_grid` graded
     to the rim of :func:`film_extent`, with the spacings of :func:`contact_spacings` (the
     grid's own up to St = HARD_IMPACT). A thin layer's grid ends at least 1.48 rims out
     (eps^(1/5) is cut to that at tiny St and large eps); an immersed one has a node at the
@@ -366,7 +367,7 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
         )
         if result.halfspace_range.flagged:
             warnings.warn(result.halfspace_range.warning(), HalfSpaceRangeWarning, stacklevel=3)
-    _check_barus_range(params, physical, normal)
+    _check_viscosity_range(params, physical, normal)
     _check_result_range(params, physical, normal)
     if params.tangential_speed == 0:
         return result
@@ -389,13 +390,14 @@ def _check_result_range(params, physical, normal: NormalResult) -> None:
         warnings.warn(note, ResultRangeWarning, stacklevel=4)
 
 
-def _check_barus_range(params, physical, normal: NormalResult) -> None:
-    """Warn (ViscosityRangeWarning) when a Barus film's largest pressure went past the law's
-    validity, :func:`ehdfem.film.viscosity.barus_validity_pressure` (SI, Pa); physical inputs
-    only (scaled ones give no liquid to compare the Roelands law of)."""
-    if physical is None or params.viscosity != "barus":
+def _check_viscosity_range(params, physical, normal: NormalResult) -> None:
+    """Warn (ViscosityRangeWarning) when the film's largest pressure went past its viscosity
+    law's validity, :meth:`ehdfem.film.viscosity.Viscosity.validity_pressure` (SI, Pa);
+    physical inputs only (scaled ones give no liquid to compare the law with)."""
+    if physical is None:
         return
-    validity = barus_validity_pressure(physical.alpha, physical.liquid.viscosity)
+    law = params.viscosity_law()
+    validity = law.validity_pressure(physical.alpha, physical.liquid.viscosity)
     largest = float(np.max(normal.history.pressure)) * physical.scales().pressure
     if largest > validity:
         warnings.warn(barus_range_warning(largest, validity), ViscosityRangeWarning, stacklevel=4)

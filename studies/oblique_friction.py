@@ -34,10 +34,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
+from ehdfem.exact.rigid_impact import frictional_impact  # noqa: E402
 from ehdfem.inputs.scales import from_presets  # noqa: E402
 from ehdfem.outputs import registry  # noqa: E402
 from ehdfem.study.sweep import ResultTable, study_script  # noqa: E402
-from ehdfem.tangential.friction import rigid_impact  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = ROOT / "studies" / "results" / "oblique_friction.csv"
@@ -133,7 +133,7 @@ def plot(rows, figure):
     psi = column(rows, "psi_in")
     k = 0.4
     dense = np.linspace(0.0, psi.max() * 1.02, 200)
-    dry = [rigid_impact(p, FRICTION, E_DRY, k)[0] for p in dense]
+    dry = [frictional_impact(p, FRICTION, E_DRY, k)[0] for p in dense]
     dry_friction = np.minimum(FRICTION, dense / ((1 + 1 / k) * (1 + E_DRY)))
     fig, (ax_psi, ax_mu) = plt.subplots(1, 2, figsize=(12, 4.8))
     ax_psi.plot(dense, dense, ":", color="grey", label="psi_out = psi_in (no friction)")

@@ -23,7 +23,6 @@ docs/validation.md. Resumable: finished points are kept in the CSV.
 Run: nice -n 10 .venv/bin/python studies/roughness.py [--plot-only]   (about 10 minutes)
 """
 
-import math
 import sys
 from pathlib import Path
 
@@ -35,6 +34,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.config import RunConfig  # noqa: E402
+from ehdfem.exact import rigid_film  # noqa: E402
 from ehdfem.inputs.scales import CollisionParameters, from_presets  # noqa: E402
 from ehdfem.study.sweep import ResultTable, critical_stokes  # noqa: E402
 
@@ -54,12 +54,6 @@ ROUGHNESS_LINES = {"Gondret 1e-4 a": 1e-4 * 6.35e-3, "ground steel 0.1 um": 1e-7
 COMPARED = (("smooth", 0.0), ("impact", 0.01), ("greenwood-tripp", 0.01))
 COMPARED_EPS = 1e-6
 STOKES = (4.0, 6.0, 9.0, 14.0, 25.0, 50.0, 100.0)
-
-
-def rigid_loss(sigma, layer):
-    """L(sigma), the velocity a rigid sphere loses from X = 1 to sigma, times St."""
-    immersed = math.log(1.0 / sigma)
-    return immersed if layer == "immersed" else immersed - 0.5 * (1 - sigma) * (3 - sigma)
 
 
 def critical_points(table):
@@ -131,7 +125,7 @@ def plot(rows):
             if points:
                 ax_c.plot(*zip(*points, strict=True), style + "o", color=colour,
                           label=f"{layer}, eps {eps:g}")  # fmt: skip
-        closed = [(1 + 1 / E_DRY) * rigid_loss(s, layer) for s in sigmas]
+        closed = [rigid_film.rough_critical_stokes(s, E_DRY, layer) for s in sigmas]
         ax_c.plot(sigmas, closed, style, color="k", label=f"{layer}, rigid closed form")
     ax_c.axhspan(5, 20, color="0.9", label="experiments, St_c ~ 10")
     ax_c.set(xscale="log", xlabel="sigma / x0", ylabel="St_c", title="impact model, e_dry 0.97")
@@ -174,7 +168,9 @@ def markdown(rows) -> str:
             cells = [f"{values[s]:.2f}" if s in values else "" for s in SIGMAS]
             lines.append(f"| {layer} | {eps:g} | " + " | ".join(cells) + " |")
     for layer in LAYERS:
-        closed = [f"{(1 + 1 / E_DRY) * rigid_loss(s, layer):.2f}" if s else "-" for s in SIGMAS]
+        closed = [
+            f"{rigid_film.rough_critical_stokes(s, E_DRY, layer):.2f}" if s else "-" for s in SIGMAS
+        ]
         label = f"{layer}, rigid closed form (no suction limit)"
         lines.append(f"| {label} | - | " + " | ".join(closed) + " |")
     return "\n".join(lines)

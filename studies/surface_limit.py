@@ -31,11 +31,12 @@ from scipy.interpolate import CubicSpline
 
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.exact import rigid_film
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.compliance import LinearCompliance
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
-from ehdfem.study.surface_limit import rigid_stopping_gap, stopping_gap_constant, velocity_integral
+from ehdfem.study.surface_limit import stopping_gap_constant, velocity_integral
 from ehdfem.study.sweep import ResultTable, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -67,7 +68,7 @@ class OneSurfaceEffect(LinearCompliance):
 def quotient(St, weakness, delta, nodes, effect="both"):
     """(H_min(on) / H_min(off) - 1) / (eps sqrt(delta)) and H_min(off) at eps = weakness
     X_s^(5/2)."""
-    eps = weakness * rigid_stopping_gap(St) ** 2.5
+    eps = weakness * rigid_film.stopping_gap(St, "thin") ** 2.5
     params = CollisionParameters(St=St, eps=eps, delta=delta)
     radii = radial_grid(nodes, 0.5, 1.5)
     solids = {"off": HalfSpaceCompliance(radii, eps)}

@@ -28,7 +28,7 @@ import numpy as np
 from mpi4py import MPI
 
 from ehdfem.bounce import unsteady
-from ehdfem.bounce.trajectory import brenner_factor
+from ehdfem.bounce.flight import brenner_factor
 from ehdfem.bounce.wall_flow import FINE, WallFlow
 
 ROOT = Path(__file__).resolve().parents[1]

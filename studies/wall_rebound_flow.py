@@ -43,9 +43,9 @@ from scipy.integrate import trapezoid  # noqa: E402
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import reversal_flow  # noqa: E402
 
+from ehdfem.bounce.flight import FarField  # noqa: E402
 from ehdfem.bounce.near_wall_flow import NearWallFlow  # noqa: E402
 from ehdfem.bounce.sphere_flow import DISPLACED  # noqa: E402
-from ehdfem.bounce.trajectory import FarField  # noqa: E402
 from ehdfem.study.sweep import write_atomic  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

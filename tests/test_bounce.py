@@ -1,7 +1,7 @@
-"""`ehdfem.bounce.trajectory`: the flight's force law against exact results (terminal velocity,
-Brenner's wall correction and its limits, the quasi-steady Stokes approach), the energy
-bookkeeping over a bounce, a rigid sphere that sticks where the rigid theory stops it, and refused
-inputs."""
+"""`ehdfem.bounce`: the flight's force law against exact results (terminal velocity, Brenner's
+wall correction and its limits, the quasi-steady Stokes approach), the energy bookkeeping over a
+bounce (`bounce_sphere`), a rigid sphere that sticks where the rigid theory stops it, and
+refused inputs."""
 
 import json
 import math
@@ -11,16 +11,16 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from ehdfem.bounce.trajectory import (
-    BounceInputs,
+from ehdfem.bounce.flight import (
     FarField,
     FlightState,
-    bounce,
     brenner_factor,
     cavity_edge_ratio,
     drag_factor,
     release_height_for_speed,
 )
+from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
 from ehdfem.motion.timestepping import IntegratorOptions
@@ -157,7 +157,7 @@ def test_energy_is_accounted_for_over_a_bounce(e_dry, history):
     inputs = BounceInputs(
         **OIL_BOUNCE, release_height=3e-3, e_dry=e_dry, cavitation="none", history=history
     )
-    result = bounce(inputs, max_bounces=1)
+    result = bounce_sphere(inputs, max_bounces=1)
     contact = result.contacts[0]
     assert contact.status == "rebound" and contact.apex_gap > 0.1 * inputs.diameter
     assert contact.film["energy_error"] < 2e-3 and result.energy_error() < 2e-3
@@ -191,7 +191,7 @@ def test_handover_joins_flight_and_film_both_ways():
     oil = inputs.liquid
     apexes = []
     for jump in (0.005, 0.05):
-        result = bounce(inputs, max_bounces=1, handover_jump=jump)
+        result = bounce_sphere(inputs, max_bounces=1, handover_jump=jump)
         (contact,) = result.contacts
         assert abs(contact.entry_jump) < 0.06 and abs(contact.exit_jump) < 0.08
         cavity_free = math.sqrt(3 * oil.viscosity * inputs.radius * contact.handover_speed / 101325)
@@ -216,7 +216,7 @@ def test_rigid_immersed_sphere_sticks_where_the_rigid_theory_stops_it():
         contact_gravity=False,
         contact_history=False,
     )
-    result = bounce(inputs, model="rigid")
+    result = bounce_sphere(inputs, model="rigid")
     (contact,) = result.contacts
     assert contact.status == "stick" and result.status == "rest: the contact sticks"
     assert 5 < contact.contact_St < 15
@@ -244,10 +244,10 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
         contact_history=False,
         e_dry=0.8,
     )
-    (first,) = bounce(smooth, model="rigid").contacts
+    (first,) = bounce_sphere(smooth, model="rigid").contacts
     sigma = first.handover_gap * math.exp(-first.contact_St / 4)
     rough = replace(smooth, sphere_roughness=sigma, clear_exit=False)
-    contact = bounce(rough, model="rigid", max_bounces=1).contacts[0]
+    contact = bounce_sphere(rough, model="rigid", max_bounces=1).contacts[0]
     assert contact.handover_gap == pytest.approx(first.handover_gap, rel=1e-12)
     assert contact.film["solid_impact_speed_m_s"] is not None and contact.status == "rebound"
     share = 0.25  # L / St
@@ -272,7 +272,7 @@ def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
     test above."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.9, cavitation="none")
     results = {
-        name: bounce(replace(base, **changes), max_bounces=1)
+        name: bounce_sphere(replace(base, **changes), max_bounces=1)
         for name, changes in {
             "off": {"contact_history": False},
             "history": {},
@@ -299,7 +299,7 @@ def test_the_memory_across_a_contact_changes_only_the_flight_after_it():
     the history force's work is integrated in flight whatever its memory holds)."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, cavitation="none")
     results = {
-        memory: bounce(replace(base, history_memory=memory), max_bounces=1)
+        memory: bounce_sphere(replace(base, history_memory=memory), max_bounces=1)
         for memory in ("keep", "reset", "approach")
     }
     kept = results["keep"].contacts[0]
@@ -332,7 +332,7 @@ def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
     )
     far = FarField(inputs)
     options = IntegratorOptions(rtol=1e-5, max_time=5.0)
-    result = bounce(inputs, model="rigid", nodes=300, options=options)
+    result = bounce_sphere(inputs, model="rigid", nodes=300, options=options)
     (contact,) = result.contacts
     assert contact.status == "stalled" and "settling" in result.status
     inside = np.asarray(result.trajectory["phase"]) == "contact"
@@ -400,13 +400,13 @@ def test_bad_inputs_are_refused_by_name(changes, named):
 def test_bad_options_are_refused_by_name(options, named):
     inputs = BounceInputs(**OIL_BOUNCE, release_height=0.01)
     with pytest.raises(InputError, match=named):
-        bounce(inputs, **options)
+        bounce_sphere(inputs, **options)
 
 
 def test_a_start_inside_the_film_region_is_refused():
     inputs = BounceInputs(**OIL_BOUNCE, start_gap=1e-7, start_speed=0.1)
     with pytest.raises(InputError, match="hand-over region"):
-        bounce(inputs)
+        bounce_sphere(inputs)
 
 
 @pytest.mark.slow

@@ -7,6 +7,7 @@ import pytest
 
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
+from ehdfem.film import cavitation
 from ehdfem.film.cavitation import (
     NO_LIMIT,
     MassConserving,
@@ -14,7 +15,8 @@ from ehdfem.film.cavitation import (
     Truncation,
     cavitation_model,
 )
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.implicit_step import ImplicitStep
 from ehdfem.motion.normal import solve_normal
@@ -190,3 +192,11 @@ def test_truncated_cavity_released_far_at_once_converges_to_the_same_step(openin
     held = [(s.pressure <= P_CAV) & ~s.state.dry for s in solutions]
     assert (held[0] == held[1]).all() and held[0].any() == cavity
     assert iterates[0] < iterates[1]
+
+
+def test_every_model_name_gives_the_model_of_that_name():
+    """cavitation_model builds the class registered under each name (a name without its class
+    is no longer possible: the names are the classes'), and no limit gives NoCavitation."""
+    for name in cavitation.MODELS:
+        assert cavitation.cavitation_model(name, -1.0).name == name
+        assert cavitation.cavitation_model(name, cavitation.NO_LIMIT).name == "none"

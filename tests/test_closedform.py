@@ -22,13 +22,9 @@ from ehdfem.dem import export, fitting, lookup
 from ehdfem.dem import forms as shape
 from ehdfem.dem.box import wetted_reach
 from ehdfem.dem.table import table_rows
+from ehdfem.exact import hertz
 from ehdfem.inputs.presets import EXAMPLE
-from ehdfem.inputs.scales import (
-    CollisionParameters,
-    elastic_theta,
-    from_presets,
-    hertz_max_compression,
-)
+from ehdfem.inputs.scales import CollisionParameters, elastic_theta, from_presets
 
 pytestmark = pytest.mark.serial
 
@@ -330,7 +326,7 @@ def test_c_header_equals_the_python_module(tmp_path):
         )
         layer = int(rng.random() < 0.5)
         if wetted_reach(St, eps, delta, ("thin", "immersed")[layer]) > 1:
-            delta = 0.4 / (1.0 + hertz_max_compression(eps, St))  # inside both layers' reach
+            delta = 0.4 / (1.0 + hertz.max_compression(eps, St))  # inside both layers' reach
         points.append((St, eps, delta, p_cav, layer, rng.uniform(0.2, 0.6)))
     text = "".join(f"{St!r} {eps!r} {d!r} {'-inf' if p is None else repr(p)} {layer} {k!r}\n"
                    for St, eps, d, p, layer, k in points)  # fmt: skip

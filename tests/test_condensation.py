@@ -7,7 +7,7 @@ import pytest
 import scipy.sparse
 from mpi4py import MPI
 
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.solids.fe.condensation import condensed
 from ehdfem.solids.fe.linear_algebra import interpolation_matrix
 from ehdfem.solids.fe.solids import FESolids

@@ -10,7 +10,8 @@ from mpi4py import MPI
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.fe import mesh as fem_mesh
 from ehdfem.solids.fe.mode_one import FEModeOne

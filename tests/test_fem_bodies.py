@@ -7,7 +7,7 @@ import pytest
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.solids.fe.bodies import LOWER_BODIES, CoatedWall, LowerSphere, Wall, lower_body
 from ehdfem.solids.fe.mode_one import FEModeOne
 from ehdfem.solids.fe.solids import FESolids

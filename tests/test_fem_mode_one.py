@@ -10,7 +10,8 @@ from hat_averages import averaged, hat_average
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.solids.compliance import MODE_ONE_LOADS
 from ehdfem.solids.fe import dolfinx_compat as compat
 from ehdfem.solids.fe.mode_one import (

@@ -12,7 +12,7 @@ import pytest
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import Scales
 from ehdfem.outputs.fields import write_fields
 from ehdfem.solids.fe.solids import FESolids

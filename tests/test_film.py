@@ -10,7 +10,9 @@ import pytest
 
 from ehdfem import CollisionParameters, film_radii
 from ehdfem.collision import film_extent
-from ehdfem.film.reynolds import Film, contact_grid, radial_grid
+from ehdfem.exact import rigid_film
+from ehdfem.film.grid import contact_grid, radial_grid
+from ehdfem.film.reynolds import Film
 
 pytestmark = pytest.mark.serial
 
@@ -53,7 +55,7 @@ def test_rigid_force_is_exact_on_any_grid(layer):
     squeeze (ehdfem.film.reynolds). The P1 Galerkin conductance converged at second order
     (1.4e-3 off at 200 nodes)."""
     gap, velocity = 0.01, -1.0
-    exact = -velocity * (1 / gap - 2 + gap) if layer == "thin" else -velocity / gap
+    exact = -velocity * rigid_film.force_coefficient(gap, layer)
     outer = 1.5 if layer == "thin" else 30.0
     for n in (20, 50, 200):
         film = Film(radial_grid(n, np.sqrt(gap), outer), layer)
@@ -66,7 +68,7 @@ def test_rigid_pressure_profile_thin_layer():
     film = Film(radial_grid(200, np.sqrt(gap), 1.5), "thin")
     pressure, _, state = quasi_steady(film, gap, velocity)
     h = gap + 0.5 * film.radii**2
-    exact = np.where(h < 1, -3 * velocity * (1 / h**2 - 1), 0.0)
+    exact = rigid_film.pressure(h, velocity, "thin")
     assert np.abs(pressure - exact).max() / exact.max() < 2e-3
     assert state.edge_radius == pytest.approx(np.sqrt(2 * (1 - gap)), rel=1e-3)
 

@@ -15,7 +15,8 @@ from scipy.optimize import brentq
 
 from ehdfem.checks import InputError
 from ehdfem.film.gap import ExactSpheres, Paraboloid, gap_geometry
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions

@@ -9,7 +9,8 @@ from scipy.special import ellipkm1
 
 from ehdfem.checks import InputError
 from ehdfem.collision import DEFAULT_NODES, collide
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.halfspace import (
     COMPRESSION_LIMIT,

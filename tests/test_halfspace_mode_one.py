@@ -11,7 +11,7 @@ import pytest
 from scipy.integrate import quad
 
 from ehdfem.checks import InputError
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.solids.halfspace_mode_one import (
     HalfSpaceModeOne,
     ring_kernel,

@@ -6,7 +6,7 @@ import pytest
 
 from ehdfem import collision
 from ehdfem.collision import film_radii
-from ehdfem.film import reynolds
+from ehdfem.film import grid
 from ehdfem.inputs.scales import CollisionParameters
 from meshes import contact
 
@@ -23,7 +23,7 @@ SLIVER_CASE = CollisionParameters(St=20.0, eps=0.03**2.5 / (13.88 * 20.0), delta
 def earlier_grid_law(monkeypatch):
     """The contact grid's law on which the sliver was found."""
     monkeypatch.setattr(collision, "contact_spacings", lambda St: {"axis_spacing": 0.7})
-    monkeypatch.setattr(reynolds, "_CONTACT_SPACING_SLOPE", 8.0)
+    monkeypatch.setattr(grid, "_CONTACT_SPACING_SLOPE", 8.0)
 
 
 def wall_mesh_shape(algorithm=None):

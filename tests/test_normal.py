@@ -6,8 +6,9 @@ from scipy.optimize import brentq
 
 from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import radial_grid
-from ehdfem.inputs.scales import CollisionParameters, hertz_max_compression
+from ehdfem.exact import hertz
+from ehdfem.film.grid import radial_grid
+from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.solids.compliance import RigidSolids
@@ -54,7 +55,7 @@ def test_dry_hertz_limit_of_the_maximum_compression():
     params = CollisionParameters(St=5e3, eps=1e-6, layer="thin")
     result = collide(params, RunConfig.from_settings(refinements=0))
     assert result.normal.max_compression == pytest.approx(
-        hertz_max_compression(1e-6, 5e3), rel=0.02
+        hertz.max_compression(1e-6, 5e3), rel=0.02
     )
     assert result.normal.max_rebound_velocity > 0.98
 

@@ -25,7 +25,7 @@ def test_changed_rows_and_columns_solve_exactly():
     fixed, theta = np.zeros(N, bool), np.zeros(N, bool)
     fixed[[3, 4]] = True
     theta[[10, 11]] = True
-    lu = ReusableLU(matrix.copy(), fixed, 1.0, theta)
+    lu = ReusableLU(matrix.copy(), fixed, theta)
     new_fixed, new_theta = fixed.copy(), theta.copy()
     new_fixed[[4, 7]] = [False, True]  # node 4 freed, node 7 fixed
     new_theta[[11, 20, 21]] = [False, True, True]
@@ -42,7 +42,7 @@ def test_changed_rows_and_columns_solve_exactly():
 
 def test_a_node_whose_row_and_column_both_change_asks_for_a_new_factorisation():
     matrix, other, _ = matrices(2)
-    lu = ReusableLU(matrix.copy(), np.zeros(N, bool), 1.0, np.zeros(N, bool))
+    lu = ReusableLU(matrix.copy(), np.zeros(N, bool), np.zeros(N, bool))
     changed = np.zeros(N, bool)
     changed[5] = True
     with pytest.raises(TooManyChanges):

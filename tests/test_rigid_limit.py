@@ -5,7 +5,7 @@ A rigid sphere (gap X by x0, speed V by V0, force by 6 pi mu V0 a^2 / x0) feels 
 |V| g(X): immersed P = 3 |V| / H^2 and g = 1/X; in a thin layer the film ends where
 H = X + R^2/2 = 1, P = 3 |V| (1/H^2 - 1) and g = 1/X - 2 + X. St dV/dX = -g gives the speed lost,
 ln(1/X) immersed and ln(1/X) - 3/2 + 2X - X^2/2 thin, and the sphere stops where that loss is
-St (ehdfem.inputs.scales.rigid_stopping_gap). A relative force error e along the approach
+St (ehdfem.exact.rigid_film.stopping_gap). A relative force error e along the approach
 moves the stopping gap by about e St, so the gap within 0.5 % at St needs the force within
 0.5 % / St all the way from X = 1 down to the stop: the film's conductances make it exact.
 """
@@ -16,9 +16,10 @@ from scipy.integrate import trapezoid
 
 from ehdfem import CollisionParameters, collide
 from ehdfem.collision import film_radii
+from ehdfem.exact.rigid_film import stopping_gap as rigid_stopping_gap
+from ehdfem.exact.rigid_film import velocity_loss as rigid_velocity_loss
 from ehdfem.film.reynolds import Film
 from ehdfem.film.viscosity import Viscosity
-from ehdfem.inputs.scales import rigid_stopping_gap, rigid_velocity_loss
 from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial

@@ -5,8 +5,9 @@ import math
 import pytest
 
 from ehdfem.checks import InputError
+from ehdfem.exact import hertz
 from ehdfem.inputs.presets import LIQUIDS, MATERIALS, liquid, material
-from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, hertz_max_compression
+from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
 
 pytestmark = pytest.mark.serial
 
@@ -49,7 +50,7 @@ def test_hertz_compression_matches_the_dimensional_formula():
     p = c.dimensionless()
     e_star = 1 / (math.pi * c.theta)
     exact = (15 * c.mass * c.normal_speed**2 / (16 * e_star * c.radius**0.5)) ** 0.4
-    assert hertz_max_compression(p.eps, p.St) * c.layer_thickness == pytest.approx(exact, rel=1e-12)
+    assert hertz.max_compression(p.eps, p.St) * c.layer_thickness == pytest.approx(exact, rel=1e-12)
 
 
 def test_scales_are_consistent_with_the_equation_of_motion():

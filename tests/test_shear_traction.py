@@ -13,7 +13,8 @@ from hat_averages import averaged
 from mpi4py import MPI
 
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import Film, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film
 from ehdfem.solids.fe.solids import FESolids
 from ehdfem.solids.halfspace import (
     HalfSpaceCompliance,

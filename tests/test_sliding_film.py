@@ -13,7 +13,7 @@ import pytest
 from ehdfem import checks
 from ehdfem.collision import collide, elasticity, film_radii, mode_one_elasticity
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions

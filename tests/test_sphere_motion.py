@@ -9,7 +9,7 @@ import pytest
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.presets import Liquid, Material
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision
 from ehdfem.motion.forces import BuoyantWeight, ConstantForce, HistoryForce, SphereState

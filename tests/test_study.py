@@ -22,13 +22,12 @@ from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.outputs import provenance
 from ehdfem.study.sweep import (
     Study,
-    bisections,
     critical_speed,
     critical_stokes,
     point_key,
     run_study,
-    threshold,
 )
+from ehdfem.study.threshold import bisections, threshold
 from ehdfem.version import __version__
 
 SMALL = """

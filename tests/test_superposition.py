@@ -144,7 +144,7 @@ def test_large_tilt_is_flagged_with_a_warning_and_in_the_summary():
     "extra, message",
     [
         ({"layer": "immersed"}, "needs layer = 'thin'"),
-        ({"cavitation": "mass-conserving", "p_cav": -1.0}, "needs cavitation 'truncate'"),
+        ({"cavitation": "mass-conserving", "p_cav": -1.0}, "does not track the liquid"),
     ],
 )
 def test_check_refuses_what_the_disk_film_cannot_represent(extra, message):

@@ -9,13 +9,12 @@ from scipy.integrate import quad
 from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import radial_grid
+from ehdfem.exact import rigid_film
+from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
 from ehdfem.study.surface_limit import (
     EFFECTS,
-    rigid_stopping_gap,
-    rigid_velocity,
     stopping_gap_constant,
     surface_force_coefficients,
     velocity_integral,
@@ -56,7 +55,7 @@ def test_velocity_integral_is_the_quadrature_of_its_integrand():
 
             def integrand(x):
                 a, b = surface_force_coefficients(x, effect)  # noqa: B023
-                return rigid_velocity(x, St) * a - (1 - x) ** 2 * b / (x * St)  # noqa: B023
+                return rigid_film.velocity(x, St) * a - (1 - x) ** 2 * b / (x * St)  # noqa: B023
 
             for x in (0.05, 0.3):
                 assert velocity_integral(x, St, effect) == pytest.approx(
@@ -67,13 +66,13 @@ def test_velocity_integral_is_the_quadrature_of_its_integrand():
 
 def test_rigid_stop_and_input_checks():
     """V0(X_s) = 0 at the stopping gap (X_s = 0.0997 at St = 1); bad inputs are named."""
-    stop = rigid_stopping_gap(1.0)
+    stop = rigid_film.stopping_gap(1.0, "thin")
     assert stop == pytest.approx(0.0997024, rel=1e-6)
-    assert rigid_velocity(stop, 1.0) == pytest.approx(0.0, abs=1e-12)
+    assert rigid_film.velocity(stop, 1.0) == pytest.approx(0.0, abs=1e-12)
     with pytest.raises(InputError, match="gap"):
-        rigid_velocity(1.5, 1.0)
+        rigid_film.velocity(1.5, 1.0)
     with pytest.raises(InputError, match="St"):
-        rigid_stopping_gap(0.0)
+        rigid_film.stopping_gap(0.0, "thin")
     with pytest.raises(InputError, match="effect"):
         surface_force_coefficients(0.5, "couette")
 

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from ehdfem.config import Numerics, RunConfig
-from ehdfem.film.reynolds import Film, radial_grid, tridiagonal_product
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film, tridiagonal_product
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
 
 pytestmark = pytest.mark.serial

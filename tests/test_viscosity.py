@@ -11,7 +11,8 @@ from scipy.integrate import quad
 
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
-from ehdfem.film.reynolds import Film, FilmError, radial_grid
+from ehdfem.film.grid import radial_grid
+from ehdfem.film.reynolds import Film, FilmError
 from ehdfem.film.viscosity import (
     ROELANDS_LOG_VISCOSITY,
     ROELANDS_PRESSURE,

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from ehdfem.bounce.trajectory import brenner_factor
+from ehdfem.bounce.flight import brenner_factor
 from ehdfem.bounce.unsteady import (
     FIT_TIMES,
     WALL_FAR,

@@ -7,9 +7,10 @@ import argparse
 from argparse import BooleanOptionalAction
 from pathlib import Path
 
-from .. import BounceInputs, IntegratorOptions, bounce, checks
-from ..bounce.trajectory import DRAG_LAWS, EHD_MULTIPLE, GRAVITY, HANDOVER_JUMP, HISTORY_MEMORIES
-from ..bounce.trajectory import MODELS as BOUNCE_MODELS
+from .. import BounceInputs, IntegratorOptions, bounce_sphere, checks
+from ..bounce.contact import MODELS as BOUNCE_MODELS
+from ..bounce.flight import EHD_MULTIPLE, HANDOVER_JUMP
+from ..bounce.inputs import DRAG_LAWS, GRAVITY, HISTORY_MEMORIES
 from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation
@@ -245,7 +246,7 @@ def bounce_command(args) -> int:
     paths.output_folder("folder", args.folder)
     paths.distinct_outputs({"json": args.json, "folder": args.folder})
     inputs = _bounce_inputs(args)
-    result = bounce(
+    result = bounce_sphere(
         inputs,
         model=args.model,
         nodes=args.nodes,

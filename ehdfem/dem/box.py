@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 
 from .. import checks
-from ..inputs.scales import hertz_max_compression
+from ..exact import hertz
 
 BOX = {
     "St": (1.0, 1e4),
@@ -88,7 +88,7 @@ def wetted_reach(St, eps, delta, layer) -> float:
     """The squared radius by a^2 of what must stay inside the sphere's radius r = a, at the dry
     Hertz compression C = (13.88 eps St)^(2/5) (by x0), an upper bound: a thin layer's wetted
     film, 2 delta (1 + C); an immersed layer's flattened contact, 2 delta C."""
-    compression = hertz_max_compression(float(eps), float(St))
+    compression = hertz.max_compression(float(eps), float(St))
     return 2.0 * float(delta) * ((layer == "thin") + compression)
 
 

@@ -76,7 +76,7 @@ from itertools import product
 
 import numpy as np
 
-from ..inputs.scales import hertz_max_compression
+from ..exact import hertz
 from . import box as inputs_box
 
 CRITICAL_SLOPE = 0.4  # St_c / ln(1/eps) of the approach to the elastic gap eps^(2/5)
@@ -148,7 +148,7 @@ def far_field(delta):
 def contact_time(St, eps):
     """2.94 C: the dry Hertz contact time (by x0/V0) at the compression C = (13.88 eps St)^(2/5)
     (by x0)."""
-    return HERTZ_TIME * hertz_max_compression(np.asarray(eps, float), np.asarray(St, float))
+    return HERTZ_TIME * hertz.max_compression(np.asarray(eps, float), np.asarray(St, float))
 
 
 def sliding_integral(forms: dict, St, eps, delta, p_cav, layer: str):

@@ -5,21 +5,28 @@ Scaled as in :mod:`ehdfem.motion.normal`: film thickness H and roughness sigma b
 mu V0 a / x0^2, radius by sqrt(a x0). sigma is the combined rms roughness of the two surfaces,
 sqrt(sigma_1^2 + sigma_2^2).
 
-Greenwood & Tripp (1970-71): two rough surfaces whose asperity summits (density eta per area,
-tip radius beta, Gaussian heights of rms sigma) touch elastically (Hertz) carry at the mean
-separation h the nominal pressure
+Greenwood & Tripp (1970-71): two rough surfaces whose asperity summits (density eta per area
+and tip radius beta on each surface, Gaussian heights whose sum has the rms sigma) touch
+elastically (Hertz) carry at the mean separation h the nominal pressure
 
-    p_a(h) = (16 sqrt(2) / 15) pi (eta beta sigma)^2 sqrt(sigma / beta) E' F_{5/2}(h / sigma),
+    p_a(h) = (16 sqrt(2) / 15) pi (eta beta sigma)^2 sqrt(sigma / beta) E* F_{5/2}(h / sigma),
 
-with E' = 2 / ((1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2) = 2 / (pi theta) (the composite modulus of
-the mixed-lubrication literature, e.g. Gelinck & Schipper 2000) and the Gaussian integral
-F_n(t) = (1/sqrt(2 pi)) int_t^inf (s - t)^n exp(-s^2/2) ds. Its closed form is
+with E* the Hertz modulus of the pair, 1/E* = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2 = pi theta
+(a summit pair of radius beta/2 pressed together by w carries (4/3) E* sqrt(beta/2) w^(3/2),
+the convention of Greenwood & Williamson 1966), and the Gaussian integral
+F_n(t) = (1/sqrt(2 pi)) int_t^inf (s - t)^n exp(-s^2/2) ds. Summing that Hertz force over
+pairs offset laterally by r (overlap w = z_1 + z_2 - h - r^2/(4 beta)) gives the law: the pair
+integral over r turns (4/3) w^(3/2) into (32/15) pi beta (z_1 + z_2 - h)^(5/2), and the sum of
+the two heights is Gaussian with rms sigma. The mixed-lubrication literature often writes the
+same law with the plane-strain modulus E' = 2 E* and the prefactor (8 sqrt(2) / 15) pi; the
+prefactor 16 sqrt(2)/15 with E' = 2 E* is twice too large (tests/test_roughness.py checks the
+law against the summit-pair sum by quadrature). F_n's closed form is
 F_n(t) = Gamma(n + 1) exp(-t^2/4) D_{-n-1}(t) / sqrt(2 pi), D the parabolic cylinder function
 (:func:`gaussian_integral`; the fit 4.4086e-5 (4 - t)^6.804 often used instead is 10 % low at
-contact). With eps = 4 theta mu V0 a^(3/2) / x0^(5/2) the scaled pressure is
-P_a = K F_{5/2}(H/sigma),
+contact). With eps = 4 theta mu V0 a^(3/2) / x0^(5/2), E* by the pressure scale mu V0 a / x0^2
+is 4 / (pi eps sqrt(delta)), and the scaled pressure is P_a = K F_{5/2}(H/sigma),
 
-    K = (128 sqrt(2) / 15) (eta beta sigma)^2 sqrt(sigma / beta) / (eps sqrt(delta)),
+    K = (64 sqrt(2) / 15) (eta beta sigma)^2 sqrt(sigma / beta) / (eps sqrt(delta)),
 
 and the energy stored in the asperities per area, int_H^inf P_a dH = (2/7) K sigma F_{7/2}(H/sigma)
 (dF_n/dt = -n F_{n-1}). The solids carry the asperities' load with the film's: at given film
@@ -35,7 +42,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from scipy.special import gamma, pbdv
@@ -43,8 +50,18 @@ from scipy.special import gamma, pbdv
 from .. import checks
 from .reynolds import FilmError
 
-if TYPE_CHECKING:
-    from ..inputs.scales import CollisionParameters
+
+class RoughInputs(Protocol):
+    """The inputs of a rough collision the asperity law takes (as
+    :class:`ehdfem.inputs.scales.CollisionParameters` holds them, scaled): roughness sigma (by
+    x0), eta beta sigma, sigma/beta, eps and delta."""
+
+    roughness: float
+    asperity_density: float
+    asperity_slope: float
+    eps: float
+    delta: float
+
 
 MODELS = ("impact", "greenwood-tripp")
 REACH = 6.0  # H/sigma beyond which P_a is taken as 0 (F_{5/2}(6) = 3e-11, 5e-11 of F_{5/2}(0))
@@ -68,10 +85,13 @@ def gaussian_integral(order: float, t):
 
 
 def stiffness(asperity_density, asperity_slope, eps, delta) -> float:
-    """K = (128 sqrt(2)/15) (eta beta sigma)^2 sqrt(sigma/beta) / (eps sqrt(delta)): Greenwood &
-    Tripp's prefactor times E' = 2/(pi theta), by mu V0 a / x0^2 (module docstring)."""
+    """K = (64 sqrt(2)/15) (eta beta sigma)^2 sqrt(sigma/beta) / (eps sqrt(delta)) (by
+    mu V0 a / x0^2): Greenwood & Tripp's prefactor (16 sqrt(2)/15) pi (eta beta sigma)^2
+    sqrt(sigma/beta) times the Hertz modulus E* = 1/(pi theta), itself 4/(pi eps sqrt(delta))
+    in the pressure scale (module docstring). ``asperity_density`` eta beta sigma and
+    ``asperity_slope`` sigma/beta are pure numbers, sigma the combined roughness."""
     gt = 16.0 * math.sqrt(2.0) / 15.0 * math.pi * asperity_density**2 * math.sqrt(asperity_slope)
-    return gt * 8.0 / (math.pi * eps * math.sqrt(delta))
+    return gt * 4.0 / (math.pi * eps * math.sqrt(delta))
 
 
 @dataclass(frozen=True)
@@ -100,7 +120,7 @@ class GreenwoodTripp:
         checks.positive("stiffness", self.stiffness)
 
     @classmethod
-    def of(cls, params: CollisionParameters) -> GreenwoodTripp:
+    def of(cls, params: RoughInputs) -> GreenwoodTripp:
         """The law of a rough collision: sigma, eta beta sigma, sigma/beta, eps and delta."""
         k = stiffness(params.asperity_density, params.asperity_slope, params.eps, params.delta)
         return cls(params.roughness, k)

@@ -32,7 +32,6 @@ import numpy as np
 
 from .. import checks
 
-MODELS = ("truncate", "mass-conserving", "none")
 NO_LIMIT = -math.inf  # P_cav of a film without a cavitation limit
 
 
@@ -54,12 +53,11 @@ def suction_limit_output(p_cav: float) -> float | None:
 
 
 def cavitation_model(name: str, p_cav: float):
-    """The cavitation model ``name`` (one of MODELS) with the limit ``p_cav`` (scaled)."""
+    """The cavitation model ``name`` (one of MODELS) with the limit ``p_cav`` (scaled): the
+    model of that name, or :class:`NoCavitation` where there is no limit (P_cav = -inf)."""
     checks.choice("cavitation", name, MODELS)
     p_cav = suction_limit(p_cav)
-    if name == "none" or p_cav == NO_LIMIT:
-        return NoCavitation()
-    return Truncation(p_cav) if name == "truncate" else MassConserving(p_cav)
+    return NoCavitation() if p_cav == NO_LIMIT else _BY_NAME[name](p_cav)
 
 
 class NoCavitation:
@@ -68,6 +66,9 @@ class NoCavitation:
     name = "none"
     p_cav = NO_LIMIT
     tracks_liquid = False
+
+    def __init__(self, p_cav: float = NO_LIMIT):
+        """A film without a limit takes any P_cav and ignores it."""
 
     def start(self, fill, cavitated):
         """(theta, cavitated) at the start of a step's Newton iteration: a full film."""
@@ -191,3 +192,7 @@ class MassConserving(NoCavitation):
         fill = np.ones_like(fill)
         fill[cavitated] = np.maximum(1.0 + u[cavitated] / stiffness[cavitated], 0.0)
         return pressure, fill, cavitated
+
+
+_BY_NAME = {model.name: model for model in (Truncation, MassConserving, NoCavitation)}
+MODELS = tuple(_BY_NAME)  # the models by name: a new model is a class here and its entry

@@ -28,6 +28,39 @@ from numba import njit
 
 
 @njit(cache=True)
+def _conductance(r_left, length, h_points, fluidity, dfluidity, e, xi, w, density):
+    """(k, dk/dH_left, dk/dH_right, dk/dP_left, dk/dP_right) of element ``e`` from its left
+    radius, its length and H at its points (module docstring); ``fluidity`` and ``dfluidity``
+    mu0/mu and d(mu0/mu)/dP at the elements' points, or empty (constant viscosity);
+    ``density``: room for the resistance's terms at the points."""
+    points = len(xi)
+    squeeze_flux = 0.5 * r_left * r_left + length * (3.0 * r_left + length) / 6.0
+    resistance = 0.0
+    for q in range(points):
+        radius = r_left + length * xi[q]
+        h = h_points[q]
+        density[q] = 3.0 * w[q] * length * (radius * radius * radius) / (h * h * h)
+        resistance += density[q]
+    geometric = squeeze_flux * squeeze_flux / resistance
+    mean = 1.0
+    dk_dp_left = dk_dp_right = 0.0
+    if fluidity.shape[0] > 0:
+        mean = 0.0
+        for q in range(points):
+            mean += w[q] * fluidity[e, q]
+            share = geometric * w[q] * dfluidity[e, q]
+            dk_dp_left += share * (1.0 - xi[q])
+            dk_dp_right += share * xi[q]
+    factor = 3.0 * geometric / resistance * mean
+    dk_dh_left = dk_dh_right = 0.0
+    for q in range(points):
+        slope = factor * density[q] / h_points[q]
+        dk_dh_left += slope * (1.0 - xi[q])
+        dk_dh_right += slope * xi[q]
+    return geometric * mean, dk_dh_left, dk_dh_right, dk_dp_left, dk_dp_right
+
+
+@njit(cache=True)
 def assemble_bands(
     radii,
     thickness,
@@ -52,71 +85,109 @@ def assemble_bands(
     the elements' points (elements, len(xi)); an empty array: constant viscosity, E = 0."""
     n = len(radii)
     mass = np.zeros(n)
-    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    h_lower, h_diagonal, h_upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    p_lower, p_diagonal, p_upper = np.zeros(n), np.zeros(n), np.zeros(n)
-    piezoviscous = fluidity.shape[0] > 0
-    points = len(xi)
-    density = np.empty(points)
-    h_points = np.empty(points)
+    k_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    h_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    p_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
+    h_points, density = np.empty(len(xi)), np.empty(len(xi))
     for e in range(regular + (1 if cut_length > 0.0 else 0)):
-        r_left = radii[e]
-        is_regular = e < regular
-        if is_regular:
-            length, r_right = radii[e + 1] - r_left, radii[e + 1]
-            h_right, p_right = thickness[e + 1], pressure[e + 1]
-            for q in range(points):
-                h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + between[e, q]
+        r_left, whole = radii[e], e < regular
+        if whole:
+            length, p_right = radii[e + 1] - r_left, pressure[e + 1]
+            h_right, excess = thickness[e + 1], between[e]
         else:
-            length, r_right = cut_length, r_left + cut_length
-            p_right = 0.0
-            for q in range(points):
-                h_points[q] = thickness[e] * (1.0 - xi[q]) + xi[q] + cut_between[q]
+            length, p_right, h_right, excess = cut_length, 0.0, 1.0, cut_between
+        for q in range(len(xi)):
+            h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + excess[q]
+        k, dh_left, dh_right, dp_left, dp_right = _conductance(
+            r_left, length, h_points, fluidity, dfluidity, e, xi, w, density
+        )
         jump = pressure[e] - p_right
-        # int phi R dR of the falling (left) and rising (right) hats over the element
-        falling = length * (2.0 * r_left + (r_left + length)) / 6.0
-        rising = length * (r_left + 2.0 * r_right) / 6.0
-        squeeze_flux = 0.5 * r_left * r_left + falling
-        resistance = 0.0
-        for q in range(points):
-            radius = r_left + length * xi[q]
-            density[q] = 3.0 * w[q] * length * radius**3.0 / h_points[q] ** 3.0
-            resistance += density[q]
-        geometric = squeeze_flux * squeeze_flux / resistance
-        mean = 1.0
-        dk_dp_left = dk_dp_right = 0.0
-        if piezoviscous:
-            mean = 0.0
-            for q in range(points):
-                mean += w[q] * fluidity[e, q]
-                share = geometric * w[q] * dfluidity[e, q]
-                dk_dp_left += share * (1.0 - xi[q])
-                dk_dp_right += share * xi[q]
-        dk_dh_left = dk_dh_right = 0.0
-        for q in range(points):
-            slope = geometric / resistance * 3.0 * density[q] / h_points[q] * mean
-            dk_dh_left += slope * (1.0 - xi[q])
-            dk_dh_right += slope * xi[q]
-        k = geometric * mean
-        mass[e] += falling
-        diagonal[e] += k
-        h_diagonal[e] += dk_dh_left * jump
-        p_diagonal[e] += dk_dp_left * jump
-        if is_regular:
-            right = e + 1
-            mass[right] += rising
-            diagonal[right] += k
-            upper[e] -= k
-            lower[right] -= k
-            h_upper[e] += dk_dh_right * jump
-            h_lower[right] -= dk_dh_left * jump
-            h_diagonal[right] -= dk_dh_right * jump
-            p_upper[e] += dk_dp_right * jump
-            p_lower[right] -= dk_dp_left * jump
-            p_diagonal[right] -= dk_dp_right * jump
-    return (
-        mass,
-        (lower, diagonal, upper),
-        (h_lower, h_diagonal, h_upper),
-        (p_lower, p_diagonal, p_upper),
-    )
+        # int phi R dR of the falling (left) hat over the element, and of the rising one
+        mass[e] += length * (2.0 * r_left + (r_left + length)) / 6.0
+        if whole:
+            mass[e + 1] += length * (r_left + 2.0 * radii[e + 1]) / 6.0
+        _add_flux(k_bands, e, k, -k, whole)
+        _add_flux(h_bands, e, dh_left * jump, dh_right * jump, whole)
+        _add_flux(p_bands, e, dp_left * jump, dp_right * jump, whole)
+    return mass, k_bands, h_bands, p_bands
+
+
+@njit(cache=True)
+def _add_flux(bands, e, left, right, whole):
+    """Add to the bands the derivatives (d/dy_left, d/dy_right) = (``left``, ``right``) of the
+    flux q out of element e's left node (and, on a ``whole`` element, into its right node:
+    that row takes -q's)."""
+    lower, diagonal, upper = bands
+    diagonal[e] += left
+    if whole:
+        upper[e] += right
+        lower[e + 1] -= left
+        diagonal[e + 1] -= right
+
+
+@njit(cache=True)
+def _thickness_at(thickness, e, whole, between, cut_between, xi, q):
+    """H at point xi[q] of element e: linear between its ends (H = 1 at a cut element's edge)
+    plus the undeformed gap's excess over its chord."""
+    if whole:
+        return thickness[e] * (1.0 - xi[q]) + thickness[e + 1] * xi[q] + between[e, q]
+    return thickness[e] * (1.0 - xi[q]) + xi[q] + cut_between[q]
+
+
+@njit(cache=True)
+def squeeze_shear_load(
+    radii, thickness, pressure, regular, cut_length, cut_between, between, xi, w
+):
+    """int phi_j T R dR at the nodes for the element-wise traction T = -(H/2) dP/dR, P linear
+    on each wetted element (P = 0 at a cut element's edge), H at the points ``xi`` (weights
+    ``w``), phi_j the hats of the grid's whole cells (a cut element keeps its cell's hats).
+    The wetted elements, ``thickness`` H, ``between`` and ``cut_between`` as in
+    :func:`assemble_bands`."""
+    n = len(radii)
+    load = np.zeros(n)
+    for e in range(regular + (1 if cut_length > 0.0 else 0)):
+        whole = e < regular
+        length = radii[e + 1] - radii[e] if whole else cut_length
+        cell = radii[min(e + 1, n - 1)] - radii[e] if e < n - 1 else length
+        slope = ((pressure[e + 1] if whole else 0.0) - pressure[e]) / length
+        for q in range(len(xi)):
+            h = _thickness_at(thickness, e, whole, between, cut_between, xi, q)
+            radius = radii[e] + length * xi[q]
+            rising = length * xi[q] / cell
+            weight = length * w[q] * radius * (-0.5 * h * slope)
+            load[e] += weight * (1.0 - rising)
+            load[min(e + 1, n - 1)] += weight * rising
+    return load
+
+
+@njit(cache=True)
+def surface_transport_bands(
+    radii, thickness, fill, regular, cut_length, cut_between, between, xi, w
+):
+    """Bands (lower, diagonal, upper) of B, (B v)_i = -int phi_i' R theta H v dR over the
+    wetted elements, v and the liquid fraction theta (``fill``, 1 at a cut element's edge)
+    linear on the grid's cells (a cut element keeps its cell's hats), H at the points ``xi``
+    (weights ``w``); the wetted elements, ``thickness`` H, ``between`` and ``cut_between`` as
+    in :func:`assemble_bands`."""
+    n = len(radii)
+    lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
+    for e in range(regular + (1 if cut_length > 0.0 else 0)):
+        whole = e < regular
+        length = radii[e + 1] - radii[e] if whole else cut_length
+        cell = radii[e + 1] - radii[e]
+        fill_right = fill[e + 1] if whole else 1.0
+        from_left = from_right = 0.0
+        for q in range(len(xi)):
+            h = _thickness_at(thickness, e, whole, between, cut_between, xi, q)
+            radius = radii[e] + length * xi[q]
+            theta = fill[e] * (1.0 - xi[q]) + fill_right * xi[q]
+            rising = (radius - radii[e]) / cell
+            weight = w[q] * radius * h * theta
+            from_left += weight * (1.0 - rising)
+            from_right += weight * rising
+        diagonal[e] += from_left
+        upper[e] += from_right
+        if whole:
+            lower[e + 1] -= from_left
+            diagonal[e + 1] -= from_right
+    return lower, diagonal, upper

@@ -68,15 +68,18 @@ class ExactSpheres(Paraboloid):
         self.limit = min(self.radii) / math.sqrt(self.delta)  # the smaller sphere's equator
 
     def _remainder(self, radius):
-        """D = S - R^2/2 and dD/dR (at a float R or an array of them)."""
-        if (np.asarray(radius) >= self.limit).any():
+        """D = S - R^2/2 and dD/dR (at a float R or an array of them; a float by math, which
+        the wetted edge's Newton asks for some ten times an iterate)."""
+        scalar = isinstance(radius, float)
+        if radius >= self.limit if scalar else (radius >= self.limit).any():
             raise checks.InputError(
                 f"the film reaches R = {float(np.max(radius)):.4g} sqrt(a x0), beyond the "
                 f"sphere's equator at {self.limit:.4g}: no exact gap there"
             )
+        sqrt = math.sqrt if scalar else np.sqrt
         value, slope = -0.5 * radius**2, -radius
         for rho in self.radii:
-            root = np.sqrt(rho**2 - self.delta * radius**2)
+            root = sqrt(rho**2 - self.delta * radius**2)
             value = value + radius**2 / (rho + root)
             slope = slope + radius / root
         return value, slope
@@ -89,16 +92,25 @@ class ExactSpheres(Paraboloid):
         return 0.5 * radius**2 + value, radius + slope
 
     def between_nodes(self, left, length, xi):
-        points = left[:, None] + length[:, None] * xi
-        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        d_left, d_right, inside = self._at_points(left, length, xi)[0]
         chord = d_left[:, None] * (1.0 - xi) + d_right[:, None] * xi
-        return super().between_nodes(left, length, xi) + self._remainder(points)[0] - chord
+        return super().between_nodes(left, length, xi) + inside - chord
 
     def slope_between_nodes(self, left, length, xi):
-        points = left[:, None] + length[:, None] * xi
-        d_left, d_right = self._remainder(left)[0], self._remainder(left + length)[0]
+        (d_left, d_right, _), (_, _, slope) = self._at_points(left, length, xi)
         chord = ((d_right - d_left) / length)[:, None]
-        return super().slope_between_nodes(left, length, xi) + self._remainder(points)[1] - chord
+        return super().slope_between_nodes(left, length, xi) + slope - chord
+
+    def _at_points(self, left, length, xi):
+        """(D, dD/dR), each as (at the left ends, at the right ends, at the points xi of the
+        elements (left, length)), from one evaluation of :meth:`_remainder`."""
+        points = left[:, None] + length[:, None] * xi
+        every = np.concatenate([left, left + length, points.ravel()])
+        m = len(left)
+        return tuple(
+            (values[:m], values[m : 2 * m], values[2 * m :].reshape(points.shape))
+            for values in self._remainder(every)
+        )
 
 
 def default_gap(model: str, layer: str) -> str:

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
-from .elements import assemble_bands
+from .elements import assemble_bands, squeeze_shear_load, surface_transport_bands
 from .gap import Paraboloid
 from .viscosity import Viscosity
 
@@ -54,142 +54,6 @@ _FLUX_XI, _FLUX_W = np.polynomial.legendre.leggauss(6)
 _FLUX_XI, _FLUX_W = 0.5 + 0.5 * _FLUX_XI, 0.5 * _FLUX_W
 _POINTS = {"gauss": _GAUSS_XI, "flux": _FLUX_XI}  # the film's quadrature points, by name
 _NO_POINTS = np.zeros((0, len(_FLUX_XI)))  # no fluidity at the points: constant viscosity
-
-
-def radial_grid(n: int, fine_radius: float, outer_radius: float) -> np.ndarray:
-    """Film nodes R_i = R_f sinh(A i/(n-1)), A = asinh(R_max / R_f), scaled by sqrt(a x0).
-
-    The spacing is nearly uniform, A R_f / (n-1), inside the fine radius R_f (where the solids
-    flatten and the film is thinnest) and grows in proportion to R beyond it, so a far field
-    out to R_max costs only a logarithmic number of nodes.
-    """
-    n = checks.integer("n (film nodes)", n, lower=8)
-    fine_radius = checks.positive("fine_radius", fine_radius)
-    outer_radius = checks.number("outer_radius", outer_radius, lower=fine_radius, lower_open=True)
-    stretch = np.arcsinh(outer_radius / fine_radius)
-    radii = fine_radius * np.sinh(stretch * np.linspace(0.0, 1.0, n))
-    radii[-1] = outer_radius
-    return radii
-
-
-# The contact grid's spacing, a piecewise-linear function of rho = R / R_c (module docstring of
-# contact_grid): the caller's spacing on the axis and at the rim and outlet radius (where the
-# spacing is back to _OUTLET_SPACING), the fixed knots (rho, spacing) inside the contact, and
-# the slope beyond the outlet.
-AXIS_SPACING = 0.2
-RIM_SPACING = 0.3
-OUTLET_RADIUS = 1.5
-_CONTACT_INTERIOR_KNOTS = ((0.4, 1.0), (1.0 - 0.65 / 3.0, 1.0))
-_OUTLET_SPACING = 4.35
-_CONTACT_SPACING_SLOPE = 16.0
-
-
-def contact_grid(
-    n: int,
-    rim_radius: float,
-    outer_radius: float,
-    node_at: float | None = None,
-    axis_spacing: float = AXIS_SPACING,
-    rim_spacing: float = RIM_SPACING,
-    outlet_radius: float = OUTLET_RADIUS,
-) -> np.ndarray:
-    """Film nodes graded to a contact rim R_c, by sqrt(a x0).
-
-    The spacing is c s(R/R_c), s piecewise linear: ``axis_spacing`` (0.2) on the axis (where a
-    soft rebound's film is thinnest), 1 from 0.4 R_c to 0.78 R_c, down to ``rim_spacing`` (0.3)
-    at the rim (where a hard impact's exit constriction makes the film thinnest), up to 4.35 at
-    ``outlet_radius`` (1.5) R_c and growing by 16 per R_c beyond, so the far field grows
-    geometrically and costs a logarithmic number of nodes. The nodes sit at equal steps of
-    int dR / s(R/R_c), with c set by n. ``node_at``: a radius given a node of its own if it lies
-    inside the grid (the sphere's radius, where the immersed film's shear integrals end).
-    """
-    rim_radius = checks.positive("rim_radius", rim_radius)
-    outer_radius = checks.number("outer_radius", outer_radius, lower=rim_radius, lower_open=True)
-    axis_spacing = checks.number("axis_spacing", axis_spacing, lower=0.01, upper=1.0)
-    rim_spacing = checks.number("rim_spacing", rim_spacing, lower=0.01, upper=1.0)
-    outlet_radius = checks.number(
-        "outlet_radius", outlet_radius, lower=1.0, upper=3.0, lower_open=True
-    )
-    if node_at is not None and node_at <= rim_radius:
-        node_at = None
-    law = (
-        (0.0, axis_spacing),
-        *_CONTACT_INTERIOR_KNOTS,
-        (1.0, rim_spacing),
-        (outlet_radius, _OUTLET_SPACING),
-    )
-    radii = graded_grid(n, _contact_spacing(law, outer_radius / rim_radius), rim_radius, node_at)
-    radii[-1] = outer_radius  # not rim_radius * (outer_radius / rim_radius)
-    return radii
-
-
-def _contact_spacing(law, end: float) -> tuple[np.ndarray, np.ndarray]:
-    """(rho, s) knots of the contact grid's spacing ``law`` (its knots (rho, s), then the slope
-    _CONTACT_SPACING_SLOPE; :func:`contact_grid`) out to the grid's end rho = R_end / R_c, both
-    by the rim radius R_c."""
-    knots = [(rho, s) for rho, s in law if rho < end]
-    last_rho, last_s = law[len(knots) - 1]
-    slope = _CONTACT_SPACING_SLOPE
-    if len(knots) < len(law):
-        slope = (law[len(knots)][1] - last_s) / (law[len(knots)][0] - last_rho)
-    rho = np.array([k[0] for k in knots] + [end])
-    spacing = np.array([k[1] for k in knots] + [last_s + slope * (end - last_rho)])
-    return rho, spacing
-
-
-def graded_grid(n: int, knots, scale: float = 1.0, node_at: float | None = None) -> np.ndarray:
-    """n nodes at equal steps of int dR / s(R) from 0 to the last knot, s piecewise linear
-    through ``knots`` (R, s), both in units of ``scale`` (R from 0, s > 0); ``node_at``: a
-    radius given a node of its own if it lies inside the grid (equal steps of the share on
-    either side of it)."""
-    n = checks.integer("n (film nodes)", n, lower=8)
-    rho, spacing = (np.asarray(k, dtype=float) for k in knots)
-    outer_radius = scale * rho[-1]
-    pieces = _SpacingPieces(rho, spacing)
-    if node_at is None or not 0.0 < node_at < outer_radius:
-        radii = scale * pieces.position(np.linspace(0.0, 1.0, n))
-    else:
-        at = pieces.share(node_at / scale)
-        k = min(max(round(at * (n - 1)), 1), n - 2)
-        share = np.concatenate([np.linspace(0.0, at, k + 1), np.linspace(at, 1.0, n - k)[1:]])
-        radii = scale * pieces.position(share)
-        radii[k] = node_at
-    radii[0], radii[-1] = 0.0, outer_radius
-    return radii
-
-
-class _SpacingPieces:
-    """A spacing s(rho) linear between knots and the exact share of the nodes up to rho,
-    int_0^rho d rho' / s over the total, and its inverse."""
-
-    def __init__(self, rho: np.ndarray, spacing: np.ndarray):
-        self.rho, self.spacing = rho, spacing
-        self.slope = np.diff(spacing) / np.diff(rho)
-        self.cumulative = np.concatenate([[0.0], np.cumsum(self._integral(np.diff(rho)))])
-
-    def _integral(self, width, piece=slice(None)):
-        """int d rho / s over ``width`` from the start of each piece."""
-        s0, m = self.spacing[:-1][piece], self.slope[piece]
-        flat = np.abs(m) < 1e-12
-        return np.where(flat, width / s0, np.log1p(m * width / s0) / np.where(flat, 1.0, m))
-
-    def share(self, rho: float) -> float:
-        """The share of the nodes inside rho."""
-        i = min(int(np.searchsorted(self.rho, rho, side="right")) - 1, len(self.slope) - 1)
-        partial = self._integral(np.array([rho - self.rho[i]]), slice(i, i + 1))[0]
-        return float((self.cumulative[i] + partial) / self.cumulative[-1])
-
-    def position(self, share: np.ndarray) -> np.ndarray:
-        """rho at the given shares of the nodes (the inverse of :meth:`share`)."""
-        target = np.asarray(share) * self.cumulative[-1]
-        i = np.clip(
-            np.searchsorted(self.cumulative, target, side="right") - 1, 0, len(self.slope) - 1
-        )
-        left = target - self.cumulative[i]
-        s0, m = self.spacing[:-1][i], self.slope[i]
-        flat = np.abs(m) < 1e-12
-        grown = np.expm1(m * left) / np.where(flat, 1.0, m)
-        return self.rho[i] + s0 * np.where(flat, left, grown)
 
 
 def _ascending_mass(left, right):
@@ -257,124 +121,6 @@ def tridiagonal_product(bands, vector):
     out[1:] += lower[1:] * vector[:-1]
     out[:-1] += upper[:-1] * vector[1:]
     return out
-
-
-@dataclass
-class ModeOneFilm:
-    """The film's azimuthal mode-1 (cos phi) operators at one instant (scaled).
-
-    A sliding and spinning sphere adds to the axisymmetric film (H0, P0) a mode-1 pressure
-    p1 = mu U0 sqrt(a) x0^(-3/2) q(R) cos(phi) and, on elastic solids, a mode-1 gap
-    h1 = x0 (U0/V0) sqrt(delta) H1(R) cos(phi). In these units (q is the film pressure unit
-    and H1 the gap unit, both times (U0/V0) sqrt(delta)) the mode-1 Reynolds equation,
-    linearised about (H0, P0), is
-
-        dH1/dT = (1/(12 R)) (R phi H0^3 q')' - phi H0^3 q / (12 R^2)
-                 + (1/(4 R)) (R phi H0^2 H1 P0')' + (1/(12 R)) (R phi_P H0^3 q P0')'
-                 + (w/2) dH0/dR,
-
-    with phi = mu0/mu(P0), phi_P = d phi/dP and w = (U + a Omega)/U0 the rolling speed. On P1
-    elements (weak form with the weight R, lumped mass) it reads, at the ``free`` nodes,
-
-        mass * dH1/dT + conductance q + thickness_coupling H1 + pressure_coupling q
-            = (w/2) drive,
-
-    and q = 0 elsewhere: on the axis, at dry nodes, at the immersed end and at cavitated nodes
-    (where P0 sits at the cavitation limit, the linearised limit P0 + q cos phi >= P_cav holds
-    for every phi only with q = 0). ``conductance`` is the symmetric form
-    (1/12) int phi H0^3 (q' v' + q v / R^2) R dR; q . conductance q is the Poiseuille
-    dissipation of the mode-1 flow. ``drive`` is int H0' v R dR. ``torque_weights`` give
-    int q R^2 dR. ``shear_weights`` j_i = int phi_i theta (mu/mu0) R dR / H0 give the
-    Couette force of nodal slip velocities; their sum is the Couette integral J. ``tail`` (immersed
-    only) is ln of the undeformed far-field film between the last node and the sphere's radius,
-    where the rigid resistances J, G and M grow as 1, 3/5 and 2/5 of it.
-    """
-
-    free: np.ndarray
-    mass: np.ndarray
-    conductance: np.ndarray
-    thickness_coupling: np.ndarray
-    pressure_coupling: np.ndarray
-    drive: np.ndarray
-    torque_weights: np.ndarray
-    shear_weights: np.ndarray
-    tail: float
-    _film: Film
-    _elements: _Elements
-    _pressure_slope: np.ndarray
-
-    def rigid_pressure(self) -> np.ndarray:
-        """q per unit rolling speed w on rigid solids (H1 = 0), the quasi-steady solution of
-        conductance q = drive / 2 at the free nodes (q = 6 w Pi of the classical mode-1
-        problem (1/R)(R H^3 Pi')' - H^3 Pi / R^2 = -H')."""
-        q = np.zeros_like(self.drive)
-        free = self.free
-        operator = self.conductance + self.pressure_coupling
-        q[free] = np.linalg.solve(operator[np.ix_(free, free)], 0.5 * self.drive[free])
-        return q
-
-    def surface_slope_weights(self, surface_sum: np.ndarray | None = None) -> np.ndarray:
-        """s with s . q = int q dSigma0/dR R dR, Sigma0 = X + S(R) + u_s + u_w the sum of the
-        two surfaces' heights: the undeformed gap plus ``surface_sum``, the nodal sum of the
-        sphere's and the wall's axisymmetric displacements along z (by x0, z from the wall into
-        the sphere; None: 0, as for identical half-spaces or rigid solids)."""
-        el, gap, radii = self._elements, self._film.gap, self._film.radii
-        left = radii[el.left]
-        chord = (gap.height(left + el.length) - gap.height(left)) / el.length
-        slope = chord[:, None] + gap.slope_between_nodes(left, el.length, _GAUSS_XI)
-        if surface_sum is not None:
-            ends = np.interp(left + el.length, radii, surface_sum) - surface_sum[el.left]
-            slope = slope + (ends / el.length)[:, None]
-        return _hat_weights(el, slope, len(self.drive))
-
-    def gradient_weights(self) -> np.ndarray:
-        """g with g . f = int f P0' R dR for a nodal (P1) f on the whole grid (f need not vanish
-        at the wetted edge)."""
-        el = self._elements
-        values = np.broadcast_to(self._pressure_slope[:, None], el.gauss_r.shape)
-        return _cell_hat_weights(el, self._film.radii, values)
-
-
-def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
-    """The mode-1 film's P1 matrices on the elements ``el`` (n nodes), by Gauss quadrature with
-    ``weight`` = R dR at the Gauss points, H0 ``thickness`` there and the fluidity mu0/mu with
-    its pressure derivative (``fluidities``):
-
-        conductance_ab        = (1/12) int (mu0/mu) H0^3 (phi_a' phi_b' + phi_a phi_b / R^2) R dR,
-        thickness_coupling_ab = (1/4)  int (mu0/mu) H0^2 dP0/dR phi_a' phi_b R dR,
-        pressure_coupling_ab  = (1/12) int d(mu0/mu)/dP H0^3 dP0/dR phi_a' phi_b R dR
-
-    (scaled as the axisymmetric film: H by x0, R by sqrt(a x0), P by mu V0 a / x0^2). The cut
-    element's right end is no unknown, so its rows and columns are left out."""
-    fluidity, dfluidity = fluidities
-    regular = el.right >= 0
-    hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
-    hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
-    nodes = (el.left, np.where(regular, el.right, el.left))
-    live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
-    cube = fluidity * thickness**3
-    conductance = np.zeros((n, n))
-    thickness_coupling = np.zeros((n, n))
-    pressure_coupling = np.zeros((n, n))
-    for a in range(2):
-        ia, va, sa = nodes[a], live[a], hat_slopes[a]
-        for b in range(2):
-            ib, on = nodes[b], va * live[b]
-            stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
-            hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
-            np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
-            grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
-            np.add.at(
-                thickness_coupling,
-                (ia, ib),
-                on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
-            )
-            np.add.at(
-                pressure_coupling,
-                (ia, ib),
-                on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
-            )
-    return conductance, thickness_coupling, pressure_coupling
 
 
 def _node_sums(nodes, values, n: int) -> np.ndarray:
@@ -451,6 +197,7 @@ class Film:
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
         self._recent_elements = []  # (H, the wetted elements) of the two latest H
+        self._recent_edges = []  # (H, (wet nodes, R_edge)) of the two latest H
         # S at the nodes, and S minus its chord at the quadrature points of the whole cells (a
         # gap that has no value at a node, as a true sphere beyond its equator, refuses the
         # grid here)
@@ -470,11 +217,21 @@ class Film:
         The crossing is found on the element's H between the last node with H < 1 and the
         next, W linear and the undeformed gap S exact (as in the conductances: a rigid film's
         edge is exact); a node closer to the edge than 1e-3 of its cell is taken as dry (P = 0
-        there) so the cut element never degenerates.
+        there) so the cut element never degenerates. Kept for the two latest H (an iterate's
+        film, its surface transport and its shear traction ask for the same one or two).
         """
         n = len(self.radii)
         if self.layer == "immersed":
             return n, np.inf
+        for kept, result in self._recent_edges:
+            if np.array_equal(kept, film_thickness):
+                return result
+        result = self._wetted_edge(film_thickness)
+        self._recent_edges = [(film_thickness.copy(), result), *self._recent_edges[:1]]
+        return result
+
+    def _wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
+        """:meth:`wetted_edge`, computed."""
         above = np.flatnonzero(film_thickness >= 1.0)
         if len(above) == 0:
             raise FilmError("the wetted edge left the film grid: enlarge outer_radius")
@@ -540,14 +297,7 @@ class Film:
         its fluidity at the elements' points."""
         h = film_thickness
         n = len(self.radii)
-        n_wet, edge = self.wetted_edge(h)
-        regular = max(n_wet - 1, 0)
-        cut_length, cut_between = 0.0, _NO_POINTS[0:1].reshape(-1)
-        if self.layer == "thin" and n_wet > 0:
-            cut_length = edge - self.radii[regular]
-            cut_between = self.gap.between_nodes(
-                self.radii[regular : regular + 1], np.array([cut_length]), _FLUX_XI
-            )[0]
+        (n_wet, edge), regular, cut_length, cut_between = self._wetted(h, "flux")
         fluidity = dfluidity = _NO_POINTS
         if not self.viscosity.constant:
             fluidity, dfluidity = self._fluidity(pressure, regular, cut_length > 0.0)
@@ -569,6 +319,20 @@ class Film:
             self._add_far_field(h, pressure, conductance[1], dflux_dH[1], force_weights)
         dry = np.arange(n) >= n_wet
         return FilmState(mass, conductance, dflux_dH, dflux_dP, force_weights, dry, edge)
+
+    def _wetted(self, film_thickness: np.ndarray, points: str):
+        """((wet nodes, R_edge), the whole wetted cells, the cut element's length (0: none)
+        and its undeformed gap's excess over its chord at the points ``points`` ("gauss" or
+        "flux")): the wetted elements as the compiled loops of
+        :mod:`ehdfem.film.elements` take them."""
+        n_wet, edge = self.wetted_edge(film_thickness)
+        regular = max(n_wet - 1, 0)
+        if self.layer == "immersed" or n_wet == 0:
+            return (n_wet, edge), regular, 0.0, np.zeros(0)
+        cut_length = edge - self.radii[regular]
+        left, length = self.radii[regular : regular + 1], np.array([cut_length])
+        cut_between = self.gap.between_nodes(left, length, _POINTS[points])[0]
+        return (n_wet, edge), regular, cut_length, cut_between
 
     def _fluidity(self, pressure, regular: int, cut: bool):
         """(mu0/mu, d(mu0/mu)/dP) at the flux points of the wetted elements (the whole cells
@@ -619,73 +383,6 @@ class Film:
         inside = self.radii[el.left] < outer_radius
         return _Elements(*(getattr(el, name)[inside] for name in _Elements.__dataclass_fields__))
 
-    def mode_one(
-        self,
-        film_thickness: np.ndarray,
-        outer_radius: float = np.inf,
-        pressure=None,
-        fill=None,
-        cavitated=None,
-    ) -> ModeOneFilm:
-        """The film's azimuthal mode-1 operators at one instant (see :class:`ModeOneFilm`).
-
-        ``film_thickness`` H0 and ``pressure`` P0 are the axisymmetric film at the nodes (by x0
-        and mu V0 a / x0^2; the viscosity is taken at P0, mu0 if not given), ``fill`` the liquid
-        fraction theta (1 if not given; a cavity shears only its liquid), ``cavitated`` the nodes
-        where P0 is at the cavitation limit (boolean; none if not given). Thin layer: up to the
-        wetted edge. Immersed: up to ``outer_radius`` (the sphere radius, 1/sqrt(delta), caps
-        the logarithmic far field); beyond the last node the film is taken as the undeformed
-        X + R^2/2, whose rigid resistances grow as ln H (``tail``).
-        """
-        h = film_thickness
-        n = len(h)
-        el = self._inner_elements(h, outer_radius)
-        thickness = self._gauss_thickness(el)
-        regular = el.right >= 0
-        right = np.where(regular, el.right, 0)
-        ratio, dlog = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))
-        fluidity = 1.0 / ratio  # mu0 / mu
-        slope = ((el.h_right - el.h_left) / el.length)[:, None] + self.gap.slope_between_nodes(
-            self.radii[el.left], el.length, _GAUSS_XI
-        )
-        weight = el.length[:, None] * _GAUSS_W * el.gauss_r  # R dR at the Gauss points
-        pressure_slope = np.zeros(len(el.left))
-        if pressure is not None:
-            pressure_slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / (
-                el.length
-            )
-        dfluidity = -fluidity * (0.0 if dlog is None else dlog)
-        conductance, thickness_coupling, pressure_coupling = _mode_one_matrices(
-            el, n, weight, thickness, (fluidity, dfluidity), pressure_slope
-        )
-        free = self._mode_one_free(el, n, cavitated)
-        shear, tail = self.couette_weights(h, outer_radius, pressure, fill)
-        return ModeOneFilm(
-            free=free,
-            mass=_hat_weights(el, np.ones_like(thickness), n),
-            conductance=conductance,
-            thickness_coupling=thickness_coupling,
-            pressure_coupling=pressure_coupling,
-            drive=_hat_weights(el, slope, n),
-            torque_weights=_hat_weights(el, el.gauss_r, n),
-            shear_weights=shear,
-            tail=tail,
-            _film=self,
-            _elements=el,
-            _pressure_slope=pressure_slope,
-        )
-
-    def _mode_one_free(self, el, n, cavitated) -> np.ndarray:
-        """The nodes where the mode-1 flux unknown q is free: not on the axis, not dry, not at the
-        immersed film's last node and not cavitated (q = 0 there)."""
-        free = np.zeros(n, bool)
-        free[el.left[1:]] = True
-        if self.layer == "immersed" and len(el.left):
-            free[el.right[-1]] = False
-        if cavitated is not None:
-            free &= ~np.asarray(cavitated, bool)
-        return free
-
     def surface_transport(self, film_thickness: np.ndarray, fill=None) -> tuple:
         """Bands (lower, diagonal, upper) of B, (B v)_i = int phi_i d/dR (R theta H v) dR: the
         net outward flux from node i of the liquid that the surfaces carry at the nodal mean
@@ -696,23 +393,21 @@ class Film:
         linear theta; theta the nodal ``fill`` (1 if not given). Scaled: R by sqrt(a x0), v by
         V0; sqrt(delta) B v is in the units of the film's rows."""
         h = film_thickness
-        n = len(self.radii)
-        _, _, el = self._elements(h)
-        regular = el.right >= 0
-        full = self._length[np.minimum(el.left, n - 2)]
-        rising = (el.gauss_r - self.radii[el.left, None]) / full[:, None]
-        content = self._gauss_thickness(el) * _at_gauss_points(el, fill, 1.0)
-        weight = _GAUSS_W * el.gauss_r * content  # R theta H times the element's length over it
-        from_left = (weight * (1.0 - rising)).sum(axis=1)
-        from_right = (weight * rising).sum(axis=1)
-        lower, diagonal, upper = np.zeros(n), np.zeros(n), np.zeros(n)
-        diagonal += _node_sums(el.left, from_left, len(diagonal))
-        upper += _node_sums(el.left, from_right, len(upper))
-        lower += _node_sums(el.right[regular], -from_left[regular], len(lower))
-        diagonal += _node_sums(el.right[regular], -from_right[regular], len(diagonal))
+        _, regular, cut_length, cut_between = self._wetted(h, "gauss")
+        liquid = np.ones_like(h) if fill is None else fill
+        lower, diagonal, upper = surface_transport_bands(
+            self.radii,
+            h,
+            liquid,
+            regular,
+            cut_length,
+            cut_between,
+            self._cell_between["gauss"],
+            _GAUSS_XI,
+            _GAUSS_W,
+        )
         if self.layer == "immersed":
-            theta = 1.0 if fill is None else fill[-1]
-            diagonal[-1] += self.radii[-1] * theta * h[-1]
+            diagonal[-1] += self.radii[-1] * liquid[-1] * h[-1]
         return lower, diagonal, upper
 
     def squeeze_shear(self, film_thickness: np.ndarray, pressure: np.ndarray) -> np.ndarray:
@@ -723,12 +418,18 @@ class Film:
         projection, T_j = int phi_j T R dR / int phi_j R dR over the whole grid, so a node the
         edge leaves keeps the share its part of the film gives it, and T moves continuously
         with the edge."""
-        _, _, el = self._elements(film_thickness)
-        regular = el.right >= 0
-        right = np.where(regular, el.right, 0)
-        slope = (np.where(regular, pressure[right], 0.0) - pressure[el.left]) / el.length
-        traction = -0.5 * self._gauss_thickness(el) * slope[:, None]
-        load = _cell_hat_weights(el, self.radii, traction)
+        _, regular, cut_length, cut_between = self._wetted(film_thickness, "gauss")
+        load = squeeze_shear_load(
+            self.radii,
+            film_thickness,
+            pressure,
+            regular,
+            cut_length,
+            cut_between,
+            self._cell_between["gauss"],
+            _GAUSS_XI,
+            _GAUSS_W,
+        )
         return load / self._full_mass
 
     def _gauss_thickness(self, el: _Elements, points: str = "gauss"):

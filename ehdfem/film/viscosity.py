@@ -149,6 +149,14 @@ class Viscosity:
         with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
             return np.exp(self.log_ratio(compressive)), slope
 
+    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float:
+        """The pressure [Pa] up to which the law holds for a liquid of ``viscosity`` mu0 [Pa s]
+        and ``pressure_viscosity`` alpha [1/Pa]: :func:`barus_validity_pressure` for the Barus
+        law (where it leaves the Roelands law), inf for the others."""
+        if self.law != "barus":
+            return math.inf
+        return barus_validity_pressure(pressure_viscosity, viscosity)
+
     def overflow(self, pressure) -> str:
         """Why mu/mu0 overflowed (> 1e308, ln > 709) at the scaled pressures ``pressure``."""
         largest = float(np.max(pressure))

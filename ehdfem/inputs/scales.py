@@ -18,9 +18,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-from scipy.optimize import brentq
-
 from .. import checks
 from ..film import cavitation
 from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
@@ -54,43 +51,6 @@ def elastic_theta(*solids) -> float:
 def elasticity_parameter(theta, viscosity, speed, radius, layer_thickness) -> float:
     """eps = 4 theta mu V0 a^(3/2) / x0^(5/2) (SI inputs, theta in 1/Pa)."""
     return 4.0 * theta * viscosity * speed * radius**1.5 / layer_thickness**2.5
-
-
-def hertz_max_compression(eps: float, St: float) -> float:
-    """Dry Hertz maximum approach of a sphere on a half-space, scaled by x0.
-
-    delta_max = (15 m V0^2 / (16 E* a^(1/2)))^(2/5) with 1/E* = pi theta; with m V0 = 6 pi mu
-    a^2 St and theta from eps this is (90 pi^2/64 eps St)^(2/5) x0 = (13.88 eps St)^(2/5) x0.
-    """
-    return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
-
-
-def rigid_velocity_loss(gap, layer: str):
-    """St times the speed a rigid sphere has lost when its gap has closed from 1 to X (gap by
-    x0, speed by V0): the film force |V| g(X) (by 6 pi mu V0 a^2 / x0) in St dV/dX = -g(X)
-    integrated from X = 1. Immersed, g = 1/X and the loss is ln(1/X); in a thin layer the film
-    ends where X + R^2/2 = 1, P = 3 |V| (1/H^2 - 1), g = 1/X - 2 + X and the loss is
-    ln(1/X) - 3/2 + 2X - X^2/2."""
-    gap = np.asarray(gap, dtype=float)
-    if layer == "immersed":
-        return -np.log(gap)
-    return -np.log(gap) - 1.5 + 2.0 * gap - 0.5 * gap**2
-
-
-def rigid_stopping_gap(St: float, layer: str) -> float:
-    """The gap (by x0) where a rigid sphere stops: rigid_velocity_loss(X) = St, exp(-St)
-    immersed; the thin layer's root by bisection in ln X (about exp(-St - 3/2); 0 where that
-    is below the smallest float)."""
-    if layer == "immersed":
-        return math.exp(-St)
-    if St > 700.0:
-        return 0.0
-
-    def excess(log_gap):
-        return float(rigid_velocity_loss(math.exp(log_gap), layer)) - St
-
-    log_gap = brentq(excess, -St - 2.0, 0.0, xtol=1e-15, rtol=1e-15)
-    return math.exp(log_gap)
 
 
 def reduced_radius(a1: float, a2: float) -> float:

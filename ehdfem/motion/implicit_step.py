@@ -23,11 +23,13 @@ the compliance gives it (:class:`SurfaceMotion`), and B the film's transport of 
 drags (:meth:`ehdfem.film.reynolds.Film.surface_transport`); the Newton matrix holds
 sqrt(delta) (a0/dt) B C_r, with B's dependence on H and T's on P and X lagged like the shear
 opening (docs/model.md, "Tangential surface effects at order sqrt(delta)"). The Jacobian is
-dense (the compliance couples all nodes). It is factorised only when needed (simplified Newton):
-the LU (:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused across iterations and steps while
-a0/dt has moved by less than 30 % and the iteration contracts fast enough; rows of nodes that
-become dry, wet or cavitated, and the columns of nodes whose unknown switches between P and theta
-at a mass-conserving cavity, are swapped in by the Woodbury identity.
+dense (the compliance couples all nodes). Each step factorises it at its first iterate (the
+film's conductance goes as H^3 and changes within a step near contact, so a factorisation kept
+from the step before needed some five sweeps a step instead of three, which cost more than the
+LU); the LU (:class:`ehdfem.motion.reusable_lu.ReusableLU`) is reused by the step's later
+iterations while they contract fast enough (simplified Newton): rows of nodes that become dry,
+wet or cavitated, and the columns of nodes whose unknown switches between P and theta at a
+mass-conserving cavity, are swapped in by the Woodbury identity.
 
 Rough surfaces with Greenwood & Tripp's asperity pressure P_a(H) (mixed lubrication,
 :mod:`ehdfem.film.asperities`): the solids carry it with the film's, H = X + S(R) + C (P + P_a(H))
@@ -252,7 +254,7 @@ class ImplicitStep:
             it, cavitated, fill = self._residual(
                 pressure, gap, velocity, fill, cavitated, step, a0, past, time
             )
-            fresh = refresh or self.factor is None or abs(self.factor.rate * step / a0 - 1) > 0.3
+            fresh = iteration == 1 or refresh
             if fresh:
                 self._factorise(it, step, a0, fill)
                 refresh = False
@@ -373,7 +375,7 @@ class ImplicitStep:
         """A new LU of the Newton matrix (:meth:`_newton_matrix`)."""
         jacobian = self._newton_matrix(it, step, a0, fill)
         try:
-            self.factor = ReusableLU(jacobian, it.fixed, a0 / step, it.theta_nodes)
+            self.factor = ReusableLU(jacobian, it.fixed, it.theta_nodes)
         except SingularMatrix as err:
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1

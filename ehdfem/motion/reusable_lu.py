@@ -52,7 +52,7 @@ def _equilibrated(matrix):
     for j in range(m):
         col[j] = _power_of_two(col[j])
         inverse[j] = 1.0 / col[j]
-    scaled = np.empty((n, m))
+    scaled = np.empty((m, n)).T  # in LAPACK's column order: getrf takes it without a copy
     row = np.empty(n)
     for i in range(n):
         largest = 0.0
@@ -79,14 +79,13 @@ class SingularMatrix(Exception):
 class ReusableLU:
     """LU of ``matrix`` built with the nodes ``fixed`` (boolean mask of identity rows) and
     ``theta`` (boolean mask of the nodes whose columns hold the liquid fraction theta of
-    mass-conserving cavities). ``rate`` is the a0/dt the matrix was built for: the caller
-    compares it with the current step to decide when to factorise again.
+    mass-conserving cavities).
     """
 
     MAX_CHANGES = 12
 
-    def __init__(self, matrix, fixed, rate, theta):
-        self.matrix, self.fixed, self.rate, self.theta = matrix, fixed.copy(), rate, theta.copy()
+    def __init__(self, matrix, fixed, theta):
+        self.matrix, self.fixed, self.theta = matrix, fixed.copy(), theta.copy()
         if not np.isfinite(matrix).all():
             raise SingularMatrix("Newton matrix not finite")
         scaled, self.col, self.row = _equilibrated(matrix)

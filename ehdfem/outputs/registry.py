@@ -1,7 +1,7 @@
 """Every output of a collision, once: its name, meaning, scale, SI unit and how to compute it.
 
 The summary of a collision (:meth:`ehdfem.collision.CollisionResult.summary`), the rows of a
-study (:mod:`ehdfem.study.sweep`), the contacts of a bounce (:mod:`ehdfem.bounce.trajectory`)
+study (:mod:`ehdfem.study.sweep`), the contacts of a bounce (:mod:`ehdfem.bounce.contact`)
 and the command line's result table all read :data:`OUTPUTS`: a new output is one
 :class:`Output` entry here (docs/outputs.md lists them).
 
@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 import scipy.integrate
@@ -30,8 +30,18 @@ import scipy.integrate
 from ..film import cavitation
 
 if TYPE_CHECKING:
-    from ..collision import CollisionResult
     from ..inputs.scales import PhysicalCollision
+
+
+class Collision(Protocol):
+    """What an output reads of a collision (:class:`ehdfem.collision.CollisionResult`, which
+    builds on this module): its scaled inputs, its physical inputs (None for a scaled run) and
+    its normal and tangential results."""
+
+    params: Any
+    physical: Any
+    normal: Any
+    tangential: Any
 
 
 @dataclass(frozen=True)
@@ -52,10 +62,10 @@ class Output:
     meaning: str
     scale: str
     unit: str | None
-    compute: Callable[[CollisionResult], Any]
+    compute: Callable[[Collision], Any]
     si_key: str | None = None
     si_factor: Callable[[PhysicalCollision], float] | None = None
-    applies: Callable[[CollisionResult], bool] | None = None
+    applies: Callable[[Collision], bool] | None = None
     reason: str = ""
     optional: bool = False
 
@@ -69,17 +79,17 @@ class Output:
         if (self.applies is None) != (not self.reason):
             raise ValueError(f"output {self.name!r}: applies and reason go together")
 
-    def value(self, result: CollisionResult):
+    def value(self, result: Collision):
         """The scaled value, None where it does not apply."""
         if self.applies is not None and not self.applies(result):
             return None
         return self.compute(result)
 
 
-def _without_suction_limit(result: CollisionResult) -> bool:
-    """No cavitation limit: cavitation "none", or P_cav = -inf."""
+def _without_suction_limit(result: Collision) -> bool:
+    """No cavitation limit: the model without one, or P_cav = -inf."""
     p = result.params
-    return p.cavitation == "none" or p.p_cav == cavitation.NO_LIMIT
+    return p.cavitation_model().p_cav == cavitation.NO_LIMIT
 
 
 def _tangential(name):
@@ -345,25 +355,25 @@ def si_keys() -> tuple[str, ...]:
     return tuple(o.si_key for o in OUTPUTS if o.si_key is not None)
 
 
-def computed(result: CollisionResult) -> dict:
+def computed(result: Collision) -> dict:
     """Every output as computed, whether or not it applies (scaled): the raw numbers, e.g.
     for a table of reference values."""
     return {o.name: o.compute(result) for o in OUTPUTS}
 
 
-def values(result: CollisionResult) -> dict:
+def values(result: Collision) -> dict:
     """The outputs of a summary (scaled): None where not applicable; an optional output
     left out where it is None."""
     out = {o.name: o.value(result) for o in OUTPUTS}
     return {o.name: out[o.name] for o in OUTPUTS if not (o.optional and out[o.name] is None)}
 
 
-def not_applicable(result: CollisionResult) -> dict:
+def not_applicable(result: Collision) -> dict:
     """{name: reason} of the outputs that do not apply to ``result``."""
     return {o.name: o.reason for o in OUTPUTS if o.applies is not None and not o.applies(result)}
 
 
-def si_values(result: CollisionResult) -> dict:
+def si_values(result: Collision) -> dict:
     """The SI values {si_key: scaled value * factor} of a collision with physical inputs
     (empty without them), where the value exists and applies."""
     if result.physical is None:
@@ -376,7 +386,7 @@ def si_values(result: CollisionResult) -> dict:
     return out
 
 
-def in_si_where_possible(result: CollisionResult) -> dict:
+def in_si_where_possible(result: Collision) -> dict:
     """Every output once, for a collision with physical inputs: its SI value under its SI key
     where it has one, else its scaled value under its name (None where there is none)."""
     si = si_values(result)

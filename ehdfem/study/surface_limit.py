@@ -39,26 +39,11 @@ from __future__ import annotations
 import math
 
 from .. import checks
-from ..inputs import scales
+from ..exact import rigid_film
 from ..solids.halfspace import IDENTICAL_SOLIDS, shear_coefficient
 
 EFFECTS = ("opening", "velocity", "both")
 """The surface terms: the squeeze shear's gap opening, the faces' radial velocity, both."""
-
-
-def rigid_velocity(gap: float, St: float) -> float:
-    """V0(X) = -1 + (ln(1/X) - 3/2 + 2X - X^2/2) / St: the rigid sphere's velocity (by V0) at
-    the gap X (by x0, 0 < X <= 1) in a thin layer
-    (:func:`ehdfem.inputs.scales.rigid_velocity_loss`)."""
-    x = checks.number("gap", gap, lower=0.0, upper=1.0, lower_open=True)
-    St = checks.positive("St", St)
-    return -1.0 + float(scales.rigid_velocity_loss(x, "thin")) / St
-
-
-def rigid_stopping_gap(St: float) -> float:
-    """X_s (by x0), where the rigid sphere stops in a thin layer: G(X_s) = St (module
-    docstring; :func:`ehdfem.inputs.scales.rigid_stopping_gap`)."""
-    return scales.rigid_stopping_gap(checks.positive("St", St), "thin")
 
 
 def surface_force_coefficients(gap: float, effect: str = "both") -> tuple[float, float]:
@@ -114,5 +99,5 @@ def stopping_gap_constant(St: float, effect: str = "both", solids=IDENTICAL_SOLI
     term ``effect`` is c eps sqrt(delta) as eps -> 0 (thin layer, half-spaces, paraboloid, no
     cavitation; module docstring), for the rigid stopping gap X_s of ``St`` and the (Young's
     modulus, Poisson ratio) pairs ``solids`` of sphere and wall (through kappa)."""
-    stop = rigid_stopping_gap(St)
+    stop = rigid_film.stopping_gap(St, "thin")
     return -shear_coefficient(solids) * velocity_integral(stop, St, effect) / (1 - stop) ** 2

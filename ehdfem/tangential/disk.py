@@ -1,6 +1,6 @@
 """The full 2-D Reynolds film on the disk at one instant: the check of the mode-1 superposition.
 
-The 1-D film model (:class:`ehdfem.film.reynolds.ModeOneFilm`) writes the pressure of a sliding
+The 1-D film model (:class:`ehdfem.film.mode_one.ModeOneFilm`) writes the pressure of a sliding
 sphere as an axisymmetric part plus an azimuthal mode-1 part, P0(R) + q(R) cos(phi), with q = 0
 where P0 sits at the cavitation limit. This module solves the film on the whole disk instead, with
 the cavitation limit imposed pointwise, so the superposition can be checked against it.

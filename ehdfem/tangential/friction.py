@@ -21,7 +21,7 @@ mixed model's friction per step: no regularisation, and the contact point stops 
 
 With the normal approach velocity |V| and psi = u_s U0 / (|V| V0) (tangential contact velocity
 over the normal approach velocity) the impact with restitution e_n (N = St (1 + e_n) |V|) gives
-:func:`rigid_impact`:
+:func:`ehdfem.exact.rigid_impact.frictional_impact`:
 
     psi_out = psi_in - (1 + 1/k) mu (1 + e_n) sign(psi_in)  if |psi_in| > (1 + 1/k) mu (1 + e_n),
     psi_out = 0                                             otherwise (stick, rolling).
@@ -66,18 +66,6 @@ def coulomb_impulse(slip: float, bound: float, St: float, k: float) -> tuple[flo
     stopping = -St * slip / (1.0 + 1.0 / k)
     stuck = abs(stopping) <= bound
     return (stopping if stuck else -bound * np.sign(slip)), bool(stuck)
-
-
-def rigid_impact(psi_in: float, mu: float, e_n: float, k: float) -> tuple[float, bool]:
-    """(psi_out, stuck) of a rigid sphere's impact on a plane with Coulomb friction ``mu``,
-    normal restitution ``e_n`` and inertia factor k (psi = contact-point tangential velocity
-    over the normal approach velocity; module docstring): sliding throughout,
-    psi_out = psi_in - (1 + 1/k) mu (1 + e_n) sign(psi_in); stuck (psi_out = 0) once
-    |psi_in| <= (1 + 1/k) mu (1 + e_n)."""
-    reach = (1.0 + 1.0 / k) * mu * (1.0 + e_n)
-    if abs(psi_in) <= reach:
-        return 0.0, True
-    return psi_in - reach * np.sign(psi_in), False
 
 
 @dataclass(frozen=True)

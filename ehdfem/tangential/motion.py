@@ -26,7 +26,7 @@ Two film models (docs/tangential.md derives them):
   model with the shear of a uniform film, the central thickness, over the Hertz contact disk
   of the normal force (:func:`flat_contact`).
 - ``lubrication`` (beyond the source): the sliding film. The sphere's sliding and rolling drive
-  an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.reynolds.ModeOneFilm`, unit
+  an azimuthal mode-1 film pressure q(R) cos(phi) (:class:`ehdfem.film.mode_one.ModeOneFilm`, unit
   (U0/V0) sqrt(delta) mu V0 a / x0^2), which deforms the solids (mode-1 compliance,
   :class:`ehdfem.solids.compliance.ModeOneCompliance`): a mode-1 gap H1 = C q + ... that feeds back
   into the film, and, with the Couette traction, tangential surface displacements D whose rate
@@ -67,7 +67,8 @@ import scipy.integrate
 import scipy.linalg
 
 from .. import checks
-from ..film.reynolds import Film, ModeOneFilm
+from ..film.mode_one import ModeOneFilm, mode_one_operators
+from ..film.reynolds import Film
 from ..motion.normal import NormalResult, NormalSolverError
 from ..solids.compliance import ModeOneCompliance
 from .friction import ContactFriction, CoulombContact
@@ -210,7 +211,7 @@ def cavitated_nodes(normal: NormalResult, step: int) -> np.ndarray:
 def mode_one_film(
     normal: NormalResult, step: int, film: Film | None = None, unloaded=None
 ) -> ModeOneFilm:
-    """The film's mode-1 operators (:class:`ehdfem.film.reynolds.ModeOneFilm`) at one step of the
+    """The film's mode-1 operators (:class:`ehdfem.film.mode_one.ModeOneFilm`) at one step of the
     normal solution, with the viscosity at that step's pressure, its liquid fraction and q = 0
     at its cavitated nodes and at the nodes ``unloaded`` (boolean; None: none). ``film``:
     :func:`normal_film`, if built already."""
@@ -220,7 +221,8 @@ def mode_one_film(
         cavitated = cavitated | unloaded
     hist = normal.history
     outer = 1.0 / np.sqrt(normal.params.delta)
-    return film.mode_one(
+    return mode_one_operators(
+        film,
         hist.film_thickness[step],
         outer,
         hist.pressure[step],
@@ -687,17 +689,19 @@ def _solve_equilibrated(matrix, rhs, u: int, omega: int):
     the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
     are then parallel to round-off (the film locks the sphere into rolling), the scaled system
     is not."""
-    basis = np.eye(len(rhs))
-    basis[u, omega] = 1.0  # z_U = (U - a Omega) + a Omega
-    transformed = matrix @ basis
+    transformed = matrix.copy()  # matrix @ B, B = I + e_u e_omega^T: z_U = (U - a Omega) + a Omega
+    transformed[:, omega] += matrix[:, u]
     column_scale = 1.0 / np.abs(transformed).max(axis=0)
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
     if rhs.ndim == 2:  # several right-hand sides, one a column
-        sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale[:, None])
-        return basis @ (column_scale[:, None] * sliding)
-    sliding = scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
-    return basis @ (column_scale * sliding)
+        z = column_scale[:, None] * scipy.linalg.solve(
+            transformed * row_scale[:, None], rhs * row_scale[:, None]
+        )
+    else:
+        z = column_scale * scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
+    z[u] += z[omega]  # back from y to z = B y
+    return z
 
 
 def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:

@@ -208,10 +208,10 @@ def check_superposition(
         raise checks.InputError("check_superposition needs an oblique tangential='lubrication'")
     if params.layer != "thin":
         raise checks.InputError("check_superposition needs layer = 'thin' (P = 0 at the edge)")
-    if params.cavitation == "mass-conserving":
+    if params.cavitation_model().tracks_liquid:
         raise checks.InputError(
-            "check_superposition needs cavitation 'truncate' or 'none' (the disk film's limit "
-            "is not mass-conserving)"
+            f"check_superposition needs a cavitation model that does not track the liquid, not "
+            f"{params.cavitation!r} (the disk film's limit is not mass-conserving)"
         )
     validity = result.superposition
     if amplitude is not None:

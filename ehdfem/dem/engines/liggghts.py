@@ -35,6 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ... import checks
+from ...exact import hertz
 from ...inputs.scales import PhysicalCollision
 from ...inputs.settings import setting, validate
 from .rebound import EngineRebound, read_rebound, run_binary
@@ -83,8 +84,9 @@ def hertz_contact_time(collision: PhysicalCollision) -> float:
     2.87 (m*^2 / (R* E*^2 V0))^(1/5), m* = m/2, R* = R/2, 1/E* = 2 (1 - nu^2) / E."""
     material = collision.sphere
     e_star = material.young_modulus / (2.0 * (1.0 - material.poisson_ratio**2))
-    reduced = (collision.mass / 2.0) ** 2 / (collision.radius / 2.0 * e_star**2)
-    return 2.87 * (reduced / collision.normal_speed) ** 0.2
+    return hertz.contact_time(
+        collision.mass / 2.0, collision.radius / 2.0, e_star, collision.normal_speed
+    )
 
 
 def cut_off(collision: PhysicalCollision, law: LiggghtsLaw) -> float:

@@ -15,6 +15,8 @@ from ehdfem.config import RunConfig
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.outputs import plots
 
+pytestmark = pytest.mark.serial  # drawing has nothing to check on 2 ranks
+
 
 @pytest.fixture(autouse=True)
 def laid_out_not_saved(monkeypatch):

@@ -23,8 +23,9 @@ from .film.viscosity import ViscosityRangeWarning, barus_range_warning
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.forces import SphereForce
 from .motion.normal import FilmClosedError, NormalResult, solve_normal
-from .outputs import provenance
+from .outputs import plausibility, provenance
 from .outputs import registry as outputs
+from .outputs.plausibility import ResultRangeWarning
 from .solids.compliance import Compliance, ModeOneCompliance
 from .solids.halfspace import (
     IDENTICAL_SOLIDS,
@@ -43,10 +44,6 @@ from .tangential.superposition import (
 from .threads import one_blas_thread
 
 HARD_IMPACT = 1000.0  # St above which the film grid's rim is refined (contact_spacings)
-SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real surfaces are rough
-NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
-LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which an impact is
-# flagged: the impact model assumes solids unloaded at the touch
 IMMERSED_OUTER_RADIUS = 30.0  # far-field truncation, by sqrt(a x0) (the tail is added exactly)
 
 
@@ -203,9 +200,11 @@ class CollisionResult:
         (:func:`ehdfem.outputs.provenance.record`: version, git commit, date, libraries, the
         command line ``command``, default sys.argv, MPI size); the collision's groups and
         models; the outputs of :mod:`ehdfem.outputs.registry` (dimensionless, DSH scales),
-        with the reasons of those that do not apply under "not_applicable" and, for physical
-        inputs, the SI values under "si"; the time-step control and the tangential model used;
-        and under "inputs" everything needed to run the collision again (see :meth:`inputs`)."""
+        with the reasons of those that do not apply under "not_applicable", the plausibility
+        notes under "notes" (:func:`ehdfem.outputs.plausibility.notes`, empty when there is
+        none) and, for physical inputs, the SI values under "si"; the time-step control and
+        the tangential model used; and under "inputs" everything needed to run the collision
+        again (see :meth:`inputs`)."""
         n = self.normal
         p = self.params
         out = {
@@ -234,6 +233,7 @@ class CollisionResult:
             if t.energy is not None:
                 out["sliding_deformation"] = t.deformation
         out["not_applicable"] = outputs.not_applicable(self)
+        out["notes"] = plausibility.notes(self)
         if self.physical is not None:
             out["si"] = outputs.si_values(self)
         out["inputs"] = self.inputs()
@@ -375,68 +375,20 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
     return _slide(result, given_mode_one)
 
 
-class ResultRangeWarning(UserWarning):
-    """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
-    error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
-    Newtonian liquids, a rough contact the impact model does not hold for (a touch where it
-    puts no load, an impact through loaded solids)."""
-
-
 def _check_liquid(physical) -> None:
-    """Warn (ResultRangeWarning), before any work, of a liquid viscosity outside
-    NEWTONIAN_VISCOSITY (physical inputs only)."""
-    low, high = NEWTONIAN_VISCOSITY
-    mu = physical.liquid.viscosity
-    if not low <= mu <= high:
-        warnings.warn(
-            f"the liquid viscosity {mu:.3g} Pa s is outside the Newtonian liquids "
-            f"({low:g}-{high:g} Pa s): "
-            + ("below any liquid at room temperature" if mu < low else "such liquids shear-thin"),
-            ResultRangeWarning,
-            stacklevel=3,
-        )
+    """Warn (ResultRangeWarning), before any work, of a liquid viscosity outside the Newtonian
+    liquids (physical inputs only; :func:`ehdfem.outputs.plausibility.liquid_note`)."""
+    note = plausibility.liquid_note(physical)
+    if note is not None:
+        warnings.warn(note, ResultRangeWarning, stacklevel=3)
 
 
 def _check_result_range(params, physical, normal: NormalResult) -> None:
-    """Warn (ResultRangeWarning) of e_n > 1, of a rough contact the impact model does not hold
-    for, and, for physical inputs, of a smooth collision's thinnest film below
-    SMOOTHEST_SURFACE (polished glass and steel have rms roughnesses of 1-100 nm: their
-    asperities would touch first; --roughness models them)."""
-    if normal.e_n > 1.0:
-        warnings.warn(
-            f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
-            f"error (energy error {normal.energy_error:.2g}); refine --nodes or --rtol",
-            ResultRangeWarning,
-            stacklevel=4,
-        )
-    if normal.unloaded_touch:
-        warnings.warn(
-            f"the film went below the roughness (thinnest {normal.min_film_thickness:.4g} x0, "
-            f"sigma {params.roughness:.4g} x0) where the impact model puts no load on the "
-            "asperities (during the rebound or after the impact): that contact, its dry loss "
-            "and friction are not in the result (docs/model.md, rough surfaces)",
-            ResultRangeWarning,
-            stacklevel=4,
-        )
-    impact = normal.solid_impact
-    if impact is not None and impact.stored_share > LOADED_IMPACT:
-        warnings.warn(
-            f"the asperities' impact came through loaded solids: they held "
-            f"{100 * impact.stored_share:.0f} % of the impact energy, where the impact model "
-            "assumes them unloaded (its e_dry acts on the sphere's velocity alone)",
-            ResultRangeWarning,
-            stacklevel=4,
-        )
-    if physical is None:
-        return
-    thinnest = normal.min_film_thickness * physical.layer_thickness
-    if params.roughness == 0.0 and thinnest < SMOOTHEST_SURFACE:
-        warnings.warn(
-            f"the thinnest film is {thinnest * 1e9:.3g} nm, below the roughness of any real "
-            "surface (1-100 nm rms): the asperities would touch first (--roughness)",
-            ResultRangeWarning,
-            stacklevel=4,
-        )
+    """Warn (ResultRangeWarning) of each of the normal motion's plausibility notes
+    (:func:`ehdfem.outputs.plausibility.result_notes`: e_n above 1, a rough contact the impact
+    model does not hold for, a nanometre film of physical inputs); the result keeps them."""
+    for note in plausibility.result_notes(params, physical, normal):
+        warnings.warn(note, ResultRangeWarning, stacklevel=4)
 
 
 def _check_viscosity_range(params, physical, normal: NormalResult) -> None:

@@ -436,7 +436,7 @@ def test_command_writes_trajectory_contacts_json_and_plot(tmp_path, capsys):
             "--contact-history",
             "--sphere-roughness",
             "1.5e-7",
-            "--out",
+            "--folder",
             str(out),
         ]
     )

@@ -537,7 +537,7 @@ def places(tmp_path):
         (["collide", "--from", "{dir}"], "--from", "is a folder"),
         (["render", *SMALL_COLLISION, "--out", "{missing}/r.png"], "--out", "does not exist"),
         (["render", *SMALL_COLLISION, "--animation", "{F}/a.gif"], "--animation", "is a file"),
-        (["bounce", "--out", "{F}/b", "--radius", "1e-3"], "--out", "is a file"),
+        (["bounce", "--folder", "{F}/b", "--radius", "1e-3"], "--folder", "is a file"),
         (["bounce", "--json", "{missing}/b.json"], "--json", "does not exist"),
         (["critical", "--eps", "1e-3", "--json", "{F}/c.json"], "--json", "is a file"),
         (["presets", "--json", "{missing}/p.json"], "--json", "does not exist"),
@@ -689,9 +689,9 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
     import signal
     import time
 
-    process = subprocess.Popen(
-        # a bracket of 1e-7 takes some 20 collisions, well past the signal
-        [sys.executable, "-m", "ehdfem", "critical", "--eps", "1e-3", "--bracket-rtol", "1e-7"],
+    command = ["critical", "--eps", "1e-3", "--bracket-rtol", "1e-8", "--rtol", "1e-7"]
+    process = subprocess.Popen(  # about 100 s of collisions: the defaults' 3 s can end first
+        [sys.executable, "-m", "ehdfem", *command],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -701,7 +701,8 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
     _, err = process.communicate(timeout=60)
     assert process.returncode == 130, err
     assert err.strip().splitlines() == [
-        "ehdfem critical: interrupted: stopped by Ctrl-C; files already written are kept"
+        "ehdfem critical: interrupted: stopped by Ctrl-C; the search writes nothing until it "
+        "ends, so nothing was saved: run the command again to search anew"
     ]
 
 

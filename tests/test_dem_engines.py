@@ -5,6 +5,9 @@ read back beside the full model within the error the study states (docs/validati
 
 import json
 import math
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -230,3 +233,36 @@ def test_a_missing_engine_is_named_with_the_set_up(tmp_path, monkeypatch):
     monkeypatch.setenv("PATH", str(tmp_path))
     with pytest.raises(OSError, match="yade is not installed.*make.sh setup"):
         run_binary(["yade", "-n", "-x", "collision.py"], tmp_path, "yade.log")
+    with pytest.raises(OSError, match="yade is not installed.*make.sh setup"):
+        yade.run(small(), yade.YadeLaw(), tmp_path)
+
+
+AUDIT_HOOK = """
+import os, sys
+
+def _record(event, args):  # every process of the run: its imports of Yade and its binds
+    if event == "import" and args[0] == "yade" or event == "socket.bind":
+        with open(os.environ["EHDFEM_TEST_AUDIT"], "a") as log:
+            log.write(f"{os.getpid()} {event} {args[0] if event == 'import' else args[1]}\\n")
+
+sys.addaudithook(_record)
+"""
+
+
+def test_yade_runs_without_opening_a_port(tmp_path):
+    """``ehdfem dem --engine yade`` run as a user runs it: no process of the run binds a socket
+    (Yade's launcher opens a Python console on TCP port 9000 and an info server on 21000, on
+    every interface). Each Python process of the run, Yade's included, logs its binds through
+    an audit hook; the log must show that Yade was imported, so the hook did watch it."""
+    (tmp_path / "hook").mkdir()
+    (tmp_path / "hook" / "sitecustomize.py").write_text(AUDIT_HOOK)
+    log = tmp_path / "audit.log"
+    env = os.environ | {"PYTHONPATH": str(tmp_path / "hook"), "EHDFEM_TEST_AUDIT": str(log)}
+    command = [str(Path(sys.executable).parent / "ehdfem"), "dem", "--engine", "yade",
+               "--example", "--folder", str(tmp_path / "yade")]  # fmt: skip
+    done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "(rerun there: python3 collision.py)" in done.stdout
+    events = log.read_text().splitlines()
+    assert any(line.split()[1] == "import" for line in events)  # Yade ran under the hook
+    assert [line for line in events if "socket.bind" in line] == []

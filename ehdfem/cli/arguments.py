@@ -114,17 +114,20 @@ def report_stream(args):
 def print_table(summary: dict, stream) -> None:
     """The collision's groups, models and time-step control, one per line, then its outputs
     with their scale and meaning, the SI values last (:func:`ehdfem.outputs.registry.format_table`;
-    an output that does not apply shows n/a and why; the inputs are in the JSON only)."""
+    an output that does not apply shows n/a and why; the inputs are in the JSON only), then
+    its plausibility notes, a line each (``note: ...``)."""
     physical = summary.get("inputs", {}).get("physical")
     if physical:
         print(f"  {physical_inputs_line(physical)}", file=stream)
-    outputs = set(registry.names()) | {"not_applicable"}
+    outputs = set(registry.names()) | {"not_applicable", "notes"}
     rows = [(k, v) for k, v in summary.items() if not isinstance(v, dict) and k not in outputs]
     width = max(len(k) for k, _ in rows)
     for key, value in rows:
         text = f"{value:.6g}" if isinstance(value, float) else str(value)
         print(f"  {key:<{width}}  {text}", file=stream)
     print(registry.format_table(summary), file=stream)
+    for note in summary.get("notes", ()):
+        print(f"  note: {note}", file=stream)
 
 
 def physical_inputs_line(physical: dict) -> str:

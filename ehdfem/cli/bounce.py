@@ -3,6 +3,7 @@ rests; each contact is an immersed EHD collision (docs/bounce.md). Inputs in SI.
 
 from __future__ import annotations
 
+import argparse
 from argparse import BooleanOptionalAction
 from pathlib import Path
 
@@ -17,7 +18,7 @@ from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..inputs.scales import ATMOSPHERE
 from ..study.sweep import write_csv
 from . import paths
-from .arguments import report_stream, write_json
+from .arguments import JSON_HELP, report_stream, write_json
 from .inputs import BODIES, add_body_arguments, body_hint, body_of
 
 HELP = (
@@ -26,38 +27,75 @@ HELP = (
 )
 
 
+def _with_default(text: str, default) -> str:
+    """``text; default: <default>`` (argparse's help, its % escaped)."""
+    return f"{text}; default: {default}".replace("%", "%%")
+
+
 def add_bounce(b) -> None:
-    """The inputs of ``ehdfem bounce``: materials, liquid, start, modelling choices, output."""
+    """The inputs of ``ehdfem bounce``: materials, liquid, start, modelling choices, output;
+    each option's help gives its unit, range and default."""
     phys = b.add_argument_group("physical inputs (SI)")
     add_body_arguments(phys)
-    phys.add_argument("--radius", type=float, help="sphere radius a [m], (0, 1]")
-    phys.add_argument(
-        "--release-height", type=float, help="gap [m] at which the sphere is released at rest"
-    )
-    phys.add_argument("--start-gap", type=float, help="or: start gap [m], with --start-speed")
-    phys.add_argument("--start-speed", type=float, help="speed [m/s] towards the wall at the start")
+    for name, text in (
+        ("radius", "sphere radius a [m], (0, 1]; default: required"),
+        (
+            "release-height",
+            "gap [m] at which the sphere is released at rest, (0, 100]; "
+            "default: none (give it, or --start-gap with --start-speed)",
+        ),
+        ("start-gap", "or: start gap [m], with --start-speed, (0, 100]; default: none"),
+        ("start-speed", "speed [m/s] towards the wall at --start-gap, [0, 100]; default: none"),
+    ):
+        phys.add_argument(f"--{name}", type=float, metavar="X", help=text)
     model = b.add_argument_group("modelling choices")
     model.add_argument(
-        "--e-dry", type=float, default=1.0, help="dry restitution, (0, 1]; 1 = pure EHD"
+        "--e-dry",
+        type=float,
+        default=1.0,
+        metavar="X",
+        help=_with_default("dry restitution (1: pure EHD), (0, 1]", 1),
     )
-    model.add_argument("--drag", choices=DRAG_LAWS, default=DRAG_LAWS[0], help="steady drag law")
+    model.add_argument(
+        "--drag",
+        choices=DRAG_LAWS,
+        default=DRAG_LAWS[0],
+        help=_with_default("steady drag law", DRAG_LAWS[0]),
+    )
     model.add_argument(
         "--added-mass-coefficient",
         dest="added_mass",
         type=float,
         default=0.5,
-        help="added-mass coefficient C_M far from the wall, [0, 1] (collide's --added-mass is "
-        "a mass in kg)",
+        metavar="C_M",
+        help=_with_default(
+            "added-mass coefficient C_M far from the wall, [0, 1] (collide's --added-mass is a "
+            "mass in kg)",
+            0.5,
+        ),
     )
-    model.add_argument("--gravity", type=float, default=GRAVITY, help="g [m/s^2]")
+    model.add_argument(
+        "--gravity",
+        type=float,
+        default=GRAVITY,
+        metavar="X",
+        help=_with_default("gravitational acceleration g [m/s^2], (0, 100]", GRAVITY),
+    )
     model.add_argument(
         "--cavitation",
         choices=cavitation.MODELS,
         default="truncate",
-        help="film cavitation at the liquid's vapour pressure: truncate, mass-conserving or none",
+        help=_with_default(
+            "film cavitation at the liquid's vapour pressure: truncate, mass-conserving or none",
+            "truncate",
+        ),
     )
     model.add_argument(
-        "--ambient-pressure", type=float, default=ATMOSPHERE, help="ambient pressure [Pa]"
+        "--ambient-pressure",
+        type=float,
+        default=ATMOSPHERE,
+        metavar="X",
+        help=_with_default("ambient pressure [Pa], (0, inf)", f"{ATMOSPHERE:g}"),
     )
     _add_flight_choices(model)
     model.add_argument(
@@ -65,37 +103,43 @@ def add_bounce(b) -> None:
         dest="model",
         choices=BOUNCE_MODELS,
         default="halfspace",
-        help="solids of the contacts: elastic half-spaces, or rigid (eps -> 0); collide's "
-        "--model chooses between half-spaces and FE solids",
+        help=_with_default(
+            "solids of the contacts: elastic half-spaces, or rigid (eps -> 0); collide's "
+            "--model chooses between half-spaces and FE solids",
+            "halfspace",
+        ),
     )
-    num = b.add_argument_group("numerics and output")
+    _add_numerics(b.add_argument_group("numerics and output"))
+
+
+def _add_numerics(num) -> None:
+    """The hand-over, the film model's numerics and the outputs."""
+    for name, kind, default, text in (
+        ("handover-jump", float, HANDOVER_JUMP, "largest relative force jump at the hand-over "
+         "to the film model, (0, 0.5)"),
+        ("ehd-multiple", float, EHD_MULTIPLE, "hand over at the latest at this multiple of the "
+         "EHD gap, [1, 1e4]"),
+        ("max-bounces", int, 30, "most contacts computed, [1, 1000]"),
+        ("rest-apex", float, 1e-3, "an apex below this fraction of D ends the bounce, [0, 1)"),
+        ("nodes", int, DEFAULT_NODES, "film nodes of each contact, [20, 5000]"),
+        ("rtol", float, IntegratorOptions.rtol, "time-step tolerance of each contact: local "
+         "error per step [relative], [1e-10, 0.1]"),
+    ):  # fmt: skip
+        num.add_argument(
+            f"--{name}",
+            type=kind,
+            default=default,
+            metavar="X",
+            help=_with_default(text, f"{default:g}"),
+        )
     num.add_argument(
-        "--handover-jump",
-        type=float,
-        default=HANDOVER_JUMP,
-        help="largest relative force jump at the hand-over to the film model, (0, 0.5)",
-    )
-    num.add_argument(
-        "--ehd-multiple",
-        type=float,
-        default=EHD_MULTIPLE,
-        help="hand over at the latest at this multiple of the EHD gap, >= 1",
-    )
-    num.add_argument("--max-bounces", type=int, default=30, help="most contacts computed")
-    num.add_argument(
-        "--rest-apex", type=float, default=1e-3, help="an apex below this fraction of D ends it"
-    )
-    num.add_argument("--nodes", type=int, default=DEFAULT_NODES, help="film nodes")
-    num.add_argument(
-        "--rtol", type=float, default=IntegratorOptions.rtol, help="film time-step tolerance"
-    )
-    num.add_argument(
-        "--out",
+        "--folder",
         metavar="DIR",
         help="write trajectory.csv, contacts.csv, bounce.json and bounce.png into DIR (made if "
-        "missing)",
+        "missing); default: none",
     )
-    num.add_argument("--json", metavar="FILE", help="write the results as JSON ('-' for stdout)")
+    num.add_argument("--out", dest="old_out", help=argparse.SUPPRESS)  # refused: see --folder
+    num.add_argument("--json", metavar="FILE", help=JSON_HELP)
 
 
 def _add_flight_choices(model) -> None:
@@ -104,17 +148,23 @@ def _add_flight_choices(model) -> None:
         "--history",
         choices=HISTORY_KERNELS,
         default=HISTORY_KERNELS[0],
-        help="history (Basset) force in flight: Mei & Adrian's finite-Re kernel; the same with "
-        "the wall-bounded unsteady Stokes kernel in place of Basset's (mei-adrian-wall); "
-        "Basset's; none",
+        help=_with_default(
+            "history (Basset) force in flight: Mei & Adrian's finite-Re kernel; the same with "
+            "the wall-bounded unsteady Stokes kernel in place of Basset's (mei-adrian-wall); "
+            "Basset's; none",
+            HISTORY_KERNELS[0],
+        ),
     )
     model.add_argument(
         "--history-memory",
         choices=HISTORY_MEMORIES,
         default=HISTORY_MEMORIES[0],
-        help="the history force's memory across a contact: keep the contact's velocity change, "
-        "reset it at each exit, or keep only the approach's memory (the contact's velocity "
-        "change forgotten at exit)",
+        help=_with_default(
+            "the history force's memory across a contact: keep the contact's velocity change, "
+            "reset it at each exit, or keep only the approach's memory (the contact's velocity "
+            "change forgotten at exit)",
+            HISTORY_MEMORIES[0],
+        ),
     )
     switches = {
         "wall-added-mass": ("the added mass rises near the wall (the sphere's image)", True),
@@ -131,20 +181,25 @@ def _add_flight_choices(model) -> None:
             f"--{name}",
             action=BooleanOptionalAction,
             default=default,
-            help=f"{text} (default {'on' if default else 'off'})",
+            help=_with_default(text, "on" if default else "off"),
         )
     for surface in ("sphere", "wall"):
         model.add_argument(
             f"--{surface}-roughness",
             type=float,
             default=0.0,
-            help=f"rms roughness of the {surface}'s surface [m], [0, 0.01 a]; 0: smooth",
+            metavar="X",
+            help=_with_default(
+                f"rms roughness of the {surface}'s surface (0: smooth) [m], [0, 0.01 a]", 0
+            ),
         )
     model.add_argument(
         "--asperities",
         choices=ASPERITY_MODELS,
         default=ASPERITY_MODELS[0],
-        help="asperity contact of rough surfaces at each contact (docs/model.md)",
+        help=_with_default(
+            "asperity contact of rough surfaces at each contact (docs/model.md)", ASPERITY_MODELS[0]
+        ),
     )
 
 
@@ -182,8 +237,14 @@ def _bounce_inputs(args) -> BounceInputs:
 
 
 def bounce_command(args) -> int:
+    if args.old_out is not None:
+        raise checks.InputError(
+            "the bounce's output folder is --folder (render's --out names a picture file)",
+            "old_out",
+        )
     paths.output_file("json", args.json, stdout=True)
-    paths.output_folder("out", args.out)
+    paths.output_folder("folder", args.folder)
+    paths.distinct_outputs({"json": args.json, "folder": args.folder})
     inputs = _bounce_inputs(args)
     result = bounce_sphere(
         inputs,
@@ -212,8 +273,8 @@ def bounce_command(args) -> int:
             file=report,
         )
     write_json(summary, args.json)
-    if args.out:
-        out = Path(args.out)
+    if args.folder:
+        out = Path(args.folder)
         from ..outputs import plots  # matplotlib costs 0.25 s to import: only when plotting
 
         out.mkdir(parents=True, exist_ok=True)

@@ -14,7 +14,7 @@ from ..config import read_inputs
 from ..outputs.fields import field_snapshots, write_fields
 from ..outputs.histories import write_histories
 from . import paths
-from .arguments import JSON_HELP, print_table, report_stream, write_json
+from .arguments import JSON_HELP, physical_inputs_line, print_table, report_stream, write_json
 from .inputs import add_collision_arguments, collision_inputs, run_config
 
 COLLIDE_HELP = "simulate one collision and print its results"
@@ -50,7 +50,8 @@ def add_collide(parser) -> None:
         type=float,
         nargs="+",
         metavar="T",
-        help="with --fields: further instants T [by x0/V0] to write; default: none",
+        help="with --fields: further instants T [by x0/V0] to write, from 0 to the collision's "
+        "end; default: none",
     )
     out.add_argument(
         "--fields",
@@ -77,6 +78,20 @@ def check_outputs(args) -> None:
         raise checks.InputError(
             "needs --fields FILE.xdmf (the file the fields go to)", "field_times"
         )
+    check_instants("field_times", args.field_times)
+
+
+def check_instants(name: str, times, end: float | None = None) -> None:
+    """Refuse an instant T (by x0/V0) of option ``name`` below 0, before any work, or, once the
+    collision's end T ``end`` is known, after it."""
+    for t in times or ():
+        checks.number(name, t, lower=0.0)
+        if end is not None and t > end:
+            raise checks.InputError(
+                f"T = {t:g} is after the collision's end, T = {end:.5g} (by x0/V0): give an "
+                f"instant in [0, {end:.5g}]",
+                name,
+            )
 
 
 def replayed_inputs(args):
@@ -115,6 +130,7 @@ def collide_command(args) -> int:
     if args.fields and config.model != "fem":
         raise checks.InputError("needs --model fem (the half-space has no mesh)", "fields")
     result = collide(inputs, config)
+    check_instants("field_times", args.field_times, float(result.normal.history.time[-1]))
     summary = result.summary(args.command_line)
     report = report_stream(args)
     print("ehdfem collide: results (dimensionless, DSH scales; SI under si)", file=report)
@@ -134,10 +150,13 @@ def collide_command(args) -> int:
         from ..outputs import plots  # matplotlib costs 0.25 s to import: only when plotting
 
         units = result.physical.scales() if result.physical else None
-        wrote.append(plots.plot_histories(result.normal, out / "histories.png", units))
-        wrote.append(plots.plot_profiles(result.normal, out / "profiles.png", units))
+        physical = summary["inputs"].get("physical")
+        heading = physical_inputs_line(physical).split(": ", 1)[1] if physical else None
+        normal = result.normal
+        wrote.append(plots.plot_histories(normal, out / "histories.png", units, heading))
+        wrote.append(plots.plot_profiles(normal, out / "profiles.png", units, heading))
         if result.tangential is not None:
-            wrote.append(plots.plot_tangential(result, out / "tangential.png"))
+            wrote.append(plots.plot_tangential(result, out / "tangential.png", heading))
     for path in wrote:
         print(f"  wrote {path}", file=report)
     return 0
@@ -151,7 +170,11 @@ def add_render(parser) -> None:
         default="render.png",
         help="picture file, its format by its suffix (.png, .pdf, .svg, ...); default: render.png",
     )
-    r.add_argument("--time", type=float, help="instant T [by x0/V0]; default: maximum compression")
+    r.add_argument(
+        "--time",
+        type=float,
+        help="instant T [by x0/V0], from 0 to the collision's end; default: maximum compression",
+    )
     r.add_argument(
         "--field",
         choices=("von_mises", "hydrostatic", "displacement", "pressure"),
@@ -159,7 +182,9 @@ def add_render(parser) -> None:
         help="field shown on the solids; default: von_mises",
     )
     r.add_argument(
-        "--magnification", type=float, help="displacement display factor; default: automatic"
+        "--magnification",
+        type=float,
+        help="displacement display factor, (0, inf); default: automatic",
     )
     r.add_argument(
         "--animation", metavar="FILE.gif", help="also write the film animation; default: none"
@@ -183,13 +208,14 @@ def render_command(args) -> int:
     paths.output_file("animation", args.animation, formats=(".gif",))
     if args.magnification is not None:
         checks.positive("magnification", args.magnification)
-    if args.time is not None:
-        checks.number("time", args.time, lower=0.0)
+    check_instants("time", [] if args.time is None else [args.time])
     paths.output_file("json", args.json, stdout=True)
+    paths.distinct_outputs({name: getattr(args, name) for name in ("out", "animation", "json")})
     result = collide(collision_inputs(args), run_config(args))
+    hist = result.normal.history
+    check_instants("time", [] if args.time is None else [args.time], float(hist.time[-1]))
     report = report_stream(args)
     write_json(result.summary(args.command_line), args.json)
-    hist = result.normal.history
     time = float(hist.time[int(np.argmin(hist.gap))] if args.time is None else args.time)
     pressure = dict(field_snapshots(result.normal, [time]))[time]
     units = result.physical.scales() if result.physical else None

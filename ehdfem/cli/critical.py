@@ -59,16 +59,13 @@ def critical_command(args) -> int:
     kind = "speed" if isinstance(inputs, PhysicalCollision) else "St"
     bracket = BRACKETS[kind] if args.bracket is None else tuple(args.bracket)
     label = f"{'critical speed' if kind == 'speed' else 'St_c'} bisection"
-    if kind == "speed":
-        found = critical_speed(inputs, bracket, args.bracket_rtol, config, progress_label=label)
-        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED_PHYSICAL}
-        where = f"speed = {found['speed']:.6g} m/s, St_c = {found['St_c']:.6g}"
-        unit = " m/s"
-    else:
-        found = critical_stokes(inputs, bracket, args.bracket_rtol, config, progress_label=label)
-        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED}
-        given["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
-        where, unit = f"St_c = {found['St_c']:.6g}", ""
+    try:
+        found, given, where, unit = _search(args, inputs, kind, bracket, config, label)
+    except KeyboardInterrupt:
+        raise KeyboardInterrupt(
+            "stopped by Ctrl-C; the search writes nothing until it ends, so nothing was saved: "
+            "run the command again to search anew"
+        ) from None
     out = {
         **found,
         "provenance": provenance.record(args.command_line),
@@ -83,3 +80,19 @@ def critical_command(args) -> int:
     )
     write_json(out, args.json)
     return 0
+
+
+def _search(args, inputs, kind, bracket, config, label):
+    """The critical speed or St_c of ``inputs``: (what the search found, the inputs it was
+    given, the result's line and its unit)."""
+    if kind == "speed":
+        found = critical_speed(inputs, bracket, args.bracket_rtol, config, progress_label=label)
+        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED_PHYSICAL}
+        where = f"speed = {found['speed']:.6g} m/s, St_c = {found['St_c']:.6g}"
+        unit = " m/s"
+    else:
+        found = critical_stokes(inputs, bracket, args.bracket_rtol, config, progress_label=label)
+        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED}
+        given["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
+        where, unit = f"St_c = {found['St_c']:.6g}", ""
+    return found, given, where, unit

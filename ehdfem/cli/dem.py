@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .. import CollisionParameters, checks
-from ..dem.engines.compare import ENGINES, compare, engine_law
+from ..dem.engines.compare import ENGINES, RERUN, compare, engine_law
 from ..inputs.presets import EXAMPLE
 from ..outputs import provenance
 from . import paths
@@ -28,14 +28,14 @@ def add_dem(parser) -> None:
         required=True,
         help="yade: a sphere on a wall with its implicit lubrication law; liggghts: two equal "
         "spheres (--wall the sphere's material, head-on) with its easo/capillary/viscous "
-        "bridge, beside the half-space model at the reduced radius and mass",
+        "bridge, beside the half-space model at the reduced radius and mass; default: required",
     )
     engine.add_argument(
         "--folder",
         metavar="DIR",
         required=True,
         help="folder for the engine's input script, log, history and rebound (made if "
-        "missing; rerun by hand there)",
+        "missing; rerun by hand there); default: required",
     )
     for law, _ in ENGINES.values():
         add_fields(engine, law)
@@ -46,6 +46,7 @@ def add_dem(parser) -> None:
 def dem_command(args) -> int:
     paths.output_folder("folder", args.folder)
     paths.output_file("json", args.json, stdout=True)
+    paths.distinct_outputs({"folder": args.folder, "json": args.json})
     law_class = ENGINES[args.engine][0]
     for other, _ in ENGINES.values():
         if other is not law_class and given(args, other):
@@ -100,4 +101,5 @@ def print_comparison(result: dict, report) -> None:
             file=report,
         )
     written = ", ".join(sorted(path.name for path in Path(engine["folder"]).iterdir()))
-    print(f"  files in {engine['folder']}: {written} (rerun {engine['script']} there)", file=report)
+    rerun = RERUN[engine["engine"]]
+    print(f"  files in {engine['folder']}: {written} (rerun there: {rerun})", file=report)

@@ -103,18 +103,20 @@ def read_table(path: Path, option: str) -> list[dict]:
 
 
 def print_fits(fits: dict, report) -> None:
-    """The fits, one line each, and why a fit was left out (``..._skipped``)."""
+    """The fits, one line each with the absolute error of what it gives over the table's
+    points (e_n, or St_c of a critical Stokes number's law), and why a fit was left out
+    (``..._skipped``)."""
     for group in fits["normal"]:
         print(
             f"{_labels(group)}, eps = {group['eps']:g}: "
             f"e_n = {group['e_inf']:.4f} (1 - {group['St_c']:.4g}/St)"
-            f"  max error {group['max_error']:.3g}, rms {group['rms_error']:.3g}",
+            f"  e_n error: max {group['max_error']:.3g}, rms {group['rms_error']:.3g}",
             file=report,
         )
     for law in fits["critical_stokes_laws"]:
         print(
             f"St_c ({_labels(law['model'])}): {law['coefficient']:.4g} eps^{law['eps']:.4g}"
-            f"  max error {law['max_error']:.3g}, rms {law['rms_error']:.3g}",
+            f"  St_c error: max {law['max_error']:.3g}, rms {law['rms_error']:.3g}",
             file=report,
         )
     forms = fits.get("closed_forms")
@@ -126,7 +128,7 @@ def print_fits(fits: dict, report) -> None:
         print(f"  largest errors on held-back points: {export.describe_errors(held)}", file=report)
     for name, errors in fits["dem_formulas"].items():
         error, rms = errors["max_error"], errors["rms_error"]
-        print(f"DEM formula {name}: max error {error:.3g}, rms {rms:.3g}", file=report)
+        print(f"DEM formula {name}: e_n error: max {error:.3g}, rms {rms:.3g}", file=report)
     for skipped in ("normal_skipped", "closed_forms_skipped"):
         if skipped in fits:
             print(f"left out: {fits[skipped]}", file=report)

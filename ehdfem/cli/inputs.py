@@ -140,7 +140,7 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
             counterpart = {v: k for k, v in SCALED.items()}.get(name)
             instead = f"; give the scaled {_option(counterpart)} instead" if counterpart else ""
             raise checks.InputError(f"{_option(name)} needs physical inputs{instead}", name)
-        return _dimensionless(args, sought)
+        return _warn_of_settings_without_effect(args, _dimensionless(args, sought))
     values.update({k: v for k, v in sought.items() if k in _names(PhysicalCollision)})
     missing = [body_hint(name) for name in (*BODIES, *PHYSICAL_TRIGGERS) if name not in values]
     if missing:
@@ -173,7 +173,7 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
             stacklevel=2,
         )
     try:
-        return from_presets(**values)
+        return _warn_of_settings_without_effect(args, from_presets(**values))
     except checks.InputError as err:  # a physical field whose option is spelt otherwise
         renamed = {f.name: destination(f) for f in described(PhysicalCollision)}
         if renamed.get(err.name, err.name) != err.name:
@@ -197,6 +197,41 @@ def _warn_of_options_without_effect(values: dict, coefficient: str, suction: str
             f"{_option(suction)} has no effect with --cavitation none (unlimited suction)",
             stacklevel=3,
         )
+
+
+TANGENTIAL_ONLY = ("tangential", "sliding_deformation", "inertia_factor", "friction_coefficient")
+
+
+def _warn_of_settings_without_effect(args, inputs):
+    """``inputs`` (CollisionParameters or PhysicalCollision), after a warning for each option
+    given that cannot act in their run: the tangential motion's settings (its film model, the
+    solids' mode-1 deformation, the sphere's inertia factor, the contact's friction) on a
+    head-on impact, where no tangential motion is solved; --sliding-deformation with another
+    tangential film than the sliding film; the Roelands constants with another viscosity
+    law."""
+    if inputs.angle == 0.0:
+        for name in (n for n in TANGENTIAL_ONLY if hasattr(args, n)):
+            warnings.warn(
+                f"{_option(name)} has no effect on a head-on impact (no tangential motion is "
+                "solved: give --angle)",
+                stacklevel=3,
+            )
+    elif hasattr(args, "sliding_deformation"):
+        film = getattr(args, "tangential", "couette")
+        if film != "lubrication":
+            warnings.warn(
+                f"--sliding-deformation has no effect with --tangential {film} (it deforms the "
+                "solids under the sliding film, --tangential lubrication)",
+                stacklevel=3,
+            )
+    for name in ("roelands_index", "roelands_pressure"):
+        if hasattr(args, name) and inputs.viscosity != "roelands":
+            warnings.warn(
+                f"{_option(name)} has no effect with --viscosity {inputs.viscosity} (give "
+                "--viscosity roelands)",
+                stacklevel=3,
+            )
+    return inputs
 
 
 def _dimensionless(args, sought: dict) -> CollisionParameters:

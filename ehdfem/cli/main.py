@@ -26,6 +26,7 @@ error, once (by MPI rank 0), and flagged in the result.
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 import warnings
@@ -42,6 +43,7 @@ DESCRIPTION = (
     "predicts rebound or sticking, the restitution coefficients, the film's pressure and "
     "thickness, and the critical Stokes number."
 )
+INTERRUPTED = "stopped by Ctrl-C; files already written are kept"
 VERBOSE_HELP = "show the form compiler's build log and VTK's warnings; default: hidden"
 COMMANDS = {  # name: (help, add its arguments, run it)
     "collide": (collide.COLLIDE_HELP, collide.add_collide, collide.collide_command),
@@ -90,8 +92,12 @@ def error_text(err: checks.InputError, parser: argparse.ArgumentParser) -> str:
     """``--flag: message`` for a refused input: the message names the options as typed on the
     command line where the library names the fields (``St = 0.0 is ...`` becomes ``--St: 0.0
     is ...``; ``vapour_pressure`` becomes ``--vapour-pressure``)."""
-    text, flag = str(err), flag_of(parser, err.name)
-    for prefix in (f"{err.name} = ", f"{err.name} ", f"{flag} "):
+    text, name = str(err), err.name
+    named = re.match(r"([a-z]\w*) = ", text)  # an unnamed error that starts with its field
+    if name is None and named and flag_of(parser, named.group(1)):
+        name = named.group(1)
+    flag = flag_of(parser, name)
+    for prefix in (f"{name} = ", f"{name} ", f"{flag} "):
         if flag and text.startswith(prefix):
             text = text[len(prefix) :]
             break
@@ -106,19 +112,44 @@ def say(command: str, kind: str, text: str) -> None:
         print(f"ehdfem {command}: {kind}: {text}", file=sys.stderr)
 
 
-def _warning_printer(command: str):
-    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` (rank 0)."""
+NUMBER = re.compile(r"\d+(\.\d+)?(e[-+]?\d+)?")  # what differs between repeats of a warning
 
-    def show(message, category, filename, lineno, file=None, line=None):
-        say(command, "warning", str(message))
 
-    return show
+class WarningPrinter:
+    """A warnings.showwarning that prints ``ehdfem <command>: warning: <message>`` (rank 0):
+    of warnings that differ only in their numbers (one per collision of a search, a sweep's
+    point or a bounce's contact) the first, and at the end (:meth:`repeats`) how many more
+    came."""
+
+    def __init__(self, command: str):
+        self.command = command
+        self.seen: dict[str, list] = {}  # the message with "#" for its numbers: [first, count]
+
+    def __call__(self, message, category, filename, lineno, file=None, line=None):
+        text = str(message)
+        first = self.seen.setdefault(NUMBER.sub("#", text), [text, 0])
+        first[1] += 1
+        if first[1] == 1:
+            say(self.command, "warning", text)
+
+    def repeats(self) -> None:
+        """One line for each warning that came more than once."""
+        for text, count in self.seen.values():
+            if count > 1:
+                shown = text if len(text) <= 60 else text[:57] + "..."
+                say(
+                    self.command,
+                    "warning",
+                    f'{count - 1} more like "{shown}", with other numbers, were not shown',
+                )
 
 
 def main(argv=None) -> int:
     """The ``ehdfem`` command; returns the exit status (0 done, 1 a file could not be read or
-    written, 2 bad input, 3 solver failure, 130 interrupted by Ctrl-C: one line, no traceback;
-    what was written stays, and a sweep resumes from its table), the same on every MPI rank."""
+    written, 2 bad input, 3 solver failure, 130 interrupted by Ctrl-C: one line, no traceback,
+    saying what was saved and how to resume where the command knows (a sweep resumes from its
+    points); what was written stays), the same on every MPI rank. A reader that closes the pipe
+    early (``| head``) ends the command quietly with status 1."""
     parser, commands = parsers()
     args, unknown = parser.parse_known_args(argv)
     if unknown:
@@ -128,17 +159,23 @@ def main(argv=None) -> int:
     set_quiet(not args.verbose)
     try:
         with warnings.catch_warnings():
-            warnings.showwarning = _warning_printer(args.command)
-            return COMMANDS[args.command][2](args)
+            warnings.showwarning = printer = WarningPrinter(args.command)
+            try:
+                return COMMANDS[args.command][2](args)
+            finally:
+                printer.repeats()
     except checks.InputError as err:
         say(args.command, "error", error_text(err, commands[args.command]))
         return 2
     except NormalSolverError as err:
         say(args.command, "solver failure", str(err))
         return 3
-    except KeyboardInterrupt:
-        say(args.command, "interrupted", "stopped by Ctrl-C; files already written are kept")
+    except KeyboardInterrupt as err:  # a command may say what it saved and how to resume
+        say(args.command, "interrupted", str(err) or INTERRUPTED)
         return 130
+    except BrokenPipeError:  # the reader left (| head): no more output, and no message
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except OSError as err:  # a file that could not be read or written, possibly on one rank
         where = f"{err.filename}: " if err.filename else ""
         print(f"ehdfem {args.command}: error: {where}{err.strerror or err}", file=sys.stderr)

@@ -4,8 +4,9 @@
   and ``--animation``) goes into a folder that must exist already: a missing folder is refused,
   not created, so that a mistyped path is not silently made. ``-`` (where the option allows it)
   is standard output.
-- An output folder (``--plots``, bounce's ``--out``, a study's table folder) is created with its
-  missing parents when the results are written, unless a file stands where a folder must be.
+- An output folder (``--plots``, bounce's and dem's ``--folder``, a study's table folder) is
+  created with its missing parents when the results are written, unless a file stands where a
+  folder must be.
 - Either must be writable: a file is created and removed in the folder (or in its nearest
   existing parent) to make sure.
 - An input file (``--from``, the study file, fit's table) must exist and be a file.

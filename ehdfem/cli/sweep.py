@@ -27,7 +27,16 @@ def sweep_command(args) -> int:
         raise checks.InputError(f"[output] table {str(study.table)!r}: {err}", "study") from err
     if comm.rank == 0:
         print(f"ehdfem sweep {study.name}: {len(study.points)} points on {comm.size} rank(s)")
-    run_study(study, comm, progress=print if comm.rank == 0 else None)
+    try:
+        run_study(study, comm, progress=print if comm.rank == 0 else None)
+    except KeyboardInterrupt:
+        keys = {study.key(point) for point in study.points}
+        saved = len(keys.intersection(p.stem for p in study.point_dir.glob("*.json")))
+        raise KeyboardInterrupt(
+            f"stopped by Ctrl-C; {saved} of {len(keys)} points are saved in "
+            f"{study.point_dir}; run the same command again to compute the other "
+            f"{len(keys) - saved}"
+        ) from None
     if comm.rank == 0:
         print(f"wrote {study.table}")
     return 0

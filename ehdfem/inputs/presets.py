@@ -92,16 +92,16 @@ MATERIALS = {
         Material("zerodur", 90.3e9, 0.24, 2530.0, "Schott Zerodur data sheet"),
     ]
 }
-_GLYCEROL = "glycerol-water at 20 C, standard tables (Segur & Oberstar 1951; Cheng 2008), approx."
-_SILICONE = "polydimethylsiloxane oil, kinematic viscosity grade x 965-970 kg/m^3, approx."
+_GLYCEROL = "at 20 C, standard tables (Segur & Oberstar 1951; Cheng 2008), approx."
+_SILICONE = "polydimethylsiloxane oil, the kinematic viscosity grade times the density, approx."
 LIQUIDS = {
     liq.name: liq
     for liq in [
         Liquid("water", 1.0e-3, 998.0, 2.34e3, 0.0, f"water at 20 C, {_HANDBOOK}"),
-        Liquid("glycerol_50", 6.0e-3, 1126.0, 2.0e3, 0.0, f"50 wt% {_GLYCEROL}"),
-        Liquid("glycerol_80", 60.1e-3, 1208.0, 1.0e3, 0.0, f"80 wt% {_GLYCEROL}"),
-        Liquid("glycerol_90", 219e-3, 1235.0, 0.5e3, 0.0, f"90 wt% {_GLYCEROL}"),
-        Liquid("glycerol", 1.41, 1261.0, 0.0, 5.9e-9, f"pure {_GLYCEROL}"),
+        Liquid("glycerol_50", 6.0e-3, 1126.0, 2.0e3, 0.0, f"50 wt% glycerol-water {_GLYCEROL}"),
+        Liquid("glycerol_80", 60.1e-3, 1208.0, 1.0e3, 0.0, f"80 wt% glycerol-water {_GLYCEROL}"),
+        Liquid("glycerol_90", 219e-3, 1235.0, 0.5e3, 0.0, f"90 wt% glycerol-water {_GLYCEROL}"),
+        Liquid("glycerol", 1.41, 1261.0, 0.0, 5.9e-9, f"pure glycerol {_GLYCEROL}"),
         Liquid("silicone_oil_10cst", 9.35e-3, 935.0, 0.0, 1.5e-8, f"10 cSt {_SILICONE}"),
         Liquid("silicone_oil_100cst", 96.5e-3, 965.0, 0.0, 1.5e-8, f"100 cSt {_SILICONE}"),
         Liquid("silicone_oil_1000cst", 0.970, 970.0, 0.0, 1.5e-8, f"1000 cSt {_SILICONE}"),

@@ -279,12 +279,19 @@ class PhysicalCollision:
     :class:`CollisionParameters`).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
-    radius: float = setting(help="sphere radius a", unit="m", checked=False)
+    radius: float = setting(
+        help="sphere radius a", unit="m", lower=0.0, lower_open=True, checked=False
+    )
     sphere: Material = field()
     wall: Material = field()
     liquid: Liquid = field()
-    speed: float = setting(help="impact speed |v|", unit="m/s", checked=False)
-    layer_thickness: float = setting(help="liquid layer thickness x0", unit="m", checked=False)
+    speed: float = setting(
+        help="impact speed |v|", unit="m/s", lower=0.0, lower_open=True, checked=False
+    )
+    layer_thickness: float = setting(
+        help="liquid layer thickness x0 (less than the radius a)", unit="m", lower=0.0,
+        lower_open=True, checked=False,
+    )  # fmt: skip
     angle: float = 0.0
     layer: str = "thin"
     e_dry: float = 1.0
@@ -292,19 +299,28 @@ class PhysicalCollision:
         0.0, help="initial spin, rolling sense positive", unit="rad/s", flag="spin-rate",
         checked=False,
     )  # fmt: skip
-    ambient_pressure: float = setting(ATMOSPHERE, help="ambient pressure", unit="Pa", checked=False)
+    ambient_pressure: float = setting(
+        ATMOSPHERE, help="ambient pressure", unit="Pa", lower=0.0, lower_open=True, checked=False
+    )
     cavitation_pressure: float | None = setting(
-        None, help="cavitation pressure, absolute", unit="Pa",
-        default_text="the liquid's vapour pressure", checked=False,
+        None, help="cavitation pressure, absolute, up to the ambient pressure", unit="Pa",
+        lower=0.0, default_text="the liquid's vapour pressure", checked=False,
     )  # fmt: skip
     inertia_factor: float = 0.4
     sphere_mass: float | None = setting(
-        None, help="sphere mass", unit="kg", default_text="4/3 pi a^3 rho", checked=False
+        None,
+        help="sphere mass",
+        unit="kg",
+        lower=0.0,
+        lower_open=True,
+        default_text="4/3 pi a^3 rho",
+        checked=False,
     )
     added_mass: float = setting(
         0.0,
         help="mass of liquid moving with the sphere, added to its inertia but not to its weight",
         unit="kg",
+        lower=0.0,
         checked=False,
     )
     cavitation: str = "truncate"
@@ -320,14 +336,16 @@ class PhysicalCollision:
         help="gravitational acceleration towards the wall, acting through the sphere's buoyant "
         "weight during the contact (0: none)",
         unit="m/s^2",
+        lower=0.0,
         checked=False,
     )
     friction_coefficient: float = 0.0
     sphere_roughness: float = setting(
-        0.0, help="rms roughness of the sphere's surface", unit="m", checked=False
-    )
+        0.0, help="rms roughness of the sphere's surface (combined with the wall's, less "
+        "than the layer thickness)", unit="m", lower=0.0, checked=False,
+    )  # fmt: skip
     wall_roughness: float = setting(
-        0.0, help="rms roughness of the wall's surface", unit="m", checked=False
+        0.0, help="rms roughness of the wall's surface", unit="m", lower=0.0, checked=False
     )
     asperity_density: float = ASPERITY_DENSITY
     asperity_slope: float = ASPERITY_SLOPE
@@ -345,7 +363,8 @@ class PhysicalCollision:
         if self.layer_thickness >= self.radius:
             raise checks.InputError(
                 f"layer_thickness = {self.layer_thickness!r} m must be smaller than the radius "
-                f"{self.radius!r} m (the allowed range is (0, radius))"
+                f"{self.radius!r} m (the allowed range is (0, radius))",
+                "layer_thickness",
             )
         checks.number("angle", self.angle, lower=0.0, upper=90.0, upper_open=True)
         checks.number("gravity", self.gravity, lower=0.0)

@@ -4,6 +4,7 @@ units of ehdfem.inputs.scales; the tangential motion in its scaled units (by U0)
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -83,9 +84,10 @@ def _first(condition) -> int | None:
     return int(hits[0]) if len(hits) else None
 
 
-def plot_histories(result, path: Path, units=None) -> Path:
+def plot_histories(result, path: Path, units=None, heading: str | None = None) -> Path:
     """Gap, velocity, force and film thickness (central and minimum) against time, in SI given
-    ``units`` (:func:`axes`)."""
+    ``units`` (:func:`axes`); ``heading``: a line above the title (a physical collision's
+    inputs)."""
     hist, of = result.history, axes(units)
     time = of["time"][0] * hist.time
     fig, panels = plt.subplots(2, 2, figsize=(10, 7), sharex=True)
@@ -106,15 +108,16 @@ def plot_histories(result, path: Path, units=None) -> Path:
     ax.grid(alpha=0.3, which="both")
     for ax in panels[1]:
         ax.set_xlabel(of["time"][1])
-    fig.suptitle(_title(result))
+    fig.suptitle(_title(result, heading))
     return _save(fig, path)
 
 
-def plot_profiles(result, path: Path, units=None) -> Path:
+def plot_profiles(result, path: Path, units=None, heading: str | None = None) -> Path:
     """Pressure and film thickness against the radius at the instants where the film changes
     (:func:`profile_instants`: approach, X = 0, maximum force, maximum compression, rebound,
     strongest suction, exit), each labelled with its phase and time; in SI given ``units``
-    (:func:`axes`), else by mu V0 a / x0^2, x0, sqrt(a x0) and x0/V0."""
+    (:func:`axes`), else by mu V0 a / x0^2, x0, sqrt(a x0) and x0/V0; ``heading`` as in
+    :func:`plot_histories`."""
     hist, of = result.history, axes(units)
     (p_unit, p_label), (h_unit, h_label) = of["pressure"], of["film"]
     (r_unit, r_label), (t_unit, t_label) = of["radius"], of["time"]
@@ -136,11 +139,12 @@ def plot_profiles(result, path: Path, units=None) -> Path:
     ax_p.axhline(0.0, color="0.6", lw=0.8)
     ax_p.set_ylabel(p_label)
     suction = -p_unit * float(hist.pressure[steps][:, shown].min())
-    if suction > 0:  # linear through the suction, logarithmic above it: both show
-        linear = max(suction, 1e-6 * p_unit * float(pressure.max()))
+    if suction > 0:  # linear near 0, logarithmic beyond: the suction and the peak both show
+        linear = symlog_threshold(suction, p_unit * float(pressure.max()))
         ax_p.set_yscale("symlog", linthresh=linear)
-        ax_p.set_ylim(bottom=-2 * linear)
-        ax_p.set_ylabel(f"{p_label}; linear within $\\pm${linear:.3g}")
+        ax_p.set_ylim(bottom=-2 * max(suction, linear))
+        exponent = round(np.log10(linear))
+        ax_p.set_ylabel(f"{p_label}; linear within $\\pm 10^{{{exponent}}}$")
     ax_h.set_ylabel(h_label)
     for ax in (ax_p, ax_h):
         ax.set_xlabel(r_label)
@@ -148,13 +152,23 @@ def plot_profiles(result, path: Path, units=None) -> Path:
     ax_h.legend(  # beside the plots: the curves stay visible
         fontsize=8, title="phase", title_fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0)
     )
-    fig.suptitle(_title(result))
+    fig.suptitle(_title(result, heading))
     return _save(fig, path)
 
 
-def plot_tangential(collision, path: Path) -> Path:
+def symlog_threshold(suction: float, largest: float) -> float:
+    """The linear range +-L of a symlog pressure axis for a film whose strongest suction is
+    ``suction`` and whose largest pressure is ``largest`` (both > 0, in the axis's unit): the
+    power of ten at or below the suction, but not below 1e-6 of the largest pressure. A power
+    of ten puts the ticks at 0 and at whole decades only (+-L, +-10 L, ...), each a decade or
+    more from the next, so their labels cannot overlap; a threshold such as 2 or 9.9e4 put a
+    decade tick (1, 1e4) inside the linear range, a fraction of a decade from 0."""
+    return float(10.0 ** np.floor(np.log10(max(suction, 1e-6 * largest))))
+
+
+def plot_tangential(collision, path: Path, heading: str | None = None) -> Path:
     """Tangential velocity U, spin a Omega, slip U - a Omega (all by U0) and the tangential
-    force (by 6 pi mu a^2 U0 / x0) against time T."""
+    force (by 6 pi mu a^2 U0 / x0) against time T; ``heading`` as in :func:`plot_histories`."""
     t = collision.tangential
     fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(11, 4.5))
     ax_v.plot(t.time, t.velocity, label="U")
@@ -168,52 +182,70 @@ def plot_tangential(collision, path: Path) -> Path:
         ax.set_xlabel("time T (by $x_0/V_0$)")
         ax.grid(alpha=0.3)
     e_t = "-" if t.e_t is None else f"{t.e_t:.5g}"
-    fig.suptitle(f"{_title(collision.normal)}; {t.model}: e_t = {e_t} ({t.at})")
+    fig.suptitle(f"{_title(collision.normal, heading)}; {t.model}: e_t = {e_t} ({t.at})")
     return _save(fig, path)
 
 
 def plot_bounce(result, path: Path) -> Path:
-    """A bounce (:class:`ehdfem.bounce.trajectory.BounceResult`) as in the experiments: gap / D
-    against t / sqrt(D/g), time 0 at the first contact; each contact's restitution e and St
-    marked at its apex."""
+    """A bounce (:class:`ehdfem.bounce.trajectory.BounceResult`) as in the experiments: left,
+    gap / D against t / sqrt(D/g), time 0 at the first contact, each apex marked, with the gap
+    [mm] and the time [s] on the opposite axes; right, each contact's restitution e against its
+    St, the contacts joined in order. No text is placed inside the plots, so no label can cover
+    another however close the late, small bounces come."""
     inputs = result.inputs
     diameter, unit = inputs.diameter, inputs.time_scale()
     trajectory = result.trajectory
     contact = np.flatnonzero(trajectory["phase"] == "contact")
     start = trajectory["time"][contact[0]] if contact.size else 0.0
-    fig, ax = plt.subplots(figsize=(9, 4.5))
+    fig, (ax, ax_e) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": (2.3, 1)})
     ax.plot(
         (trajectory["time"] - start) / unit,
         trajectory["gap"] / diameter,
         lw=1.4,
         label=f"ehdfem bounce ({result.model}, {inputs.drag})",
     )
-    for c in result.contacts:
-        if c.apex_time is not None:
-            ax.annotate(
-                f"e = {c.e:.3f}\nSt = {c.St:.0f}",
-                ((c.apex_time - start) / unit, c.apex_gap / diameter),
-                textcoords="offset points",
-                xytext=(4, 4),
-                fontsize=8,
-            )
+    apexes = [c for c in result.contacts if c.apex_time is not None]
+    ax.plot(
+        [(c.apex_time - start) / unit for c in apexes],
+        [c.apex_gap / diameter for c in apexes],
+        "o",
+        ms=4,
+        color="C3",
+        label="apex after a contact",
+    )
     ax.set_xlabel(r"$t/\sqrt{D/g}$")
     ax.set_ylabel("gap / D")
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)
-    ax.legend()
-    ax.set_title(
-        f"{inputs.sphere.name} D = {diameter * 1e3:.3g} mm in {inputs.liquid.name}: "
+    ax.legend(loc="best", fontsize=9)
+    seconds = ax.secondary_xaxis("top", functions=(lambda x: x * unit, lambda t: t / unit))
+    seconds.set_xlabel("t [s]")
+    millimetres = 1e3 * diameter
+    gap_mm = ax.secondary_yaxis(
+        "right", functions=(lambda g: g * millimetres, lambda h: h / millimetres)
+    )
+    gap_mm.set_ylabel("gap [mm]")
+    restitutions = [c.e for c in result.contacts]
+    ax_e.plot([c.St for c in result.contacts], restitutions, "o-", ms=5)
+    ax_e.set_xlabel(r"St of the contact, $\rho_p D v / (9 \mu)$")
+    ax_e.set_ylabel("restitution e of the contact")
+    ax_e.set_ylim(0.0, max([1.0, *restitutions]))
+    ax_e.grid(alpha=0.3)
+    ax_e.set_title("each contact (the first at the largest St)", fontsize=9)
+    fig.suptitle(
+        f"{inputs.sphere.name} sphere, D = {millimetres:.3g} mm, in {inputs.liquid.name}: "
         f"{result.status}",
         fontsize=10,
     )
     return _save(fig, path)
 
 
-def _title(result) -> str:
+def _title(result, heading: str | None = None) -> str:
+    """The groups and the outcome, below ``heading`` (wrapped at 100 characters) if given."""
     p = result.params
     outcome = f"e_n = {result.e_n:.4g}" if result.rebound else "sticks"
-    return f"St = {p.St:g}, eps = {p.eps:g}, {p.layer} layer: {outcome}"
+    title = f"St = {p.St:.4g}, eps = {p.eps:.3g}, {p.layer} layer: {outcome}"
+    return f"{textwrap.fill(heading, 100)}\n{title}" if heading else title
 
 
 def _save(fig, path: Path) -> Path:

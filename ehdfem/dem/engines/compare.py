@@ -34,6 +34,8 @@ ENGINES: dict[str, tuple[type, EngineRun]] = {  # name: (its law's settings, its
 }
 
 
+RERUN = {"yade": yade.RERUN, "liggghts": liggghts.RERUN}  # name: its command to rerun by hand
+
 ROUGHNESS = {  # name: (its law's setting for the surfaces' roughness, its value of a collision)
     "yade": ("yade_roughness", yade.roughness_of),
     "liggghts": ("liggghts_min_separation", liggghts.min_separation_of),

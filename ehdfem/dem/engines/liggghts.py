@@ -41,6 +41,7 @@ from ...inputs.settings import setting, validate
 from .rebound import EngineRebound, read_rebound, run_binary
 
 SCRIPT = "in.collision"
+RERUN = f"liggghts -in {SCRIPT}"  # by hand, in the folder
 LOG = "log.liggghts"
 LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 (+ 10 Hertz contact times): then stuck
 GAP_BY_ROUGHNESS = 3.0  # the smallest gap by sigma closest to the full model's impact model

@@ -19,8 +19,12 @@ the exact rigid wall force. The interaction starts when the gap is the layer's t
 and ends when it reopens to x0 (Yade's MaxDist = x0 / a): the liquid fills the layer.
 
 The input script (collision.py, its inputs as JSON at its top) is written into a folder and
-run there with ``yade -n -x collision.py``; it writes history.csv (t [s], gap [m], normal and
-tangential velocity [m/s], spin [rad/s], normal force [N]) and rebound.json
+run there by the Python that Yade's launcher names on its first line (``python3 collision.py``):
+the script imports the launcher as a library, the way Yade documents for other Python programs,
+so that Yade opens no TCP port (run as ``yade -n -x collision.py``, which the script also
+allows, the launcher starts a Python console on port 9000 and an information server on 21000,
+listening on every interface). It writes history.csv (t [s], gap [m], normal and tangential
+velocity [m/s], spin [rad/s], normal force [N]) and rebound.json
 (:class:`ehdfem.dem.engines.rebound.EngineRebound`).
 """
 
@@ -28,14 +32,16 @@ from __future__ import annotations
 
 import json
 import math
+import shutil
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from ...inputs.scales import PhysicalCollision
 from ...inputs.settings import setting, validate
-from .rebound import EngineRebound, read_rebound, run_binary
+from .rebound import EngineError, EngineRebound, read_rebound, run_binary
 
 SCRIPT = "collision.py"
+RERUN = f"python3 {SCRIPT}"  # by hand, in the folder: Yade as a library, no TCP port
 LOG = "yade.log"
 LAYER_TIMES = 40.0  # the run ends after 40 x0/V0 in the layer (or |V| < 1e-2 V0 for x0/V0): stuck
 
@@ -120,6 +126,24 @@ def script_inputs(collision: PhysicalCollision, law: YadeLaw) -> dict:
 
 
 BODY = """
+try:  # run by Yade's launcher (yade -n -x collision.py): its names are here already
+    O
+except NameError:  # run by Python: the launcher imported as a library starts no TCP server
+    import importlib.machinery
+    import importlib.util
+    import shutil
+    import sys
+
+    launcher = shutil.which("yade")
+    if launcher is None:
+        sys.exit("collision.py: yade is not installed")
+    loader = importlib.machinery.SourceFileLoader("yadeimport", launcher)
+    spec = importlib.util.spec_from_loader("yadeimport", loader)
+    yadeimport = importlib.util.module_from_spec(spec)
+    sys.modules["yadeimport"], sys.argv = yadeimport, [sys.argv[0], "-n"]  # -n: no window
+    loader.exec_module(yadeimport)
+    from yadeimport import *
+
 from yade import *  # the engines, functors and O, as in Yade's own scripts
 from yade.utils import box, sphere
 
@@ -190,17 +214,30 @@ def script(inputs: dict) -> str:
     inputs = json.dumps(inputs, indent=2)
     head = (
         '"""A sphere on a wall through a liquid layer with Yade\'s implicit lubrication law, '
-        "written by ehdfem\n(ehdfem.dem.engines.yade). Rerun: yade -n -x collision.py; "
-        'change the inputs below (SI)."""\n\nimport json\n\n'
+        "written by ehdfem\n(ehdfem.dem.engines.yade). Rerun: python3 collision.py (Yade as a "
+        "library, no TCP port;\nyade -n -x collision.py also runs it, with Yade's console and "
+        'information servers); change the inputs below (SI)."""\n\nimport json\n\n'
     )
     return f"{head}INPUTS = json.loads('''{inputs}''')\n{BODY}"
 
 
+def launcher_python() -> str:
+    """The Python of Yade's launcher (``yade`` on the PATH): the program its first line names,
+    the one Yade's library is built for; an :class:`EngineError` when Yade is missing."""
+    launcher = shutil.which("yade")
+    if launcher is None:
+        raise EngineError("yade is not installed (bash make.sh setup installs it with apt)")
+    with open(launcher, "rb") as text:
+        first = text.readline().decode(errors="replace").strip()
+    return first[2:].split()[0] if first.startswith("#!") else "python3"
+
+
 def run(collision: PhysicalCollision, law: YadeLaw, folder: Path) -> EngineRebound:
-    """Write collision.py into ``folder`` (made if missing), run Yade there, read the rebound."""
+    """Write collision.py into ``folder`` (made if missing), run it there by Yade's Python with
+    Yade as a library (no TCP port opened), read the rebound."""
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "rebound.json").unlink(missing_ok=True)
     (folder / SCRIPT).write_text(script(script_inputs(collision, law)))
-    run_binary(["yade", "-n", "-x", SCRIPT], folder, LOG)
+    run_binary([launcher_python(), SCRIPT], folder, LOG)
     return read_rebound("yade", folder, SCRIPT, LOG)

@@ -1,0 +1,85 @@
+"""Plausibility notes: results and inputs a user should look at twice, each a sentence. The
+collision warns of each (:class:`ResultRangeWarning`) and keeps them all in its result and its
+JSON (``notes``), so that a result read later still says what was questionable about it.
+
+- e_n above 1: pure EHD cannot gain energy, so it is a discretisation error (the energy error
+  says how large);
+- for physical inputs, a smooth collision's thinnest film below :data:`SMOOTHEST_SURFACE` [m]
+  (real surfaces are rougher: their asperities would touch first) and a liquid viscosity
+  outside :data:`NEWTONIAN_VISCOSITY` [Pa s];
+- for rough surfaces with the impact model, a film below the roughness where the model puts no
+  load on the asperities, and an impact through solids that already hold more than
+  :data:`LOADED_IMPACT` of the impact energy.
+"""
+
+from __future__ import annotations
+
+SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real surfaces are rough
+NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
+LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which an impact is
+# not through unloaded solids, as the impact model assumes
+
+
+class ResultRangeWarning(UserWarning):
+    """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
+    error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
+    Newtonian liquids, a rough contact the impact model does not hold for (a touch where it
+    puts no load, an impact through loaded solids)."""
+
+
+def liquid_note(physical) -> str | None:
+    """The note on a physical collision's liquid viscosity [Pa s] outside
+    :data:`NEWTONIAN_VISCOSITY`; None inside it."""
+    low, high = NEWTONIAN_VISCOSITY
+    mu = physical.liquid.viscosity
+    if low <= mu <= high:
+        return None
+    return (
+        f"the liquid viscosity {mu:.3g} Pa s is outside the Newtonian liquids "
+        f"({low:g}-{high:g} Pa s): "
+        + ("below any liquid at room temperature" if mu < low else "such liquids shear-thin")
+    )
+
+
+def result_notes(params, physical, normal) -> list[str]:
+    """The notes on a normal motion ``normal`` (:class:`ehdfem.motion.normal.NormalResult`) of
+    ``params`` (dimensionless), with the physical inputs ``physical`` (SI) or None: e_n above
+    1, a rough contact the impact model does not hold for, a smooth physical film thinner than
+    :data:`SMOOTHEST_SURFACE` (polished glass and steel have rms roughnesses of 1-100 nm)."""
+    notes = []
+    if normal.e_n > 1.0:
+        notes.append(
+            f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
+            f"error (energy error {normal.energy_error:.2g}); refine --nodes or --rtol"
+        )
+    if normal.unloaded_touch:
+        notes.append(
+            f"the film went below the roughness (thinnest {normal.min_film_thickness:.4g} x0, "
+            f"sigma {params.roughness:.4g} x0) where the impact model puts no load on the "
+            "asperities (during the rebound or after the impact): that contact, its dry loss "
+            "and friction are not in the result (docs/model.md, rough surfaces)"
+        )
+    impact = normal.solid_impact
+    if impact is not None and impact.stored_share > LOADED_IMPACT:
+        notes.append(
+            f"the asperities' impact came through loaded solids: they held "
+            f"{100 * impact.stored_share:.0f} % of the impact energy, where the impact model "
+            "assumes them unloaded (its e_dry acts on the sphere's velocity alone)"
+        )
+    if physical is not None and params.roughness == 0.0:
+        thinnest = normal.min_film_thickness * physical.layer_thickness
+        if thinnest < SMOOTHEST_SURFACE:
+            notes.append(
+                f"the thinnest film is {thinnest * 1e9:.3g} nm, below the roughness of any real "
+                "surface (1-100 nm rms): the asperities would touch first (--roughness)"
+            )
+    return notes
+
+
+def notes(result) -> list[str]:
+    """Every note on a collision's result (:class:`ehdfem.collision.CollisionResult`): its
+    liquid's, then its normal motion's (:func:`result_notes`)."""
+    liquid = None if result.physical is None else liquid_note(result.physical)
+    return [liquid] * (liquid is not None) + result_notes(
+        result.params, result.physical, result.normal
+    )

@@ -187,7 +187,7 @@ def plot_tangential(collision, path: Path, heading: str | None = None) -> Path:
 
 
 def plot_bounce(result, path: Path) -> Path:
-    """A bounce (:class:`ehdfem.bounce.trajectory.BounceResult`) as in the experiments: left,
+    """A bounce (:class:`ehdfem.bounce.result.BounceResult`) as in the experiments: left,
     gap / D against t / sqrt(D/g), time 0 at the first contact, each apex marked, with the gap
     [mm] and the time [s] on the opposite axes; right, each contact's restitution e against its
     St, the contacts joined in order. No text is placed inside the plots, so no label can cover

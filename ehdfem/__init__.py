@@ -18,18 +18,40 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
   (:class:`BounceResult`); its parts are in the subpackage :mod:`ehdfem.bounce`.
 """
 
-from .bounce.inputs import BounceInputs
-from .bounce.result import BounceResult
-from .bounce.trajectory import bounce_sphere
-from .collision import CollisionResult, collide, elasticity, film_radii
-from .config import RunConfig
-from .inputs.scales import CollisionParameters, PhysicalCollision, from_presets
-from .motion.normal import NormalResult, solve_normal
-from .motion.timestepping import IntegratorOptions
-from .study.sweep import critical_speed, critical_stokes
-from .tangential.motion import solve_tangential
-from .tangential.result import TangentialResult
+import importlib
+
 from .version import __version__
+
+# the public names and the modules that define them, imported on first use: `import ehdfem`
+# (and so the command's start, where a Ctrl-C ends in one line) costs no numpy or scipy
+_PUBLIC = {
+    "BounceInputs": "bounce.inputs",
+    "BounceResult": "bounce.result",
+    "bounce_sphere": "bounce.trajectory",
+    "CollisionResult": "collision",
+    "collide": "collision",
+    "elasticity": "collision",
+    "film_radii": "collision",
+    "RunConfig": "config",
+    "CollisionParameters": "inputs.scales",
+    "PhysicalCollision": "inputs.scales",
+    "from_presets": "inputs.scales",
+    "NormalResult": "motion.normal",
+    "solve_normal": "motion.normal",
+    "IntegratorOptions": "motion.timestepping",
+    "critical_speed": "study.sweep",
+    "critical_stokes": "study.sweep",
+    "solve_tangential": "tangential.motion",
+    "TangentialResult": "tangential.result",
+}
+
+
+def __getattr__(name: str):
+    """A public name of :data:`__all__`, from its module (imported then)."""
+    if name not in _PUBLIC:
+        raise AttributeError(f"module 'ehdfem' has no attribute {name!r}")
+    return getattr(importlib.import_module(f".{_PUBLIC[name]}", __name__), name)
+
 
 __all__ = [
     "BounceInputs",

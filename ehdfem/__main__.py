@@ -1,6 +1,6 @@
-"""`python -m ehdfem`: the ehdfem command (:mod:`ehdfem.cli.main`)."""
+"""`python -m ehdfem`: the ehdfem command (:func:`ehdfem.cli.main`)."""
 
-from .cli.main import main
+from .cli import main
 
 if __name__ == "__main__":
     raise SystemExit(main())

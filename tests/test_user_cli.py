@@ -385,3 +385,23 @@ def test_an_error_the_library_names_by_its_field_names_the_option():
     immersed layer") comes in the documented form, ``--exit-gap: 2.0 needs ...``."""
     line = one_line(ehdfem("collide", "--St", "10", "--eps", "1e-3", "--exit-gap", "2"))
     assert line.startswith("ehdfem collide: error: --exit-gap: 2.0 needs an immersed layer")
+
+
+def test_ctrl_c_while_the_command_imports_is_one_line():
+    """SIGINT 0.2 s after the start, while the command still imports numpy, scipy and the
+    package (its imports take about half a second): one line naming the command, status 130
+    (a traceback from the imports before the entry point caught them)."""
+    process = subprocess.Popen(
+        [str(COMMAND), "critical", "--eps", "1e-3"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    assert process.returncode == 130, err
+    assert err.strip().splitlines() == [
+        "ehdfem critical: interrupted: stopped by Ctrl-C before the command began; nothing was "
+        "written"
+    ]

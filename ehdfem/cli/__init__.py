@@ -1,1 +1,20 @@
-"""The ehdfem command (main)."""
+"""The ehdfem command: :func:`main`, the entry point, and its commands (:mod:`ehdfem.cli.main`)."""
+
+import sys
+
+INTERRUPTED_AT_START = "stopped by Ctrl-C before the command began; nothing was written"
+
+
+def main(argv=None) -> int:
+    """Run the ehdfem command (:func:`ehdfem.cli.main.main`). Its imports (numpy, scipy, the
+    package: about half a second) happen here, so a Ctrl-C during them, or before a command
+    handles its own, ends in one line and status 130 as one during a command does."""
+    try:
+        from .main import main as command
+
+        return command(argv)
+    except KeyboardInterrupt:
+        words = [word for word in (sys.argv[1:] if argv is None else argv) if word[:1] != "-"]
+        name = f"ehdfem {words[0]}" if words else "ehdfem"
+        print(f"{name}: interrupted: {INTERRUPTED_AT_START}", file=sys.stderr)
+        return 130

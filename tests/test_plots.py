@@ -169,8 +169,8 @@ def test_bounce_figure_labels_never_overlap(apexes):
 
 def test_a_physical_collisions_plots_name_its_inputs_and_overlap_nowhere(tmp_path, monkeypatch):
     """``collide --example --plots``: each figure's title names the physical inputs (sphere,
-    radius, speed, angle, wall, layer, liquid) above the scaled groups, and no text of the
-    three figures covers another."""
+    radius, speed, angle, wall, layer, liquid) above the scaled groups, no text of the three
+    figures covers another, and the tangential one has its SI axes beside the scaled ones."""
     from ehdfem.cli.main import main
 
     figures = []
@@ -188,3 +188,5 @@ def test_a_physical_collisions_plots_name_its_inputs_and_overlap_nowhere(tmp_pat
         assert title.startswith("steel sphere of radius 6.35 mm at 1 m/s, 30 deg from the normal")
         assert "St = 98.52, eps = 7.14e-07, thin layer: e_n = 0.88" in title
         assert overlapping_texts(fig) == []
+    tangential = {text.get_text() for text in _texts(figures[2])}
+    assert {"t [s]", "velocity [m/s]", "tangential force [N]"} <= tangential  # SI beside scaled

@@ -156,7 +156,7 @@ def collide_command(args) -> int:
         wrote.append(plots.plot_histories(normal, out / "histories.png", units, heading))
         wrote.append(plots.plot_profiles(normal, out / "profiles.png", units, heading))
         if result.tangential is not None:
-            wrote.append(plots.plot_tangential(result, out / "tangential.png", heading))
+            wrote.append(plots.plot_tangential(result, out / "tangential.png", heading, units))
     for path in wrote:
         print(f"  wrote {path}", file=report)
     return 0

@@ -166,9 +166,11 @@ def symlog_threshold(suction: float, largest: float) -> float:
     return float(10.0 ** np.floor(np.log10(max(suction, 1e-6 * largest))))
 
 
-def plot_tangential(collision, path: Path, heading: str | None = None) -> Path:
+def plot_tangential(collision, path: Path, heading: str | None = None, units=None) -> Path:
     """Tangential velocity U, spin a Omega, slip U - a Omega (all by U0) and the tangential
-    force (by 6 pi mu a^2 U0 / x0) against time T; ``heading`` as in :func:`plot_histories`."""
+    force (by 6 pi mu a^2 U0 / x0) against time T; with ``units``
+    (:class:`ehdfem.inputs.scales.Scales`) also in SI on the opposite axes (m/s, N, s; U0 =
+    V0 tan(angle)); ``heading`` as in :func:`plot_histories`."""
     t = collision.tangential
     fig, (ax_v, ax_f) = plt.subplots(1, 2, figsize=(11, 4.5))
     ax_v.plot(t.time, t.velocity, label="U")
@@ -181,9 +183,27 @@ def plot_tangential(collision, path: Path, heading: str | None = None) -> Path:
     for ax in (ax_v, ax_f):
         ax.set_xlabel("time T (by $x_0/V_0$)")
         ax.grid(alpha=0.3)
+    if units:
+        along = collision.normal.params.tangential_speed  # U0 / V0
+        for ax, factor, label in (
+            (ax_v, units.velocity * along, "velocity [m/s]"),
+            (ax_f, units.force * along, "tangential force [N]"),
+        ):
+            _si_axes(ax, units.time, factor, label)
     e_t = "-" if t.e_t is None else f"{t.e_t:.5g}"
     fig.suptitle(f"{_title(collision.normal, heading)}; {t.model}: e_t = {e_t} ({t.at})")
     return _save(fig, path)
+
+
+def _si_axes(ax, time_unit: float, value_unit: float, label: str) -> None:
+    """Secondary axes in SI beside a scaled plot: t [s] on top, ``label`` on the right, the
+    scaled values times ``value_unit``."""
+    top = ax.secondary_xaxis("top", functions=(lambda x: x * time_unit, lambda x: x / time_unit))
+    top.set_xlabel("t [s]")
+    right = ax.secondary_yaxis(
+        "right", functions=(lambda y: y * value_unit, lambda y: y / value_unit)
+    )
+    right.set_ylabel(label)
 
 
 def plot_bounce(result, path: Path) -> Path:
@@ -218,13 +238,8 @@ def plot_bounce(result, path: Path) -> Path:
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)
     ax.legend(loc="best", fontsize=9)
-    seconds = ax.secondary_xaxis("top", functions=(lambda x: x * unit, lambda t: t / unit))
-    seconds.set_xlabel("t [s]")
     millimetres = 1e3 * diameter
-    gap_mm = ax.secondary_yaxis(
-        "right", functions=(lambda g: g * millimetres, lambda h: h / millimetres)
-    )
-    gap_mm.set_ylabel("gap [mm]")
+    _si_axes(ax, unit, millimetres, "gap [mm]")
     restitutions = [c.e for c in result.contacts]
     ax_e.plot([c.St for c in result.contacts], restitutions, "o-", ms=5)
     ax_e.set_xlabel(r"St of the contact, $\rho_p D v / (9 \mu)$")

@@ -13,8 +13,20 @@ def main(argv=None) -> int:
         from .main import main as command
 
         return command(argv)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemError) as err:
+        if isinstance(err, SystemError) and not caused_by_interrupt(err):
+            raise
         words = [word for word in (sys.argv[1:] if argv is None else argv) if word[:1] != "-"]
         name = f"ehdfem {words[0]}" if words else "ehdfem"
         print(f"{name}: interrupted: {INTERRUPTED_AT_START}", file=sys.stderr)
         return 130
+
+
+def caused_by_interrupt(error: BaseException) -> bool:
+    """Whether ``error`` is, or was caused by, a Ctrl-C: numba, loading a compiled loop from its
+    cache when the interrupt comes, raises a SystemError caused by the KeyboardInterrupt."""
+    while error is not None:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        error = error.__cause__ or error.__context__
+    return False

@@ -36,7 +36,7 @@ from ..console.progress import rank
 from ..console.quiet import is_quiet, set_quiet
 from ..motion.normal import NormalSolverError
 from ..version import __version__
-from . import bounce, collide, critical, dem, fit, presets, sweep
+from . import bounce, caused_by_interrupt, collide, critical, dem, fit, presets, sweep
 
 DESCRIPTION = (
     "Elastohydrodynamic wet collisions: a sphere hits a wall through a liquid layer; ehdfem "
@@ -172,6 +172,11 @@ def main(argv=None) -> int:
         return 3
     except KeyboardInterrupt as err:  # a command may say what it saved and how to resume
         say(args.command, "interrupted", str(err) or INTERRUPTED)
+        return 130
+    except SystemError as err:  # an interrupt that a compiled extension wrapped
+        if not caused_by_interrupt(err):
+            raise
+        say(args.command, "interrupted", INTERRUPTED)
         return 130
     except BrokenPipeError:  # the reader left (| head): no more output, and no message
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

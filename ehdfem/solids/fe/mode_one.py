@@ -43,6 +43,15 @@ rigid motions without carrying any force, and the sphere's displacement is repor
 to its rigid motion, u - sum_k R_k c_k with G c = (m_k . u): the mass-weighted mean translation
 and mean rotation about the centre of mass. A wall is clamped at its base.
 
+Every entry of the unit matrix is such a read-out of such a balanced load, both combinations of
+the 6N face loads (each face's pressure, radial and hoop hats) and the sphere's two vectors
+m_k. The stiffness bordered by them is factorised once by MUMPS, whose Schur complement on the
+border gives all entries at once (:func:`ehdfem.solids.fe.condensation.balanced_condensation`,
+shared with the axisymmetric build); PETSc forms it on one process only, so under MPI rank 0
+builds the same solids alone and broadcasts the matrix, which is then the same bits on any
+number of ranks. A face's load moves only its own body, so each face's read-outs are taken of
+its own face's loads. :meth:`FEModeOne.field` solves the distributed solids instead.
+
 The mesh, materials, free bodies, contact faces and traction profiles are those of the
 axisymmetric solids (:class:`ehdfem.solids.fe.meshed.MeshedBodies`, ``solids.meshed``).
 
@@ -57,14 +66,15 @@ from __future__ import annotations
 import math
 import sys
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from ... import checks
-from ...console.progress import progress
 from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
 from . import dolfinx_compat
-from .linear_algebra import CholeskySolver
+from .condensation import RigidMotions, balanced_condensation
+from .linear_algebra import CholeskySolver, scipy_matrix
 from .mesh import cached_matrices
 from .solids import FESolids
 
@@ -74,9 +84,8 @@ QUADRATURE_DEGREE = 9
 the moduli. UFL would estimate 7 for moduli constant per cell; 9 is the degree the mode-1
 compliance was validated with (tests/test_fem_mode_one.py) and stored with (the regression
 table, tests/test_regression.py), so it is fixed here."""
-BLOCK = 48  # right-hand sides per multiple-RHS solve (memory: 8 B x unknowns x BLOCK)
 TRACTIONS = ("pressure", "radial", "hoop")
-"""The load kinds of one solve: the same nodal profile (or each face its own) on both faces."""
+"""The load kinds: the same nodal profile (or each face its own) on both faces."""
 
 
 def mode_one_space(mesh):
@@ -155,24 +164,28 @@ def rigid_motions(space, cells, centre_z: float):
 
 
 @dataclass(frozen=True)
-class _RigidMotions:
-    """A free sphere's rigid motions on the owned rows: ``motions`` (rows, 2) the vectors R_k,
-    ``inertia`` (rows, 2) the vectors m_k of int R_k . v r dx, ``gram`` G = m^T R (2x2)."""
+class _Assembly:
+    """The assembled mode-1 solids on their communicator: the stiffness's ``solver`` (MUMPS
+    Cholesky, factorised on its first solve), the ``tractions`` matrices per load kind of
+    TRACTIONS, the ``free_bodies``' rigid motions and the ``constrained`` owned rows."""
 
-    motions: np.ndarray
-    inertia: np.ndarray
-    gram: np.ndarray
+    solver: CholeskySolver
+    tractions: dict
+    free_bodies: list
+    constrained: np.ndarray
 
 
 class FEModeOne(ModeOneCompliance):
     """Mode-1 compliance of FE solids (:class:`ehdfem.solids.compliance.ModeOneCompliance`) on the
     mesh of ``solids`` (a :class:`FESolids`, whose materials, free bodies and film nodes it shares),
-    at ``eps``; see the module docstring. The unit matrix comes from one factorisation and 3N
-    unit loads (the pressure hat j on both faces; the radial hat j on both faces, read per face
-    as "sphere_radial" and "wall_radial"; the same for the hoop hat), solved in blocks of
-    BLOCK right-hand sides. ``space``: the P2 space of the unknowns (S, D, U_z) on that mesh.
-    :meth:`field` gives the whole solids under given nodal loads; :meth:`close` frees the
-    factorisation (its own, besides the solids' axisymmetric one)."""
+    at ``eps``; see the module docstring. The unit matrix comes from one factorisation of the
+    stiffness bordered by the 6N face loads (the pressure, radial and hoop hats j on each face)
+    and the free sphere's d'Alembert forces: its Schur complement holds every face's read-out
+    of every balanced face load (:func:`ehdfem.solids.fe.condensation.balanced_condensation`),
+    on one process (:meth:`FESolids.on_one_process`), as the axisymmetric build. ``space``: the
+    P2 space of the unknowns (S, D, U_z) on that mesh. :meth:`field` gives the whole solids
+    under given nodal loads (distributed solves); :meth:`close` frees their factorisation (its
+    own, besides the solids' axisymmetric one)."""
 
     model = "fem"
 
@@ -180,9 +193,7 @@ class FEModeOne(ModeOneCompliance):
         if not isinstance(solids, FESolids):
             raise checks.InputError(f"solids must be FESolids, got {type(solids).__name__}")
         checks.positive("eps", eps)
-        self.solids = solids
-        self.space = mode_one_space(solids.mesh)
-        self._assemble()
+        self._build(solids)
         unit = cached_matrices(
             solids.comm,
             ("mode one", *solids.cache_arguments),
@@ -191,30 +202,42 @@ class FEModeOne(ModeOneCompliance):
         )["unit"]
         super().__init__(solids.radii, unit, eps)
 
+    def _build(self, solids: FESolids) -> None:
+        """The space on the mesh of ``solids``; the stiffness, loads and free bodies are
+        assembled on first use (:attr:`_assembly`: a distributed build condensed on rank 0
+        alone needs them only for :meth:`field`)."""
+        self.solids = solids
+        self.space = mode_one_space(solids.mesh)
+
     def factor(self, eps: float) -> float:
         """x0 per (a p / E_ref) at ``eps``: :meth:`FESolids.scale`."""
         return self.solids.scale(eps)
 
     def close(self) -> None:
         """Free the factorised stiffness and the traction matrices (PETSc memory that Python's
-        garbage collector does not return). Collective under MPI; no solves afterwards."""
-        self._solver.close()
-        for petsc_object in self._tractions.values():
-            petsc_object.destroy()
+        garbage collector does not return), if assembled. Collective under MPI; no solves
+        afterwards."""
+        if "_assembly" in self.__dict__:
+            self._assembly.solver.close()
+            for petsc_object in self._assembly.tractions.values():
+                petsc_object.destroy()
 
-    def _assemble(self):
+    @cached_property
+    def _assembly(self) -> _Assembly:
         """Assemble the stiffness and set up its factorisation (MUMPS Cholesky, made on the
         first solve: it is symmetric positive definite once pinned); set up the traction
-        matrices, the free bodies and the contact faces."""
+        matrices and the free bodies. Collective."""
         conditions = self._constraints()
-        self._constrained = np.concatenate([rows for _, rows in conditions])
         stiffness = dolfinx_compat.assemble_matrix(
             dolfinx_compat.form(stiffness_form(self.space, self.solids.meshed.lame)),
             [bc for bc, _ in conditions],
         )
-        self._solver = CholeskySolver(stiffness, self.solids.comm)
-        self._tractions = self._traction_matrices()
-        self._free_bodies = [self._free_body(body.cell_tag) for body in self.solids.free_bodies]
+        return _Assembly(
+            CholeskySolver(stiffness, self.solids.comm),
+            self._traction_matrices(),
+            [self._free_body(body.cell_tag) for body in self.solids.free_bodies],
+            np.concatenate([rows for _, rows in conditions]),
+        )
 
     def _constraints(self):
         """(condition, owned rows) pairs: the axis conditions, the lower body's clamped facets
@@ -251,7 +274,7 @@ class FEModeOne(ModeOneCompliance):
         works = {"pressure": -(n[0] * v_r + n[1] * v_z), "radial": v_r, "hoop": v_phi}
         return {kind: bodies.traction_matrix(work) for kind, work in works.items()}
 
-    def _free_body(self, cell_tag: int) -> _RigidMotions:
+    def _free_body(self, cell_tag: int) -> RigidMotions:
         """The rigid motions of the free body of ``cell_tag`` about its centre of mass."""
         import ufl
 
@@ -269,7 +292,7 @@ class FEModeOne(ModeOneCompliance):
         owned = len(inertia[0])
         motions = np.column_stack([motion.x.array[:owned] for motion in motions])
         inertia = np.column_stack(inertia)
-        return _RigidMotions(motions, inertia, bodies.comm.allreduce(inertia.T @ motions))
+        return RigidMotions(motions, inertia, bodies.comm.allreduce(inertia.T @ motions))
 
     def _loads(self, profiles) -> np.ndarray:
         """The owned rows of the load vectors (rows, columns) of nodal traction profiles:
@@ -278,7 +301,7 @@ class FEModeOne(ModeOneCompliance):
         (shear profiles already multiplied by sqrt(delta)); kinds from TRACTIONS."""
         bodies = self.solids.meshed
         return sum(
-            bodies.traction_loads(self._tractions[kind], bodies.profile_values(faces))
+            bodies.traction_loads(self._assembly.tractions[kind], bodies.profile_values(faces))
             for kind, faces in profiles.items()
         )
 
@@ -286,18 +309,13 @@ class FEModeOne(ModeOneCompliance):
         """Displacements (owned rows of the unknowns, by a p / E_ref) of the load columns
         ``loads``: balanced on each free body by the d'Alembert body force, solved on the one
         factorisation, then relative to each free body's rigid motion (module docstring)."""
-        comm = self.solids.comm
-        loads = loads.copy()
-        for body in self._free_bodies:
-            loads -= body.inertia @ np.linalg.solve(
-                body.gram, comm.allreduce(body.motions.T @ loads)
-            )
-        loads[self._constrained] = 0.0
-        values = self._solver.solve(loads)
-        for body in self._free_bodies:
-            values -= body.motions @ np.linalg.solve(
-                body.gram, comm.allreduce(body.inertia.T @ values)
-            )
+        comm, assembly = self.solids.comm, self._assembly
+        for body in assembly.free_bodies:
+            loads = body.balanced(loads, comm)
+        loads[assembly.constrained] = 0.0
+        values = assembly.solver.solve(loads)
+        for body in assembly.free_bodies:
+            values = body.relative(values, comm)
         return values
 
     def face_displacements(self, values: np.ndarray) -> list:
@@ -309,7 +327,8 @@ class FEModeOne(ModeOneCompliance):
         the surface's vertical motion (the pressure pushes the sphere up, the lower body down),
         U_z - U_r dz/dr on the face at fixed r."""
         bodies = self.solids.meshed
-        reads = {kind: bodies.face_read_outs(self._tractions[kind], values) for kind in TRACTIONS}
+        tractions = self._assembly.tractions
+        reads = {kind: bodies.face_read_outs(tractions[kind], values) for kind in TRACTIONS}
         weights = np.tile(bodies.film_weights, 3)[:, None]
         return [
             np.vstack([reads["radial"][f], reads["hoop"][f], sign * reads["pressure"][f]]) / weights
@@ -318,21 +337,55 @@ class FEModeOne(ModeOneCompliance):
 
     def _condense(self) -> np.ndarray:
         """The (6N, 5N) unit matrix (by a p / E_ref per unit nodal load, see the module
-        docstring), in the orders of MODE_ONE_DISPLACEMENTS and MODE_ONE_LOADS."""
+        docstring), in the orders of MODE_ONE_DISPLACEMENTS and MODE_ONE_LOADS, computed on one
+        process: on these solids when serial, else rank 0 builds them alone
+        (:meth:`FESolids.on_one_process`) and broadcasts it."""
+
+        def compute(solids: FESolids) -> np.ndarray:
+            if solids is self.solids:
+                return self._condensed()
+            alone = FEModeOne.__new__(FEModeOne)
+            alone._build(solids)
+            try:
+                return alone._condensed()
+            finally:
+                alone.close()
+
+        return self.solids.on_one_process(compute)
+
+    def _condensed(self) -> np.ndarray:
+        """:meth:`_condense` on this process (serial solids): the 6N face loads, per face
+        (upper, lower) its radial, hoop and pressure hats (the read-outs in the directions of
+        MODE_ONE_DISPLACEMENTS), condensed with the free sphere's balance
+        (:func:`ehdfem.solids.fe.condensation.balanced_condensation`). A face's read-outs are
+        those of its own face's loads (a face's load moves only its own body; the pressure
+        loads both faces): divided by the film weights m, the normal one signed as in
+        :meth:`face_displacements`, the shear loads by sqrt(delta) p."""
+        import scipy.sparse
+
         n = len(self.solids.radii)
+        bodies, assembly = self.solids.meshed, self._assembly
+        kinds = ("radial", "hoop", "pressure")
+        faces = scipy.sparse.hstack(
+            [
+                scipy_matrix(assembly.tractions[kind]) @ hats
+                for hats in bodies.face_hats
+                for kind in kinds
+            ]
+        )
+        stiffness = scipy_matrix(assembly.solver.matrix)
+        matrix = balanced_condensation(stiffness, faces, assembly.free_bodies, assembly.constrained)
         unit = np.zeros((6 * n, 5 * n))
         shear = math.sqrt(self.solids.delta)
-        blocks = [(kind, start) for kind in TRACTIONS for start in range(0, n, BLOCK)]
-        for kind, start in progress(blocks, desc="FE mode-1 compliance"):
-            hats = np.eye(n)[:, start : start + BLOCK] * (1.0 if kind == "pressure" else shear)
-            values = self._solve(self._loads({kind: (hats, hats)}))
-            columns = slice(start, start + hats.shape[1])
-            # a face's load moves only its own body: one solve serves both faces' columns
-            for f, (face, displacements) in enumerate(
-                zip(("sphere", "wall"), self.face_displacements(values), strict=True)
-            ):
+        weights = np.tile(bodies.film_weights, 3)[:, None]
+        for f, (face, sign) in enumerate((("sphere", 1.0), ("wall", -1.0))):
+            rows = slice(3 * f * n, 3 * (f + 1) * n)
+            reads = matrix[rows] / weights
+            reads[2 * n :] *= sign
+            for k, kind in enumerate(kinds):
                 j = MODE_ONE_LOADS.index(kind if kind == "pressure" else f"{face}_{kind}")
-                unit[3 * f * n : 3 * (f + 1) * n, j * n : (j + 1) * n][:, columns] = displacements
+                load = 1.0 if kind == "pressure" else shear
+                unit[rows, j * n : (j + 1) * n] = load * reads[:, (3 * f + k) * n :][:, :n]
         return unit
 
     def field(self, nodal_loads):

@@ -53,7 +53,7 @@ from ... import checks
 from ..compliance import LinearCompliance
 from . import dolfinx_compat, linear_algebra, meshed
 from .bodies import LowerBody, lower_body
-from .condensation import condensed
+from .condensation import RigidMotions, balanced_condensation
 from .fields import Deformation, SolidsFields
 from .linear_algebra import CholeskySolver, interpolation_matrix, scipy_matrix
 from .mesh import cached_matrices
@@ -259,9 +259,8 @@ class FESolids:
         """The load columns (owned rows) with each free body's vertical resultant Z_b . g
         balanced by its uniform d'Alembert body force, g - w_b (Z_b . g) (module docstring);
         zero on the constrained rows."""
-        loads = loads.copy()
-        for translation, weights in zip(self._translations, self._centre_weights, strict=True):
-            loads -= np.outer(weights, self.comm.allreduce(translation @ loads))
+        for body in self._free_motions:
+            loads = body.balanced(loads, self.comm)
         loads[self._constrained] = 0.0
         return loads
 
@@ -289,8 +288,8 @@ class FESolids:
         """Centre-of-mass u_z (by a p/E_ref) of each free body for the current displacement,
         in the order of ``free_bodies``."""
         return [
-            self.comm.allreduce(weights @ self._u.x.array[: len(weights)])
-            for weights in self._centre_weights
+            self.comm.allreduce(body.inertia[:, 0] @ self._u.x.array[: len(body.inertia)])
+            for body in self._free_motions
         ]
 
     def gap_opening(self):
@@ -298,10 +297,10 @@ class FESolids:
         pressure loads' read-outs G_i . u' / m_i of both faces, u' relative to the free
         bodies' centres (module docstring)."""
         owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
-        values = self._u.x.array[:owned].copy()
-        for translation, weights in zip(self._translations, self._centre_weights, strict=True):
-            values -= translation * self.comm.allreduce(weights @ values)
-        upper, lower = self.meshed.face_read_outs(self._tractions["pressure"], values[:, None])
+        values = self._u.x.array[:owned, None]
+        for body in self._free_motions:
+            values = body.relative(values, self.comm)
+        upper, lower = self.meshed.face_read_outs(self._tractions["pressure"], values)
         return (upper + lower)[:, 0] / self.meshed.film_weights
 
     def close(self) -> None:
@@ -375,38 +374,36 @@ class FESolids:
     def _condensed(self, shear: bool) -> dict:
         """{"gap", "surface_sum", "radial_pressure", "radial_shear"[, "shear"]}: the (N, N)
         unit matrices of :meth:`compliance` (in units of a p/E_ref per unit nodal load, the
-        shear loads by sqrt(delta) p), on one process, from the stiffness condensed onto
-        (:func:`ehdfem.solids.fe.condensation.condensed`) the unit loads of each face, pressure
-        and shear (G), and each free body's body force w: the balanced loads are the columns
-        X A (:meth:`_balancing`), so every block is (X A)^T K^-1 (X A) divided by the film
-        weights m, symmetric once multiplied by them. "radial_*" is the mean of the two faces'
+        shear loads by sqrt(delta) p), on one process, from the stiffness condensed onto the
+        unit loads of each face, pressure and shear, balanced on the free bodies
+        (:func:`ehdfem.solids.fe.condensation.balanced_condensation`): every block is a
+        combination of the faces' read-outs of each other's loads, divided by the film weights
+        m, symmetric once multiplied by them. "radial_*" is the mean of the two faces'
         tangential (outward) displacements per unit nodal pressure and shear traction."""
         import scipy.sparse
 
         n = len(self.radii)
         bodies = self.meshed
-        faces = [
-            scipy_matrix(self._tractions[kind]) @ hats
-            for kind in ("pressure", "shear")
-            for hats in bodies.face_hats
-        ]
-        columns = scipy.sparse.hstack(
-            [*faces, scipy.sparse.csr_matrix(np.column_stack(self._centre_weights))]
-        ).tolil()
-        balancing = self._balancing(columns.tocsr(), n)
-        columns[self._constrained] = 0.0
-        matrix = condensed(scipy_matrix(self._solver.matrix), columns.tocsr())
+        faces = scipy.sparse.hstack(
+            [
+                scipy_matrix(self._tractions[kind]) @ hats
+                for kind in ("pressure", "shear")
+                for hats in bodies.face_hats
+            ]
+        )
+        matrix = balanced_condensation(
+            scipy_matrix(self._solver.matrix), faces, self._free_motions, self._constrained
+        )
         # the film's loads and read-outs as combinations of the face columns: pressure on both
         # faces, shear on both faces (by sqrt(delta)), the surfaces' vertical motion (upper
         # minus lower face's pressure functional) and the faces' mean tangential motion
         unit = np.eye(n)
-        combinations = np.zeros((columns.shape[1], 4 * n))
+        combinations = np.zeros((4 * n, 4 * n))
         for k, weights in enumerate(([1, 1, 0, 0], [0, 0, 1, 1], [1, -1, 0, 0], [0, 0, 0.5, 0.5])):
             for face, weight in enumerate(weights):
                 combinations[face * n : (face + 1) * n, k * n : (k + 1) * n] = weight * unit
         combinations[:, n : 2 * n] *= math.sqrt(self.delta)
-        mixed = balancing @ combinations
-        blocks = (mixed.T @ matrix @ mixed) / np.tile(bodies.film_weights, 4)[:, None]
+        blocks = (combinations.T @ matrix @ combinations) / np.tile(bodies.film_weights, 4)[:, None]
         pressure, shears = slice(0, n), slice(n, 2 * n)
         arrays = {
             "gap": blocks[pressure, pressure],
@@ -418,37 +415,23 @@ class FESolids:
             arrays["shear"] = blocks[pressure, shears]
         return arrays
 
-    def _balancing(self, columns, n: int) -> np.ndarray:
-        """The matrix A (columns x columns) whose product with the face load ``columns`` X (4N
-        face loads, then the free bodies' w_b) balances each on the free bodies: X A = X - sum_b
-        w_b (Z_b . X), as :meth:`_balanced` does to a load (serial)."""
-        balancing = np.eye(columns.shape[1])
-        for b, translation in enumerate(self._translations):
-            balancing[4 * n + b] -= columns.T @ translation
-        return balancing
-
     @cached_property
-    def _translations(self):
-        """Per free body, the owned entries of its rigid translation along z, Z_b (1 on its
-        u_z dofs, 0 elsewhere)."""
-        translations, bodies = [], self.meshed
+    def _free_motions(self) -> list:
+        """Per free body, its rigid translation along z on the owned rows, Z_b (1 on its u_z
+        dofs, 0 elsewhere), with the vector w_b of its centre-of-mass u_z (w_b . u: the mean
+        u_z over the body, w_b . Z_b = 1), as :class:`RigidMotions` (module docstring)."""
+        motions, bodies = [], self.meshed
+        owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
         for body in self.free_bodies:
             translation = dolfinx_compat.function(self.space)
             cells = bodies.cell_tags.find(body.cell_tag)
             translation.interpolate(lambda x: np.vstack([0 * x[0], 1 + 0 * x[0]]), cells)
-            owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
-            translations.append(translation.x.array[:owned].copy())
-        return translations
-
-    @cached_property
-    def _centre_weights(self):
-        """Per free body, the owned entries of the vector w with w.u = its centre-of-mass u_z."""
-        weights, bodies = [], self.meshed
-        for body in self.free_bodies:
             form = dolfinx_compat.form(self._test[1] * bodies.r * bodies.dx(body.cell_tag))
             vector = dolfinx_compat.assemble_vector(form, [])
-            weights.append(vector.getArray() / bodies.body_integral(1, body.cell_tag))
-        return weights
+            weights = vector.getArray() / bodies.body_integral(1, body.cell_tag)
+            motion = translation.x.array[:owned, None].copy()
+            motions.append(RigidMotions(motion, weights[:, None], np.eye(1)))
+        return motions
 
     @cached_property
     def _fields(self) -> SolidsFields:

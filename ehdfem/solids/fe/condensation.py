@@ -11,10 +11,11 @@ MUMPS forms it while it factorises K (the border unknowns are eliminated last an
 pivoted on), so the whole compliance costs about one factorisation instead of one sparse
 triangular solve per load on the whole mesh.
 
-PETSc 3.18's MUMPS interface computes Schur complements on one process only, and petsc4py
-3.18 does not wrap MatFactorSetSchurIS and MatFactorCreateSchurComplement, so this module
-calls them in the PETSc library through ctypes. Nothing here knows about scales: the result
-carries the units of the stiffness and the columns it is given.
+PETSc's MUMPS interface computes Schur complements on one process only, and petsc4py (3.18
+on Debian, 3.25 in the wheel) does not wrap MatFactorSetSchurIS and
+MatFactorCreateSchurComplement, so this module calls them in the PETSc library through
+ctypes. Nothing here knows about scales: the result carries the units of the stiffness and
+the columns it is given.
 """
 
 from __future__ import annotations
@@ -27,19 +28,29 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse
 
+from . import dolfinx_compat
+
 
 @cache
 def _petsc_library():
-    """The PETSc shared library that petsc4py is linked against (for the calls it lacks)."""
+    """The PETSc shared library that petsc4py is linked against (for the calls it lacks): the
+    one this process has loaded (Linux lists it in /proc/self/maps; the wheel of the second
+    stack vendors it beside DOLFINx, where no PETSC_DIR names it), else one under petsc4py's
+    PETSC_DIR (Debian's) or on the loader's path."""
     import petsc4py
 
-    directory = Path(petsc4py.get_config()["PETSC_DIR"]) / "lib"
-    for path in [*sorted(directory.glob("libpetsc*.so*")), ctypes.util.find_library("petsc")]:
+    dolfinx_compat.petsc()  # loads the library
+    maps = Path("/proc/self/maps")
+    lines = maps.read_text().splitlines() if maps.exists() else []
+    loaded = sorted({line.split()[-1] for line in lines if "/libpetsc" in line})
+    directory = petsc4py.get_config()["PETSC_DIR"]
+    installed = sorted((Path(directory) / "lib").glob("libpetsc*.so*")) if directory else []
+    for path in [*loaded, *installed, ctypes.util.find_library("petsc")]:
         if path is not None:
             library = ctypes.CDLL(str(path))
             if hasattr(library, "MatFactorSetSchurIS"):
                 return library
-    raise RuntimeError(f"no PETSc library with MatFactorSetSchurIS in {directory}")
+    raise RuntimeError(f"no PETSc library with MatFactorSetSchurIS (loaded: {loaded})")
 
 
 def _call(name: str, *arguments) -> None:
@@ -54,8 +65,7 @@ def condensed(stiffness, columns) -> np.ndarray:
     sparse, n x n; Dirichlet rows and columns already identities) and the sparse ``columns``
     G (n x m, zero on the Dirichlet rows), on this process: the Schur complement of the
     bordered matrix (module docstring), from one MUMPS factorisation of K."""
-    from petsc4py import PETSc
-
+    PETSc = dolfinx_compat.petsc()
     unknowns, m = columns.shape
     bordered = scipy.sparse.bmat([[stiffness, columns], [columns.T, None]], format="csr")
     bordered.sort_indices()

@@ -115,7 +115,8 @@ wheel_python() {
     local candidate
     for candidate in $(command -v python3.12 python3.13 python3.14) \
             "${PYENV_ROOT:-$HOME/.pyenv}"/versions/3.1[2-9]*/bin/python; do
-        if [ -x "$candidate" ] && "$candidate" -c 'import sys; sys.exit(sys.version_info < (3, 12))'; then
+        # (pyenv's shims exist for every version and fail, noisily, for one not selected)
+        if [ -x "$candidate" ] && "$candidate" -c 'import sys; sys.exit(sys.version_info < (3, 12))' 2>/dev/null; then
             echo "$candidate"
             return
         fi

@@ -231,7 +231,7 @@ def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
     standard output or error, unless --verbose. On Debian's stack --verbose shows the compiler's
     build log; the wheel stack's FFCx gives it no handler, so there it shows nowhere and the
     compiled forms in the cache alone prove the compilation (the filter itself:
-    test_quiet_drops_only_records_below_warning)."""
+    tests/test_quiet.py)."""
     cache = tmp_path / "cache"
     env = {"XDG_CACHE_HOME": str(cache), "EHDFEM_MESH_CACHE": str(tmp_path / "meshes")}
     args = ["collide", *SMALL_COLLISION, "--model", "fem", *(["--verbose"] if verbose else [])]
@@ -250,32 +250,6 @@ def _compiler_log_has_a_handler() -> bool:
     code = "import logging, ffcx; print(bool(logging.getLogger().handlers))"
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return done.stdout.strip() == "True"
-
-
-def test_quiet_drops_only_records_below_warning():
-    """set_quiet(True) drops the root logger's INFO records (the compiler's build log) and
-    keeps its warnings; set_quiet(False) lets INFO through again."""
-    import logging
-
-    from ehdfem.console.quiet import set_quiet
-
-    root, seen = logging.getLogger(), []
-    handler = logging.Handler(logging.INFO)
-    handler.emit = seen.append
-    level = root.level
-    root.addHandler(handler)
-    root.setLevel(logging.INFO)
-    try:
-        set_quiet(True)
-        root.info("running build_ext")
-        root.warning("kept")
-        set_quiet(False)
-        root.info("shown again")
-    finally:
-        set_quiet(False)
-        root.removeHandler(handler)
-        root.setLevel(level)
-    assert [record.getMessage() for record in seen] == ["kept", "shown again"]
 
 
 @pytest.mark.slow

@@ -156,6 +156,13 @@ def main() -> None:
         "--compare", type=Path, nargs="+", help="run folders, the first the reference"
     )
     args = parser.parse_args()
+    missing = [str(f) for f in args.compare or [] if not (f / "run.json").is_file()]
+    if args.compare and len(args.compare) < 2:
+        parser.error("--compare needs two or more run folders, the first the reference")
+    if missing:
+        parser.error(f"--compare: no run.json (a run's --out) in {', '.join(missing)}")
+    if args.mesh and not Path(args.mesh).is_file():
+        parser.error(f"--mesh {args.mesh}: no such file")
     if args.compare:
         summary = compare(args.compare)
         target = Path(__file__).parent / "results" / "stacks.json"

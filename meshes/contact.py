@@ -48,7 +48,8 @@ def worst_shape(model) -> float:
             -1, model.mesh.getElementProperties(kind)[3], 2
         )
         a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
-        area = 0.5 * np.abs(np.cross(b - a, c - a))
+        ab, ac = b - a, c - a  # the 2-D cross product by hand: numpy 2 takes 3-D vectors only
+        area = 0.5 * np.abs(ab[:, 0] * ac[:, 1] - ab[:, 1] * ac[:, 0])
         longest = np.max(
             [np.sum((b - a) ** 2, 1), np.sum((c - b) ** 2, 1), np.sum((a - c) ** 2, 1)], 0
         )

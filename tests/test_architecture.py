@@ -28,6 +28,26 @@ LAYERS = (
 )
 LONGEST_FUNCTION = 80  # lines, decorators excluded
 DOLFINX_SEAM = "ehdfem.solids.fe.dolfinx_compat"
+# Attributes of DOLFINx objects whose name or form differs between Debian's 0.5.2 and 0.11
+# (the seam's docstrings): used on a DOLFINx object, only in the seam; the seam's own functions
+# of these names are called as dolfinx_compat.NAME.
+DIFFERING = {
+    "vector": "Function.vector / .x.petsc_vec",
+    "petsc_vec": "Function.vector / .x.petsc_vec",
+    "interpolation_points": "a method in 0.5, a property in 0.10",
+    "FunctionSpace": "fem.FunctionSpace / fem.functionspace",
+    "VectorFunctionSpace": "fem.VectorFunctionSpace / fem.functionspace",
+    "functionspace": "fem.FunctionSpace / fem.functionspace",
+    "create_vtk_mesh": "plot.create_vtk_mesh / plot.vtk_mesh",
+    "vtk_mesh": "plot.create_vtk_mesh / plot.vtk_mesh",
+    "BoundingBoxTree": "geometry.BoundingBoxTree / geometry.bb_tree",
+    "bb_tree": "geometry.BoundingBoxTree / geometry.bb_tree",
+    "gmshio": "io.gmshio / io.gmsh",
+    "VectorElement": "UFL's elements / basix.ufl",
+    "MixedElement": "UFL's elements / basix.ufl",
+    "list": "dofmap.list: an AdjacencyList / a 2-D array",
+    "dofmap": "geometry.dofmap: an AdjacencyList / geometry.dofmaps[0]",
+}
 
 
 def _modules():
@@ -131,3 +151,26 @@ def test_every_dolfinx_call_in_the_seam():
         )
     ]
     assert not outside, "DOLFINx imported outside the seam:\n" + "\n".join(outside)
+
+
+def test_what_differs_between_dolfinx_versions_is_in_the_seam():
+    """The attributes that differ between DOLFINx 0.5.2 and 0.11 (DIFFERING) are used only in
+    the seam, which handles both forms; elsewhere only as calls of the seam's own functions
+    (``dolfinx_compat.vtk_mesh``) or, for ``list`` and ``dofmap``, on other objects than a
+    dofmap or a geometry (``space.dofmap.index_map`` is the same in both)."""
+    outside = []
+    for name, _, tree in _modules():
+        if name == DOLFINX_SEAM:
+            continue
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.Attribute) or node.attr not in DIFFERING:
+                continue
+            base = ast.unparse(node.value)
+            if base in ("dolfinx_compat", "compat"):
+                continue
+            if node.attr == "list" and not base.endswith("dofmap"):
+                continue
+            if node.attr == "dofmap" and not base.endswith("geometry"):
+                continue
+            outside.append(f"{name}:{node.lineno} {base}.{node.attr} ({DIFFERING[node.attr]})")
+    assert not outside, "version-dependent DOLFINx uses outside the seam:\n" + "\n".join(outside)

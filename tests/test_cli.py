@@ -228,7 +228,10 @@ COMPILER_OR_VTK = re.compile(r"INFO:root|gcc|build_ext|X server", re.IGNORECASE)
 @pytest.mark.parametrize("verbose", [False, True])
 def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
     """A default FE collide on an empty JIT cache compiles its forms: no compiler lines on
-    standard output or error, unless --verbose (which proves the forms were compiled here)."""
+    standard output or error, unless --verbose. On Debian's stack --verbose shows the compiler's
+    build log; the wheel stack's FFCx gives it no handler, so there it shows nowhere and the
+    compiled forms in the cache alone prove the compilation (the filter itself:
+    tests/test_quiet.py)."""
     cache = tmp_path / "cache"
     env = {"XDG_CACHE_HOME": str(cache), "EHDFEM_MESH_CACHE": str(tmp_path / "meshes")}
     args = ["collide", *SMALL_COLLISION, "--model", "fem", *(["--verbose"] if verbose else [])]
@@ -236,8 +239,17 @@ def test_fe_collision_is_quiet_unless_verbose(tmp_path, verbose):
     assert code == 0, err
     assert list((cache / "fenics").glob("libffcx_forms_*.c"))  # compiled on this run
     chatter = [line for line in (out + err).splitlines() if COMPILER_OR_VTK.search(line)]
-    assert bool(chatter) == verbose, chatter
+    assert bool(chatter) == (verbose and _compiler_log_has_a_handler()), chatter
     assert "e_n" in out
+
+
+def _compiler_log_has_a_handler() -> bool:
+    """Whether the form compiler's build log reaches standard error at all: Debian's FFCx 0.5
+    gives the root logger a handler when imported (``logging.basicConfig()``), FFCx 0.11 leaves
+    it without one (the build log then goes nowhere, verbose or not)."""
+    code = "import logging, ffcx; print(bool(logging.getLogger().handlers))"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return done.stdout.strip() == "True"
 
 
 @pytest.mark.slow

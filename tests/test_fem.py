@@ -290,3 +290,29 @@ def test_cached_compliance_is_the_computed_one(tmp_path, monkeypatch):
         assert len(list(Path(tmp_path).glob("*.npz"))) == 2
     with pytest.raises(AssertionError, match="although cached"):
         FESolids(1e-3, radii, wall=(0.5, 0.3)).compliance(1.0, shear=True)
+
+
+def test_the_caches_are_kept_apart_per_library_versions(tmp_path, monkeypatch):
+    """A mesh or compliance cached by one install stack (gmsh, DOLFINx and PETSc versions) is
+    not read by the other: with other versions reported the solids are meshed and solved
+    again. On 2 ranks too."""
+    comm = MPI.COMM_WORLD
+    folder = Path(comm.bcast(str(tmp_path)))
+    monkeypatch.setattr(fem_mesh, "COMPLIANCE_CACHE", str(folder / "compliances"))
+    monkeypatch.setattr(fem_mesh, "MESH_CACHE", folder / "meshes")
+    radii = radial_grid(20, 0.5, 2.0)
+    FESolids(1e-3, radii).compliance(1.0)
+    versions = fem_mesh.library_versions()
+    assert [v.split()[0] for v in versions] == ["gmsh", "dolfinx", "petsc"]
+    monkeypatch.setattr(
+        fem_mesh, "library_versions", lambda meshing_only=False: ("gmsh 0.0",) + versions[1:]
+    )
+
+    def fail(*_):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(FESolids, "_condensed", fail)
+    with pytest.raises(AssertionError, match="solved again"):
+        FESolids(1e-3, radii).compliance(1.0)
+    if comm.rank == 0:
+        assert len(list((folder / "meshes").glob("*.msh"))) == 2

@@ -69,8 +69,8 @@ def mesh_heights(r, z, reference_gap: float, gap: float):
 
 def signed_areas(corners):
     """Twice the signed areas of the triangles whose corners are ``corners`` (cells x 3 x 2)."""
-    edges = corners[:, 1:] - corners[:, :1]
-    return np.cross(edges[:, 0], edges[:, 1])
+    edges = corners[:, 1:] - corners[:, :1]  # the 2-D cross product (numpy 2 takes 3-D only)
+    return edges[:, 0, 0] * edges[:, 1, 1] - edges[:, 0, 1] * edges[:, 1, 0]
 
 
 class NearWallFlow:

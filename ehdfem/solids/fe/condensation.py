@@ -18,10 +18,11 @@ Schur complement. The axisymmetric solids (:mod:`ehdfem.solids.fe.solids`: one m
 translation along z) and the mode-1 solids (:mod:`ehdfem.solids.fe.mode_one`: the translation
 along x and the rotation about y) are both condensed by it.
 
-PETSc 3.18's MUMPS interface computes Schur complements on one process only, and petsc4py
-3.18 does not wrap MatFactorSetSchurIS and MatFactorCreateSchurComplement, so this module
-calls them in the PETSc library through ctypes. Nothing here knows about scales: the result
-carries the units of the stiffness and the columns it is given.
+PETSc's MUMPS interface computes Schur complements on one process only, and petsc4py (3.18
+on Debian, 3.25 in the wheel) does not wrap MatFactorSetSchurIS and
+MatFactorCreateSchurComplement, so this module calls them in the PETSc library through
+ctypes. Nothing here knows about scales: the result carries the units of the stiffness and
+the columns it is given.
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse
+
+from . import dolfinx_compat
 
 
 @dataclass(frozen=True)
@@ -95,16 +98,24 @@ def balanced_condensation(stiffness, faces, bodies, constrained) -> np.ndarray:
 
 @cache
 def _petsc_library():
-    """The PETSc shared library that petsc4py is linked against (for the calls it lacks)."""
+    """The PETSc shared library that petsc4py is linked against (for the calls it lacks): the
+    one this process has loaded (Linux lists it in /proc/self/maps; the wheel of the second
+    stack vendors it beside DOLFINx, where no PETSC_DIR names it), else one under petsc4py's
+    PETSC_DIR (Debian's) or on the loader's path."""
     import petsc4py
 
-    directory = Path(petsc4py.get_config()["PETSC_DIR"]) / "lib"
-    for path in [*sorted(directory.glob("libpetsc*.so*")), ctypes.util.find_library("petsc")]:
+    dolfinx_compat.petsc()  # loads the library
+    maps = Path("/proc/self/maps")
+    lines = maps.read_text().splitlines() if maps.exists() else []
+    loaded = sorted({line.split()[-1] for line in lines if "/libpetsc" in line})
+    directory = petsc4py.get_config()["PETSC_DIR"]
+    installed = sorted((Path(directory) / "lib").glob("libpetsc*.so*")) if directory else []
+    for path in [*loaded, *installed, ctypes.util.find_library("petsc")]:
         if path is not None:
             library = ctypes.CDLL(str(path))
             if hasattr(library, "MatFactorSetSchurIS"):
                 return library
-    raise RuntimeError(f"no PETSc library with MatFactorSetSchurIS in {directory}")
+    raise RuntimeError(f"no PETSc library with MatFactorSetSchurIS (loaded: {loaded})")
 
 
 def _call(name: str, *arguments) -> None:
@@ -119,8 +130,7 @@ def condensed(stiffness, columns) -> np.ndarray:
     sparse, n x n; Dirichlet rows and columns already identities) and the sparse ``columns``
     G (n x m, zero on the Dirichlet rows), on this process: the Schur complement of the
     bordered matrix (module docstring), from one MUMPS factorisation of K."""
-    from petsc4py import PETSc
-
+    PETSc = dolfinx_compat.petsc()
     unknowns, m = columns.shape
     columns = scipy.sparse.csr_matrix(columns)
     blocks = [[scipy.sparse.csr_matrix(stiffness), columns], [columns.T.tocsr(), None]]

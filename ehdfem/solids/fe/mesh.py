@@ -8,9 +8,11 @@ factorisation and hundreds of solves) are kept likewise in ``COMPLIANCE_CACHE``
 (``EHDFEM_COMPLIANCE_CACHE``, default ~/.cache/ehdfem/compliances; "off" keeps none). They are
 scaled matrices (by a p / E_ref per unit nodal load), independent of eps, so one entry serves
 every St and eps at fixed geometry, materials and film nodes. An entry is keyed by a hash of
-its arguments and of the source of the code that computes it, so editing that code invalidates
-it; it is written to a temporary name and renamed, so that concurrent runs never read a
-half-written file. Lengths are by the (reduced) sphere radius a, as in the generator.
+its arguments, of the source of the code that computes it and of the versions of the libraries
+that do (gmsh for a mesh; gmsh, DOLFINx and PETSc for a matrix), so editing that code or
+running on the other install stack (docs/fem.md) invalidates it; it is written to a
+temporary name and renamed, so that concurrent runs never read a half-written file. Lengths
+are by the (reduced) sphere radius a, as in the generator.
 """
 
 from __future__ import annotations
@@ -42,11 +44,23 @@ def cache_key(arguments, sources) -> str:
     return key.hexdigest()[:20]
 
 
+def library_versions(meshing_only: bool = False) -> tuple:
+    """The versions of gmsh, DOLFINx and PETSc (gmsh's alone with ``meshing_only``): part of
+    every cache key, as the two install stacks mesh and solve differently."""
+    import gmsh
+
+    if meshing_only:
+        return (f"gmsh {gmsh.__version__}",)
+    petsc = ".".join(map(str, dolfinx_compat.petsc().Sys.getVersion()))
+    return (f"gmsh {gmsh.__version__}", f"dolfinx {dolfinx_compat.version()}", f"petsc {petsc}")
+
+
 def load_or_build(gmsh, build, arguments) -> None:
     """Put the mesh of ``build(*arguments)`` in the current gmsh model: opened from the cache
-    when it holds that mesh (keyed by the arguments and the source of the generator's module),
-    else built and then stored there."""
-    path = MESH_CACHE / f"{cache_key(arguments, [inspect.getmodule(build)])}.msh"
+    when it holds that mesh (keyed by the arguments, gmsh's version and the source of the
+    generator's module), else built and then stored there."""
+    keyed = [*arguments, library_versions(meshing_only=True)]
+    path = MESH_CACHE / f"{cache_key(keyed, [inspect.getmodule(build)])}.msh"
     if path.exists():
         gmsh.open(str(path))
         return
@@ -60,11 +74,12 @@ def load_or_build(gmsh, build, arguments) -> None:
 def cached_matrices(comm, arguments, sources, compute) -> dict:
     """The arrays of ``compute()`` (a dict of name: array, the same on every rank of ``comm``;
     collective), or their copy in COMPLIANCE_CACHE under :func:`cache_key` of ``arguments`` and
-    ``sources``; a computed dict is stored there by rank 0. No cache when COMPLIANCE_CACHE is
-    "off"."""
+    ``sources`` (and :func:`library_versions`); a computed dict is stored there by rank 0. No
+    cache when COMPLIANCE_CACHE is "off"."""
     if COMPLIANCE_CACHE == "off":
         return compute()
-    path = Path(COMPLIANCE_CACHE) / f"{cache_key(arguments, sources)}.npz"
+    keyed = [*arguments, library_versions()]
+    path = Path(COMPLIANCE_CACHE) / f"{cache_key(keyed, sources)}.npz"
     if comm.bcast(path.exists() if comm.rank == 0 else None):
         with np.load(path) as stored:
             return {name: stored[name] for name in stored.files}

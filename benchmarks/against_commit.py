@@ -27,6 +27,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from worktree import commit_checkout, head
+
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 CASES = {  # name: CollisionParameters keywords (scaled inputs, DSH 1986)
@@ -127,45 +129,33 @@ def blas_libraries() -> list[str]:
 
 def main(commit: str, repeats: int = 5):
     rows = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        old = Path(tmp) / "old"
-        subprocess.run(
-            ["git", "worktree", "add", "--detach", str(old), commit],
-            cwd=ROOT,
-            check=True,
-            capture_output=True,
-        )
-        try:
-            for name, case in CASES.items():
-                best = {"current": None, "old": None}
-                for _ in range(repeats):
-                    for label, source in (("current", ROOT), ("old", old)):
-                        result = run(source, case)
-                        if best[label] is None or result["seconds"] < best[label]["seconds"]:
-                            best[label] = result
-                ratio = best["current"]["seconds"] / best["old"]["seconds"]
-                share = blas_share(case)
-                rows[name] = {**best, "time_ratio": ratio, "blas_lapack_share": share}
-                print(
-                    f"{name:42s} current {best['current']['seconds']:.3f} s "
-                    f"({best['current']['steps']} steps), {commit[:10]} "
-                    f"{best['old']['seconds']:.3f} s ({best['old']['steps']} steps): "
-                    f"ratio {ratio:.3f}, BLAS/LAPACK share "
-                    + ("n/a" if share is None else f"{100 * share:.0f} %"),
-                    flush=True,
-                )
-        finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT)
-    head = subprocess.run(
-        ["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp, commit_checkout(commit, Path(tmp) / "old") as old:
+        for name, case in CASES.items():
+            best = {"current": None, "old": None}
+            for _ in range(repeats):
+                for label, source in (("current", ROOT), ("old", old)):
+                    result = run(source, case)
+                    if best[label] is None or result["seconds"] < best[label]["seconds"]:
+                        best[label] = result
+            ratio = best["current"]["seconds"] / best["old"]["seconds"]
+            share = blas_share(case)
+            rows[name] = {**best, "time_ratio": ratio, "blas_lapack_share": share}
+            print(
+                f"{name:42s} current {best['current']['seconds']:.3f} s "
+                f"({best['current']['steps']} steps), {commit[:10]} "
+                f"{best['old']['seconds']:.3f} s ({best['old']['steps']} steps): "
+                f"ratio {ratio:.3f}, BLAS/LAPACK share "
+                + ("n/a" if share is None else f"{100 * share:.0f} %"),
+                flush=True,
+            )
+    current = head()
     RESULTS.mkdir(exist_ok=True)
     out = RESULTS / "against_commit.json"
     blas = blas_libraries()
     out.write_text(
         json.dumps(
             {
-                "current": head,
+                "current": current,
                 "against": commit,
                 "repeats": repeats,
                 "blas_libraries": blas,

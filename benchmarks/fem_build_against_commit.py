@@ -27,6 +27,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from worktree import commit_checkout, head
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
@@ -108,46 +109,34 @@ def differences(current: Path, old: Path) -> dict:
 
 def main(commit: str, repeats: int = 3, rank_counts=(1, 2)):
     rows = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        old = Path(tmp) / "old"
-        subprocess.run(
-            ["git", "worktree", "add", "--detach", str(old), commit],
-            cwd=ROOT,
-            check=True,
-            capture_output=True,
-        )
-        try:
-            for ranks in rank_counts:
-                best = {"current": {}, "old": {}}
-                for _ in range(repeats):
-                    for label, source in (("current", ROOT), ("old", old)):
-                        result = run(source, ranks, Path(tmp) / f"{label}.npz")
-                        for build, seconds in result.items():
-                            best[label][build] = min(best[label].get(build, seconds), seconds)
-                for label in best:
-                    best[label]["mode_one_ratio"] = (
-                        best[label]["mode_one"] / best[label]["axisymmetric"]
-                    )
-                speed_up = best["old"]["mode_one"] / best["current"]["mode_one"]
-                diff = differences(Path(tmp) / "current.npz", Path(tmp) / "old.npz")
-                rows[str(ranks)] = {**best, "mode_one_speed_up": speed_up, "differences": diff}
-                print(
-                    f"{ranks} rank(s): mode-1 {best['current']['mode_one']:.2f} s "
-                    f"({best['current']['mode_one_ratio']:.2f} x axisymmetric "
-                    f"{best['current']['axisymmetric']:.2f} s), {commit[:10]} "
-                    f"{best['old']['mode_one']:.2f} s ({best['old']['mode_one_ratio']:.2f} x "
-                    f"{best['old']['axisymmetric']:.2f} s); mode-1 matrix difference "
-                    f"{diff['mode_one']:.1e} (blockwise {diff['mode_one_blocks']:.1e})",
-                    flush=True,
+    with tempfile.TemporaryDirectory() as tmp, commit_checkout(commit, Path(tmp) / "old") as old:
+        for ranks in rank_counts:
+            best = {"current": {}, "old": {}}
+            for _ in range(repeats):
+                for label, source in (("current", ROOT), ("old", old)):
+                    result = run(source, ranks, Path(tmp) / f"{label}.npz")
+                    for build, seconds in result.items():
+                        best[label][build] = min(best[label].get(build, seconds), seconds)
+            for label in best:
+                best[label]["mode_one_ratio"] = (
+                    best[label]["mode_one"] / best[label]["axisymmetric"]
                 )
-        finally:
-            subprocess.run(["git", "worktree", "remove", "--force", str(old)], cwd=ROOT)
-    head = subprocess.run(
-        ["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.strip()
+            speed_up = best["old"]["mode_one"] / best["current"]["mode_one"]
+            diff = differences(Path(tmp) / "current.npz", Path(tmp) / "old.npz")
+            rows[str(ranks)] = {**best, "mode_one_speed_up": speed_up, "differences": diff}
+            print(
+                f"{ranks} rank(s): mode-1 {best['current']['mode_one']:.2f} s "
+                f"({best['current']['mode_one_ratio']:.2f} x axisymmetric "
+                f"{best['current']['axisymmetric']:.2f} s), {commit[:10]} "
+                f"{best['old']['mode_one']:.2f} s ({best['old']['mode_one_ratio']:.2f} x "
+                f"{best['old']['axisymmetric']:.2f} s); mode-1 matrix difference "
+                f"{diff['mode_one']:.1e} (blockwise {diff['mode_one_blocks']:.1e})",
+                flush=True,
+            )
+    current = head()
     RESULTS.mkdir(exist_ok=True)
     out = RESULTS / "fem_build_against_commit.json"
-    summary = {"current": head, "against": commit, "repeats": repeats, "ranks": rows}
+    summary = {"current": current, "against": commit, "repeats": repeats, "ranks": rows}
     out.write_text(json.dumps(summary, indent=2) + "\n")
     print(f"wrote {out}")
 

@@ -393,18 +393,9 @@ class Film:
         linear theta; theta the nodal ``fill`` (1 if not given). Scaled: R by sqrt(a x0), v by
         V0; sqrt(delta) B v is in the units of the film's rows."""
         h = film_thickness
-        _, regular, cut_length, cut_between = self._wetted(h, "gauss")
         liquid = np.ones_like(h) if fill is None else fill
         lower, diagonal, upper = surface_transport_bands(
-            self.radii,
-            h,
-            liquid,
-            regular,
-            cut_length,
-            cut_between,
-            self._cell_between["gauss"],
-            _GAUSS_XI,
-            _GAUSS_W,
+            self.radii, h, liquid, *self._gauss_elements(h)
         )
         if self.layer == "immersed":
             diagonal[-1] += self.radii[-1] * liquid[-1] * h[-1]
@@ -418,19 +409,17 @@ class Film:
         projection, T_j = int phi_j T R dR / int phi_j R dR over the whole grid, so a node the
         edge leaves keeps the share its part of the film gives it, and T moves continuously
         with the edge."""
-        _, regular, cut_length, cut_between = self._wetted(film_thickness, "gauss")
-        load = squeeze_shear_load(
-            self.radii,
-            film_thickness,
-            pressure,
-            regular,
-            cut_length,
-            cut_between,
-            self._cell_between["gauss"],
-            _GAUSS_XI,
-            _GAUSS_W,
-        )
+        elements = self._gauss_elements(film_thickness)
+        load = squeeze_shear_load(self.radii, film_thickness, pressure, *elements)
         return load / self._full_mass
+
+    def _gauss_elements(self, film_thickness: np.ndarray) -> tuple:
+        """The wetted elements at the Gauss points as the compiled loops take them: whole
+        cells, the cut element's length and gap excess, the cells' gap excess, the points and
+        their weights."""
+        _, regular, cut_length, cut_between = self._wetted(film_thickness, "gauss")
+        between = self._cell_between["gauss"]
+        return regular, cut_length, cut_between, between, _GAUSS_XI, _GAUSS_W
 
     def _gauss_thickness(self, el: _Elements, points: str = "gauss"):
         """H at the quadrature points ``points`` of the elements ("gauss": _GAUSS_XI, "flux":

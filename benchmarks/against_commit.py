@@ -27,7 +27,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from worktree import commit_checkout, head
+from worktree import commit_checkout, head, run_json
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
@@ -65,17 +65,7 @@ LINEAR_ALGEBRA = ("blas", "lapack")  # the shared objects that count as dense ke
 
 def run(source: Path, case: dict) -> dict:
     """One timed collision with the ``ehdfem`` package of ``source``, in its own process."""
-    env = {**os.environ, "PYTHONPATH": str(source), "OPENBLAS_NUM_THREADS": "1"}
-    env["OMP_NUM_THREADS"] = "1"
-    out = subprocess.run(
-        [sys.executable, "-c", TIMER, json.dumps(case)],
-        env=env,
-        cwd=source,
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    return run_json(source, [sys.executable, "-c", TIMER, json.dumps(case)])
 
 
 def blas_share(case: dict, runs: int = 5) -> float | None:

@@ -20,14 +20,12 @@ shear=True)`` and ``FEModeOne(solids, eps)``.
 """
 
 import json
-import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
-from worktree import commit_checkout, head
+from worktree import commit_checkout, head, run_json
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
@@ -69,18 +67,9 @@ if comm.rank == 0:
 def run(source: Path, ranks: int, matrices: Path) -> dict:
     """The fastest build times of one process group of ``ranks`` on the code of ``source``;
     its matrices written to ``matrices`` (npz)."""
-    env = {**os.environ, "PYTHONPATH": str(source), "EHDFEM_COMPLIANCE_CACHE": "off"}
-    env.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     launcher = ["mpirun", "-n", str(ranks)] if ranks > 1 else []
-    out = subprocess.run(
-        [*launcher, sys.executable, "-c", TIMER, str(matrices)],
-        env=env,
-        cwd=source,
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    return json.loads(out.stdout.strip().splitlines()[-1])
+    command = [*launcher, sys.executable, "-c", TIMER, str(matrices)]
+    return run_json(source, command, EHDFEM_COMPLIANCE_CACHE="off")
 
 
 def differences(current: Path, old: Path) -> dict:

@@ -2,6 +2,8 @@
 two side by side (against_commit.py, fem_build_against_commit.py)."""
 
 import contextlib
+import json
+import os
 import subprocess
 from pathlib import Path
 
@@ -29,3 +31,15 @@ def head() -> str:
     return subprocess.run(
         ["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True
     ).stdout.strip()
+
+
+def run_json(source: Path, command: list, **env) -> dict:
+    """Run ``command`` on the ``ehdfem`` package of ``source`` (the current checkout or a
+    worktree) with the BLAS on one thread, as in every collision, and ``env`` added to the
+    environment; returns the JSON of its last line of output."""
+    environment = {**os.environ, "PYTHONPATH": str(source), **env}
+    environment.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    out = subprocess.run(
+        command, env=environment, cwd=source, capture_output=True, text=True, check=True
+    )
+    return json.loads(out.stdout.strip().splitlines()[-1])

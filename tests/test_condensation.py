@@ -13,18 +13,25 @@ from ehdfem.solids.fe.linear_algebra import interpolation_matrix
 from ehdfem.solids.fe.solids import FESolids
 
 
+def dirichlet_stiffness(rng, n: int, density: float, fixed: list):
+    """A random sparse SPD stiffness (n x n, as LIL) with identity rows and columns at the
+    Dirichlet unknowns ``fixed``."""
+    coupling = scipy.sparse.random(n, n, density=density, random_state=rng)
+    stiffness = (coupling @ coupling.T + scipy.sparse.eye(n) * 2.0).tolil()
+    stiffness[fixed] = 0.0
+    stiffness[:, fixed] = 0.0
+    stiffness[fixed, fixed] = 1.0
+    return stiffness
+
+
 @pytest.mark.serial
 def test_condensed_is_the_read_outs_of_the_solved_loads():
     """G^T K^-1 G from the bordered Schur complement equals the dense solve to 1e-12, for a
     sparse SPD K with identity (Dirichlet) rows and sparse and dense columns G."""
     rng = np.random.default_rng(3)
     n, m = 400, 12
-    coupling = scipy.sparse.random(n, n, density=0.01, random_state=rng)
-    stiffness = (coupling @ coupling.T + scipy.sparse.eye(n) * 2.0).tolil()
     fixed = [0, 17, 399]
-    stiffness[fixed] = 0.0
-    stiffness[:, fixed] = 0.0
-    stiffness[fixed, fixed] = 1.0
+    stiffness = dirichlet_stiffness(rng, n, 0.01, fixed)
     columns = scipy.sparse.hstack(
         [scipy.sparse.random(n, m - 1, density=0.02, random_state=rng), rng.random((n, 1))]
     ).tolil()
@@ -75,12 +82,8 @@ def test_balanced_condensation_is_the_relative_read_outs_of_the_balanced_loads()
     dense solves to 1e-12."""
     rng = np.random.default_rng(4)
     n, f = 300, 10
-    coupling = scipy.sparse.random(n, n, density=0.02, random_state=rng)
-    stiffness = (coupling @ coupling.T + scipy.sparse.eye(n) * 2.0).tolil()
     fixed = [3, 150, 299]
-    stiffness[fixed] = 0.0
-    stiffness[:, fixed] = 0.0
-    stiffness[fixed, fixed] = 1.0
+    stiffness = dirichlet_stiffness(rng, n, 0.02, fixed)
     faces = scipy.sparse.random(n, f, density=0.05, random_state=rng).tocsr()
     motions, inertia = rng.random((n, 2)), rng.random((n, 2))
     body = RigidMotions(motions, inertia, inertia.T @ motions)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..console.progress import rank
+from ..console.progress import rank, settle_ranks
 from ..inputs.settings import allowed_text, default_text, described, kind, meta
 from ..outputs import registry
 from ..study.sweep import write_atomic
@@ -46,6 +46,7 @@ class Parser(argparse.ArgumentParser):
             if not text.startswith("-"):
                 text += f" (see {self.prog} --help)"
             print(f"{self.prog}: error: {text}", file=sys.stderr)
+        settle_ranks()
         sys.exit(2)
 
 

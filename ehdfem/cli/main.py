@@ -32,7 +32,7 @@ import sys
 import warnings
 
 from .. import checks
-from ..console.progress import rank
+from ..console.progress import rank, settle_ranks
 from ..console.quiet import is_quiet, set_quiet
 from ..motion.normal import NormalSolverError
 from ..version import __version__
@@ -166,9 +166,11 @@ def main(argv=None) -> int:
                 printer.repeats()
     except checks.InputError as err:
         say(args.command, "error", error_text(err, commands[args.command]))
+        settle_ranks()
         return 2
     except NormalSolverError as err:
         say(args.command, "solver failure", str(err))
+        settle_ranks()
         return 3
     except KeyboardInterrupt as err:  # a command may say what it saved and how to resume
         say(args.command, "interrupted", str(err) or INTERRUPTED)

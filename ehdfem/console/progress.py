@@ -28,6 +28,22 @@ def rank() -> int:
     return 0
 
 
+def settle_ranks(patience: float = 10.0) -> None:
+    """Under an MPI launcher, wait (at most ``patience`` seconds) until every rank has come
+    here, before a failing exit: every rank meets the same refused input, rank 0 prints it,
+    and a rank that exits first makes mpirun end the job, which could kill rank 0 before its
+    line is out. Without a launcher, nothing."""
+    if not any(os.environ.get(name, "").isdigit() for name in RANK_VARIABLES):
+        return
+    import time
+
+    from mpi4py import MPI
+
+    request, start = MPI.COMM_WORLD.Ibarrier(), time.monotonic()
+    while not request.Test() and time.monotonic() - start < patience:
+        time.sleep(0.01)
+
+
 def enabled() -> bool:
     """Whether a bar would be drawn here: rank 0, standard error a terminal, EHDFEM_PROGRESS
     not "0", and tqdm importable."""

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_user_cli import interruptible
 
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main
@@ -710,6 +711,7 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
     command = ["critical", "--eps", "1e-3", "--bracket-rtol", "1e-8", "--rtol", "1e-7"]
     process = subprocess.Popen(  # about 100 s of collisions: the defaults' 3 s can end first
         [sys.executable, "-m", "ehdfem", *command],
+        preexec_fn=interruptible,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

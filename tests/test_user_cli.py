@@ -20,6 +20,14 @@ pytestmark = pytest.mark.serial  # each test starts its own processes
 COMMAND = Path(sys.executable).with_name("ehdfem")  # the venv's console script
 
 
+def interruptible():
+    """For a child the test interrupts: SIGINT at its default and unblocked, as a terminal
+    starts a command (a test process may ignore or block it, on the wheel stack after MPI and
+    PETSc started in it, and a child inherits that)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
 def ehdfem(*args, cwd=None, timeout=600) -> subprocess.CompletedProcess:
     """``ehdfem *args`` as a user runs it, its output as text; never a traceback."""
     done = subprocess.run(
@@ -84,6 +92,7 @@ def test_ctrl_c_in_a_one_rank_sweep_says_what_is_saved_and_how_to_resume(tmp_pat
     points = Study(study).point_dir
     process = subprocess.Popen(
         [str(COMMAND), "sweep", str(study)],
+        preexec_fn=interruptible,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -395,6 +404,7 @@ def test_ctrl_c_while_the_command_imports_is_one_line():
     it never lands in the interpreter's own start-up, whatever the machine's load."""
     process = subprocess.Popen(
         [str(COMMAND), "critical", "--eps", "1e-3"],
+        preexec_fn=interruptible,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,

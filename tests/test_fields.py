@@ -129,7 +129,14 @@ def test_film_pressure_is_the_nodal_pressure_on_the_contact_faces(written):
 
 def test_si_fields_are_the_scaled_fields_times_the_scales(written):
     """Mesh and displacement in m (times a and x0), stresses and film pressure in Pa (times
-    mu V0 a / x0^2), time in s (times x0 / V0): exact up to rounding (1e-13)."""
+    mu V0 a / x0^2), time in s (times x0 / V0): exact up to rounding, 1e-13 of each value or of
+    its field's largest (the two files come from two distributed solves, which on the wheel
+    stack's MUMPS under 2 ranks agree only to the last bits of the largest values)."""
+
+    def same(si_values, values, factor):
+        scaled = factor * values
+        return np.allclose(si_values, scaled, rtol=1e-13, atol=1e-13 * np.abs(scaled).max())
+
     if MPI.COMM_WORLD.rank != 0:
         return
     _, folder = written
@@ -144,10 +151,9 @@ def test_si_fields_are_the_scaled_fields_times_the_scales(written):
     }
     for (_, point, cell), (_, si_point, si_cell) in zip(scaled, si, strict=True):
         for name, (scaled_name, factor) in pairs.items():
-            assert np.allclose(si_point[name], factor * point[scaled_name], rtol=1e-13, atol=0)
+            assert same(si_point[name], point[scaled_name], factor)
         for name in ("von_mises", "hydrostatic"):
-            expected = UNITS.pressure * cell[f"{name}_muV0a_x0sq"]
-            assert np.allclose(si_cell[f"{name}_Pa"], expected, rtol=1e-13, atol=0)
+            assert same(si_cell[f"{name}_Pa"], cell[f"{name}_muV0a_x0sq"], UNITS.pressure)
         assert np.array_equal(si_cell["body"], cell["body"])
 
 

@@ -68,37 +68,43 @@ def run(source: Path, case: dict) -> dict:
     return run_json(source, [sys.executable, "-c", TIMER, json.dumps(case)])
 
 
-def blas_share(case: dict, runs: int = 5) -> float | None:
-    """The share of ``perf record``'s samples of ``runs`` collisions of the current code that
-    fall in a BLAS or LAPACK library (None without perf). The import and the kernel build are
-    in the samples too, which makes the share a lower bound."""
+def _samples_by_library(case: dict, runs: int, tmp: str) -> dict[str, int]:
+    """``perf record``'s samples of one process that imports ehdfem and runs ``runs``
+    collisions of the current code, by shared object."""
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+    data = str(Path(tmp) / f"perf{runs}.data")
+    subprocess.run(
+        ["perf", "record", "-q", "-F", "2000", "-o", data, "--"]
+        + [sys.executable, "-c", SAMPLED, json.dumps(case), str(runs)],
+        env=env,
+        cwd=ROOT,
+        capture_output=True,
+        check=True,
+    )
+    report = subprocess.run(
+        ["perf", "report", "-i", data, "--sort", "dso", "--stdio", "-q", "-n"],
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    rows = [line.split() for line in report.splitlines() if "%" in line]
+    return {row[2] if len(row) > 2 else "?": int(row[1]) for row in rows}
+
+
+def blas_share(case: dict, runs: int = 10) -> float | None:
+    """The share of the collisions' ``perf record`` samples that fall in a BLAS or LAPACK
+    library (None without perf): the samples of a process that runs 1 + ``runs`` collisions
+    less those of one that runs 1, so that the import, numba's cache load and the first
+    collision's kernel builds are not counted."""
     if shutil.which("perf") is None:
         return None
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     with tempfile.TemporaryDirectory() as tmp:
-        data = str(Path(tmp) / "perf.data")
-        subprocess.run(
-            ["perf", "record", "-q", "-F", "2000", "-o", data, "--"]
-            + [sys.executable, "-c", SAMPLED, json.dumps(case), str(runs)],
-            env=env,
-            cwd=ROOT,
-            capture_output=True,
-            check=True,
-        )
-        report = subprocess.run(
-            ["perf", "report", "-i", data, "--sort", "dso", "--stdio", "-q"],
-            capture_output=True,
-            text=True,
-            check=True,
-        ).stdout
-    shares = [line.split() for line in report.splitlines() if "%" in line]
-    total = sum(float(row[0].rstrip("%")) for row in shares)
-    dense = sum(
-        float(row[0].rstrip("%"))
-        for row in shares
-        if any(name in row[-1].lower() for name in LINEAR_ALGEBRA)
-    )
-    return dense / total if total else None
+        base = _samples_by_library(case, 1, tmp)
+        full = _samples_by_library(case, 1 + runs, tmp)
+    extra = {name: full[name] - base.get(name, 0) for name in full}
+    total = sum(extra.values())
+    dense = sum(n for name, n in extra.items() if any(k in name.lower() for k in LINEAR_ALGEBRA))
+    return dense / total if total > 0 else None
 
 
 def blas_libraries() -> list[str]:

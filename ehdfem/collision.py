@@ -35,6 +35,7 @@ from .solids.halfspace import (
     halfspace_range,
 )
 from .tangential.motion import solve_tangential
+from .tangential.outer_film import OuterFilm, outer_film
 from .tangential.result import TangentialEnergyWarning, TangentialResult
 from .tangential.superposition import (
     SuperpositionValidity,
@@ -183,7 +184,10 @@ class CollisionResult:
     was also warned of). ``config``: how it was computed (:class:`ehdfem.config.RunConfig`).
     ``halfspace_range``: for the half-space model, how far the collision strays from the
     theory's range (:class:`ehdfem.solids.halfspace.HalfSpaceRange`; a flagged one was warned
-    of); None for the other models."""
+    of); None for the other models. ``outer_film``: for an immersed oblique impact whose run
+    leaves the flow beyond the tangential integrals out (outer_flow "none"), its estimated
+    effect on e_t and the spin change (:class:`ehdfem.tangential.outer_film.OuterFilm`; a
+    flagged one was warned of); None otherwise."""
 
     params: CollisionParameters
     model: str
@@ -194,6 +198,7 @@ class CollisionResult:
     superposition: SuperpositionValidity | None = None
     config: RunConfig | None = None
     halfspace_range: HalfSpaceRange | None = None
+    outer_film: OuterFilm | None = None
 
     def summary(self, command: list[str] | None = None) -> dict:
         """A JSON-ready dict: where it comes from under "provenance"
@@ -423,7 +428,7 @@ def with_tangential(
     if result.params.tangential_speed == 0 or result.compliance is None:
         raise checks.InputError("with_tangential needs an oblique collision with its compliance")
     mode_one = _mode_one_at(mode_one, result.compliance, result.params.eps)
-    bare = replace(result, tangential=None, superposition=None, config=config)
+    bare = replace(result, tangential=None, superposition=None, config=config, outer_film=None)
     return _slide(bare, mode_one)
 
 
@@ -433,6 +438,7 @@ def _slide(result, given_mode_one):
     :func:`_collide_on`."""
     params, normal, compliance = result.params, result.normal, result.compliance
     model, deformation = result.config.tangential, result.config.deformation
+    outer_flow = result.config.outer_flow
     mode_one = None
     if model == "lubrication" and deformation != "none":
         mode_one = given_mode_one
@@ -441,13 +447,15 @@ def _slide(result, given_mode_one):
     built = mode_one is not None and given_mode_one is None
     surface_sum = getattr(compliance, "surface_sum_matrix", None)
     try:
-        result.tangential = solve_tangential(normal, model, mode_one, surface_sum, deformation)
+        result.tangential = solve_tangential(
+            normal, model, mode_one, surface_sum, deformation, outer_flow=outer_flow
+        )
         if model == "lubrication":
             result.superposition = superposition_validity(
                 normal,
                 result.tangential,
                 lambda unloaded: solve_tangential(
-                    normal, model, mode_one, surface_sum, deformation, unloaded
+                    normal, model, mode_one, surface_sum, deformation, unloaded, outer_flow
                 ),
             )
             if result.superposition.flagged:
@@ -458,4 +466,8 @@ def _slide(result, given_mode_one):
     finally:
         if built:
             mode_one.close()
+    if outer_flow == "none":
+        result.outer_film = outer_film(normal, result.tangential)
+        if result.outer_film is not None and result.outer_film.flagged:
+            warnings.warn(result.outer_film.note(), ResultRangeWarning, stacklevel=4)
     return result

@@ -26,7 +26,7 @@ from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .inputs.settings import described, setting, validate
 from .motion.timestepping import IntegratorOptions
-from .tangential.motion import DEFORMATIONS
+from .tangential.motion import DEFORMATIONS, OUTER_FLOWS
 from .tangential.motion import MODELS as TANGENTIAL_MODELS
 
 MODELS = ("halfspace", "fem")
@@ -145,6 +145,13 @@ class RunConfig:
         choices=DEFORMATIONS,
         flag="sliding-deformation",
     )
+    outer_flow: str = setting(
+        "none",
+        help="the flow beyond an immersed film's tangential integrals, which end at the "
+        "sphere's radius: left out and estimated ('none'), or added as Goldman, Cox & "
+        "Brenner's exact remainder for a rigid sphere ('exact'; docs/tangential.md)",
+        choices=OUTER_FLOWS,
+    )
     asperities: str = setting(
         "impact",
         help="asperity contact of rough surfaces (roughness > 0): 'impact' (a solid collision "
@@ -169,16 +176,32 @@ class RunConfig:
             )
         if self.tangential == "lubrication" and self.lower.kind == "sphere":
             raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
+        unfit = self.tangential == "flat" or self.lower.kind == "sphere"
+        if self.outer_flow == "exact" and unfit:
+            raise checks.InputError(
+                "outer_flow = 'exact' needs tangential couette, lubrication or gcb and a wall "
+                "below (its resistances are a sphere's near a wall; the flat model has no film "
+                "outside the Hertz disk)",
+                "outer_flow",
+            )
 
     def check_inputs(self, params: CollisionParameters) -> None:
         """Refuse a setting that does not apply to ``params`` (scaled inputs): asperities =
-        'greenwood-tripp' on smooth surfaces, and asperities other than the defaults with the
-        impact model, which has no asperity pressure."""
+        'greenwood-tripp' on smooth surfaces, asperities other than the defaults with the
+        impact model, which has no asperity pressure, and outer_flow = 'exact' without an
+        oblique impact through an immersed layer."""
         if self.asperities == "greenwood-tripp" and params.roughness == 0.0:
             raise checks.InputError(
                 "asperities = 'greenwood-tripp' needs roughness > 0 (sphere_roughness or "
                 "wall_roughness): smooth surfaces have no asperities",
                 "asperities",
+            )
+        if self.outer_flow == "exact" and (params.layer != "immersed" or params.angle == 0.0):
+            raise checks.InputError(
+                "outer_flow = 'exact' acts only on an oblique impact (angle > 0) with an "
+                f"immersed layer, not layer = {params.layer!r} at angle {params.angle!r} (a "
+                "thin layer's film ends at its wetted edge, inside the sphere's radius)",
+                "outer_flow",
             )
         given = params.asperities_given()
         if self.asperities == "impact" and given:

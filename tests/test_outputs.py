@@ -27,6 +27,9 @@ ROUGH_ONLY = {o.name for o in registry.OUTPUTS if "asperit" in o.name or "impact
     "friction_dissipated",
     "solid_impulse_share",
 }
+# the estimate of the flow beyond an immersed film's tangential integrals, left out of a thin
+# layer's summary (tests/test_outer_flow.py checks it in an immersed one's)
+IMMERSED_ONLY = {o.name for o in registry.OUTPUTS if o.name.startswith("outer_film")}
 STUDY = """
 [grid]
 St = [10.0]
@@ -78,18 +81,19 @@ def test_an_entry_without_a_meaning_or_with_half_an_si_value_is_refused():
 
 
 def test_summary_carries_exactly_the_registry_names(sliding):
-    """With the sliding film on half-spaces every output but those of rough surfaces (the
-    asperities and the friction of their solid contact) is in the summary; with the Couette film
-    the optional ones of the sliding film (its diagnostics) are left out and only they; a rough
-    oblique sphere's summary has the asperities' and the friction's outputs."""
+    """With the sliding film on half-spaces (a thin layer) every output but those of rough
+    surfaces (the asperities and the friction of their solid contact) and of immersed layers is
+    in the summary; with the Couette film the optional ones of the sliding film (its
+    diagnostics) are left out and only they; a rough oblique sphere's summary has the
+    asperities' and the friction's outputs."""
     summary = sliding.summary()
     rough_only = ROUGH_ONLY
-    assert set(registry.names()) - set(summary) == rough_only
+    assert set(registry.names()) - set(summary) == rough_only | IMMERSED_ONLY
     couette = collide(OBLIQUE, NODES_40).summary()
     missing = {name for name in registry.names() if name not in couette}
-    sliding_only = {o.name for o in registry.OUTPUTS if o.optional} - rough_only
+    sliding_only = {o.name for o in registry.OUTPUTS if o.optional} - rough_only - IMMERSED_ONLY
     sliding_only -= {"load_radius", "halfspace_range_flag"}
-    assert missing == sliding_only | rough_only
+    assert missing == sliding_only | rough_only | IMMERSED_ONLY
     rough = replace(
         OBLIQUE, eps=1e-6, p_cav=-float("inf"), roughness=0.01, friction_coefficient=0.2
     )
@@ -163,10 +167,11 @@ def test_si_values_are_the_scaled_ones_times_the_units_of_their_scales():
         "load_radius": a,
     }
     si = summary["si"]
-    rough_si = {o.si_key for o in registry.OUTPUTS if o.name in ROUGH_ONLY}
+    absent = ROUGH_ONLY | IMMERSED_ONLY
+    rough_si = {o.si_key for o in registry.OUTPUTS if o.name in absent}
     assert set(si) == set(registry.si_keys()) - rough_si
     for o in registry.OUTPUTS:
-        if o.si_key is not None and o.name not in ROUGH_ONLY:
+        if o.si_key is not None and o.name not in absent:
             assert si[o.si_key] == pytest.approx(summary[o.name] * units[o.name], rel=1e-14)
 
 
@@ -225,7 +230,8 @@ def test_energy_error_only_without_a_cavitation_limit(changes, applies):
 
 def test_table_rows_give_name_value_scale_and_meaning(sliding):
     rows = registry.table_rows(sliding.summary())
-    assert [row[0] for row in rows] == [n for n in registry.names() if n not in ROUGH_ONLY]
+    absent = ROUGH_ONLY | IMMERSED_ONLY
+    assert [row[0] for row in rows] == [n for n in registry.names() if n not in absent]
     e_n = next(row for row in rows if row[0] == "e_n")
     meaning = next(o.meaning for o in registry.OUTPUTS if o.name == "e_n")
     assert e_n == ("e_n", f"{sliding.normal.e_n:.6g}", "V0", meaning)

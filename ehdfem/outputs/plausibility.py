@@ -9,7 +9,10 @@ JSON (``notes``), so that a result read later still says what was questionable a
   outside :data:`NEWTONIAN_VISCOSITY` [Pa s];
 - for rough surfaces with the impact model, a film below the roughness where the model puts no
   load on the asperities, and an impact through solids that already hold more than
-  :data:`LOADED_IMPACT` of the impact energy.
+  :data:`LOADED_IMPACT` of the impact energy;
+- for an immersed oblique impact, the flow beyond the tangential integrals (which end at the
+  sphere's radius) when left out and estimated to change 1 - e_t by more than
+  :data:`ehdfem.tangential.outer_film.OUTER_FILM_LIMIT` of it.
 """
 
 from __future__ import annotations
@@ -24,7 +27,8 @@ class ResultRangeWarning(UserWarning):
     """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
     error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
     Newtonian liquids, a rough contact the impact model does not hold for (a touch where it
-    puts no load, an impact through loaded solids)."""
+    puts no load, an impact through loaded solids), an immersed tangential motion that leaves
+    out a large flow beyond the sphere's radius."""
 
 
 def liquid_note(physical) -> str | None:
@@ -78,8 +82,13 @@ def result_notes(params, physical, normal) -> list[str]:
 
 def notes(result) -> list[str]:
     """Every note on a collision's result (:class:`ehdfem.collision.CollisionResult`): its
-    liquid's, then its normal motion's (:func:`result_notes`)."""
+    liquid's, its normal motion's (:func:`result_notes`), then its left-out outer flow's
+    (:class:`ehdfem.tangential.outer_film.OuterFilm`)."""
     liquid = None if result.physical is None else liquid_note(result.physical)
-    return [liquid] * (liquid is not None) + result_notes(
-        result.params, result.physical, result.normal
+    outer = result.outer_film
+    flagged = [outer.note()] if outer is not None and outer.flagged else []
+    return (
+        [liquid] * (liquid is not None)
+        + result_notes(result.params, result.physical, result.normal)
+        + flagged
     )

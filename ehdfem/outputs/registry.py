@@ -148,6 +148,12 @@ def _impact_psi(which):
     return _friction(lambda f: None if f.impact_psi is None else f.impact_psi[which])
 
 
+def _outer_film(name):
+    """The OuterFilm estimate's attribute ``name`` (None without one: a thin layer, a head-on
+    impact, the flat model, or a run that adds that flow, outer_flow "exact")."""
+    return lambda r: None if r.outer_film is None else getattr(r.outer_film, name)
+
+
 def _halfspace_range(name):
     """The HalfSpaceRange's attribute ``name`` (None for the other models)."""
     return lambda r: None if r.halfspace_range is None else getattr(r.halfspace_range, name)
@@ -279,6 +285,13 @@ OUTPUTS: tuple[Output, ...] = (
     Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop", "U0/a",
            "rad/s", _tangential("spin_change"), "spin_change_rad_s",
            lambda p: p.tangential_speed / p.radius),
+    Output("outer_film_e_t_change", "estimated change of e_t by the flow beyond the immersed "
+           "film's tangential integrals (r > a), left out", "U0", "m/s",
+           _outer_film("e_t_change"), "outer_film_speed_change_m_s",
+           lambda p: p.tangential_speed, optional=True),
+    Output("outer_film_spin_change", "estimated change of spin_change by that flow, left out",
+           "U0/a", "rad/s", _outer_film("spin_change_change"), "outer_film_spin_change_rad_s",
+           lambda p: p.tangential_speed / p.radius, optional=True),
     Output("rebound_angle", "rebound angle of the centre from the wall normal, atan(U/V) at exit",
            "deg", "deg", _oblique(_rebound_angle), applies=lambda r: r.normal.rebound,
            reason="the sphere sticks: it does not leave the layer"),

@@ -53,6 +53,12 @@ grows by more than 1 + sqrt(2)). Its energy balance (docs/tangential.md)
 is recorded term by term: E_1 the mode-1 elastic energy, X the work exchanged with the normal
 motion (zero on rigid solids, where the tangential motion only dissipates).
 
+An immersed film's integrals end at the sphere's radius r = a, where the lubrication
+approximation stops holding; ``outer_flow`` "exact" adds the rest of the flow as the constant
+resistance delta dR that Goldman, Cox & Brenner's (1967) exact resistances of a rigid sphere
+leave beyond each model's own (:mod:`ehdfem.tangential.outer_film`), on (U, a Omega) in the
+rows of U and a Omega; "none" (default) leaves it out and estimates it.
+
 Where the normal motion has a solid contact (a rough sphere's solid impact, an asperity load)
 and the friction coefficient mu > 0, its Coulomb friction acts in every model
 (:mod:`ehdfem.tangential.friction`), and the sliding film's balance gains its dissipation.
@@ -69,11 +75,13 @@ from ..motion.normal import NormalResult
 from ..solids.compliance import ModeOneCompliance
 from .friction import CoulombContact
 from .normal_film import film_integrals
+from .outer_film import left_out_resistance
 from .result import TangentialResult, end_index, initial_spin, tangential_result
 from .sliding_film import SlidingFilm
 
 MODELS = ("couette", "lubrication", "gcb", "flat")
 DEFORMATIONS = ("none", "gap", "full")
+OUTER_FLOWS = ("none", "exact")
 
 
 def solve_tangential(
@@ -83,6 +91,7 @@ def solve_tangential(
     surface_sum: np.ndarray | None = None,
     deformation: str = "gap",
     unloaded: np.ndarray | None = None,
+    outer_flow: str = "none",
 ) -> TangentialResult:
     """Tangential velocity and spin through the collision from the normal solution's film.
 
@@ -93,17 +102,44 @@ def solve_tangential(
     zero), ``deformation`` which mode-1 deformation acts (DEFORMATIONS), ``unloaded`` a
     (steps, N) boolean array of further nodes where q = 0 at each step (None: only the
     cavitated ones; :mod:`ehdfem.tangential.superposition` uses it to measure the cavitation rule's
-    effect)."""
+    effect). ``outer_flow``: "none" (the film's integrals end at the sphere's radius) or
+    "exact" (an immersed film: the flow beyond them added as the constant resistance
+    delta dR of :func:`ehdfem.tangential.outer_film.left_out_resistance`; not with "flat")."""
     checks.choice("tangential model", model, MODELS)
     checks.choice("deformation", deformation, DEFORMATIONS)
+    outer = _outer_resistance(normal, model, checks.choice("outer_flow", outer_flow, OUTER_FLOWS))
     if model == "lubrication":
-        return SlidingFilm(normal, mode_one, surface_sum, deformation).solve(unloaded)
-    return {"couette": _couette, "gcb": _gcb, "flat": _flat}[model](normal)
+        return SlidingFilm(normal, mode_one, surface_sum, deformation, outer).solve(unloaded)
+    if model == "flat":
+        return _flat(normal)
+    return {"couette": _couette, "gcb": _gcb}[model](normal, outer)
 
 
-def _couette(normal: NormalResult) -> TangentialResult:
-    """The Couette model (module docstring): the film's Couette integral J(T) on the slip."""
-    return _sheared(normal, "couette", film_integrals(normal))
+def _outer_resistance(normal: NormalResult, model: str, outer_flow: str) -> np.ndarray | None:
+    """delta dR for outer_flow "exact" (refused for a thin layer and the flat model, where
+    nothing lies beyond the film's integrals to add), None for "none"."""
+    if outer_flow == "none":
+        return None
+    if normal.params.layer != "immersed" or model == "flat":
+        raise checks.InputError(
+            "outer_flow = 'exact' needs an immersed layer and tangential couette, lubrication "
+            "or gcb: a thin layer's film ends at its wetted edge, and the flat model has no "
+            "film outside the Hertz disk",
+            "outer_flow",
+        )
+    return normal.params.delta * left_out_resistance(model)
+
+
+def _couette(normal: NormalResult, outer=None) -> TangentialResult:
+    """The Couette model (module docstring): the film's Couette integral J(T) on the slip;
+    with the constant ``outer`` resistance (delta dR, None: none) integrated as a resistance
+    matrix (:func:`integrate_resistance`), since U + k a Omega is then not conserved."""
+    shear = film_integrals(normal)
+    if outer is None:
+        return _sheared(normal, "couette", shear)
+    sliding = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    resistance = normal.params.delta / 3.0 * shear[:, None, None] * sliding + outer
+    return _resisted(normal, "couette", resistance)
 
 
 def _sheared(normal: NormalResult, model: str, shear: np.ndarray) -> TangentialResult:
@@ -154,9 +190,12 @@ def gcb_resistance(delta: float, min_film) -> np.ndarray:
     return delta * logarithm[..., None, None] * (np.array([[8.0, -2.0], [-2.0, 8.0]]) / 15.0)
 
 
-def _gcb(normal: NormalResult) -> TangentialResult:
-    """The rigid-sphere model: :func:`gcb_resistance` at the normal solution's thinnest film."""
+def _gcb(normal: NormalResult, outer=None) -> TangentialResult:
+    """The rigid-sphere model: :func:`gcb_resistance` at the normal solution's thinnest film,
+    plus the constant ``outer`` resistance (Goldman, Cox & Brenner's O(1) terms; None: none)."""
     resistance = gcb_resistance(normal.params.delta, normal.history.min_film)
+    if outer is not None:
+        resistance = resistance + outer
     return _resisted(normal, "gcb", resistance)
 
 

@@ -61,11 +61,15 @@ class SlidingFilm:
     a = -(j / m) v on the sphere (m the lumped mass, j the Couette weights; by mu U0 / x0,
     i.e. (U0/V0) sqrt(delta) times the traction unit of the mode-1 compliance) and -a on the
     wall. Relative displacements of the faces: the gap H1, the sum Sigma1 and the tangential
-    D = (D_r, D_phi) of sphere minus wall, each the compliance times L."""
+    D = (D_r, D_phi) of sphere minus wall, each the compliance times L. ``outer``: the
+    constant resistance delta dR (2, 2) of the flow beyond the film's integrals on
+    (U, a Omega), in the force and torque rows and the dissipation (None: left out;
+    :mod:`ehdfem.tangential.outer_film`)."""
 
-    def __init__(self, normal, mode_one, surface_sum, deformation):
+    def __init__(self, normal, mode_one, surface_sum, deformation, outer=None):
         params = normal.params
         self.normal, self.deformation = normal, deformation
+        self.outer = outer  # delta dR on (U, a Omega), the flow beyond the film (None: none)
         self.St, self.k, self.delta = params.St, params.inertia_factor, params.delta
         n = self.n = len(normal.radii)
         self.mass_full = Film(normal.radii).full_mass
@@ -242,6 +246,9 @@ class SlidingFilm:
         force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * rolling)
         torque = -force - 0.4 * delta * mf.tail * rolling
         torque[:n] -= (delta / 6.0) * mf.torque_weights
+        if self.outer is not None:  # the flow beyond the film: force and torque over a
+            force[[self.u, self.omega]] -= self.outer[0]
+            torque[[self.u, self.omega]] -= self.outer[1]
         ops.update(
             force=force,
             torque=torque,
@@ -301,6 +308,9 @@ class SlidingFilm:
             mf.shear_weights @ (v_r**2 + v_phi**2) + q @ mf.conductance @ q
         )
         dissipation += delta * mf.tail * (u_s**2 / 3.0 + w**2 / 5.0)
+        if self.outer is not None:
+            motion = z[[self.u, self.omega]]
+            dissipation += motion @ self.outer @ motion
         pressure_force = (delta / 12.0) * (
             ops["gradient_weights"] @ sigma1 - ops["slope_weights"] @ q
         )

@@ -12,11 +12,14 @@ from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.solids.compliance import FILM_REACH_LIMIT
 from ehdfem.solids.halfspace import (
     COMPRESSION_LIMIT,
     LOAD_RADIUS_LIMIT,
     HalfSpaceCompliance,
+    HalfSpaceRange,
     HalfSpaceRangeWarning,
+    halfspace_range,
     influence_matrix,
     load_radius,
 )
@@ -158,3 +161,20 @@ def test_a_collision_beyond_the_theorys_range_is_flagged():
         mild = collide(CollisionParameters(St=12, eps=1e-3, delta=0.01))
     assert not mild.halfspace_range.flagged
     assert mild.halfspace_range.load_radius < LOAD_RADIUS_LIMIT
+
+
+def test_range_warning_points_to_the_fe_solids_only_where_they_take_the_film():
+    """The FE solids take a film reaching FILM_REACH_LIMIT a at most: a flagged collision whose
+    film stays inside is told to use them; one whose film reaches past (an immersed film's
+    grid, R = 30 sqrt(a x0), reaches 9.5 a at delta = 0.1) is told the layer thickness at
+    which they would take it, (FILM_REACH_LIMIT / reach)^2 times its own (the reach goes as
+    sqrt(delta) on the same scaled grid), and not to use them."""
+    radii = np.linspace(0.0, 30.0, 31)
+    immersed = halfspace_range(radii, np.ones_like(radii), 0.2, 0.1)
+    assert immersed.film_reach == pytest.approx(30.0 * np.sqrt(0.1), rel=1e-15)
+    thinner = (FILM_REACH_LIMIT / immersed.film_reach) ** 2
+    assert immersed.film_reach * np.sqrt(thinner) == pytest.approx(FILM_REACH_LIMIT, rel=1e-12)
+    text = immersed.warning()
+    assert f"about {thinner:.2g} times" in text and "use the FE solids" not in text
+    inside = HalfSpaceRange(compression=0.2, load_radius=0.3, film_reach=0.5)
+    assert "use the FE solids (model fem) here" in inside.warning()

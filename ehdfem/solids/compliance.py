@@ -129,6 +129,9 @@ class RigidSolids(LinearCompliance):
         return self
 
 
+FILM_REACH_LIMIT = 0.7  # the FE solids take a film reaching up to this share of the smaller
+# sphere radius (their meshes' contact faces); an immersed film reaches R = 30 sqrt(a x0)
+
 MODE_ONE_LOADS = ("pressure", "sphere_radial", "sphere_hoop", "wall_radial", "wall_hoop")
 MODE_ONE_DISPLACEMENTS = (
     "sphere_radial",

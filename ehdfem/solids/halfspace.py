@@ -59,7 +59,7 @@ from scipy.integrate import cumulative_trapezoid
 from scipy.special import ellipkm1
 
 from ..checks import InputError, number
-from .compliance import LinearCompliance
+from .compliance import FILM_REACH_LIMIT, LinearCompliance
 
 IDENTICAL_SOLIDS = (
     (1.0, 0.3),
@@ -237,10 +237,12 @@ class HalfSpaceRange:
     """How far a collision strays from the half-space theory's range (dimensionless, by the
     sphere radius a): ``compression`` the largest overlap of the undeformed surfaces,
     delta max(-X); ``load_radius`` the radius within which LOAD_SHARE of the film force acts,
-    at the instant of the largest force, R sqrt(delta). ``flagged`` beyond either limit."""
+    at the instant of the largest force, R sqrt(delta); ``film_reach`` the radius where the
+    film grid ends, R_end sqrt(delta) (0: not known). ``flagged`` beyond either limit."""
 
     compression: float
     load_radius: float
+    film_reach: float = 0.0
 
     @property
     def flagged(self) -> bool:
@@ -248,13 +250,24 @@ class HalfSpaceRange:
         return self.compression > COMPRESSION_LIMIT or self.load_radius > LOAD_RADIUS_LIMIT
 
     def warning(self) -> str:
-        """The warning for a flagged collision."""
+        """The warning for a flagged collision: the FE solids where they take the film, else
+        the layer thickness at which they would (they take a film reaching FILM_REACH_LIMIT a,
+        so delta below (FILM_REACH_LIMIT / R_end)^2 on the same scaled grid)."""
+        advice = "use the FE solids (model fem) here"
+        if self.film_reach >= FILM_REACH_LIMIT:
+            thinner = (FILM_REACH_LIMIT / self.film_reach) ** 2
+            advice = (
+                f"the FE solids take no film reaching past {FILM_REACH_LIMIT} a and this one's "
+                f"grid reaches {self.film_reach:.3g} a: a layer x0 about {thinner:.2g} times "
+                "this one or thinner (--delta or --layer-thickness) lets them take it; until "
+                "then read the result as the asymptotic theory's"
+            )
         return (
             f"the half-space theory is outside its range: largest compression "
             f"{self.compression:.3g} a (limit {COMPRESSION_LIMIT} a) and load radius "
             f"{self.load_radius:.3g} a (limit {LOAD_RADIUS_LIMIT} a); the half-spaces and the "
-            "paraboloid gap stand for a sphere only where both are small: use the FE solids "
-            "(model fem) here (docs/model.md)"
+            f"paraboloid gap stand for a sphere only where both are small: {advice} "
+            "(docs/model.md)"
         )
 
 
@@ -277,4 +290,5 @@ def halfspace_range(
     return HalfSpaceRange(
         compression=compression,
         load_radius=load_radius(radii, pressure) * float(np.sqrt(delta)),
+        film_reach=float(radii[-1] * np.sqrt(delta)),
     )

@@ -30,6 +30,7 @@ from meshes import contact
 
 from ... import checks
 from ...film.reynolds import Film
+from ..compliance import FILM_REACH_LIMIT
 from . import dolfinx_compat
 from .bodies import FreeBody, LowerBody, checked_material
 from .linear_algebra import interpolation_matrix, matrix_product
@@ -52,12 +53,13 @@ class MeshedBodies:
         )
         self.sphere, self.lower, self.comm = checked_material("sphere", sphere), lower, comm
         self.radii = np.asarray(radii, dtype=float)
-        limit = 0.7 * min(lower.sphere_radius, lower.radius or math.inf)
+        limit = FILM_REACH_LIMIT * min(lower.sphere_radius, lower.radius or math.inf)
         if self.radii[-1] * math.sqrt(self.delta) >= limit:
             raise checks.InputError(
                 f"the film reaches r = {self.radii[-1] * math.sqrt(self.delta):.3g} a at delta = "
-                f"x0/a = {self.delta:.3g}; the FE solids need it within 0.7 of the smaller "
-                f"sphere radius ({limit:.3g} a): a thinner layer, or the half-space model",
+                f"x0/a = {self.delta:.3g}; the FE solids need it within {FILM_REACH_LIMIT} of "
+                f"the smaller sphere radius ({limit:.3g} a): a thinner layer, or the half-space "
+                "model",
                 "delta",
             )
         self.build, self.mesh_arguments = lower.geometry(self.delta, self.radii_a, size)

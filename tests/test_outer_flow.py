@@ -14,6 +14,8 @@ import pytest
 from ehdfem.checks import InputError
 from ehdfem.collision import collide, with_tangential
 from ehdfem.config import RunConfig
+from ehdfem.exact import rigid_film
+from ehdfem.exact import sphere_towards_wall as towards_wall
 from ehdfem.exact.sliding_sphere import (
     EXACT_CONSTANTS,
     TRANSLATION_TORQUE_CONSTANT,
@@ -219,3 +221,41 @@ def test_outer_flow_is_refused_where_it_cannot_act(changes, settings):
         config = RunConfig.from_settings(outer_flow="exact", **settings)
         collide(CollisionParameters(**{**IMMERSED, **changes}), config)
     assert error.value.name == "outer_flow"
+
+
+@pytest.mark.parametrize("gap_over_radius", [30.0, 100.0, 1000.0])
+def test_brenner_series_far_from_the_wall(gap_over_radius):
+    """Brenner's exact resistance far from the wall against the method of reflections' mobility
+    1/lambda = 1 - (9/8) x + (1/2) x^3 + O(x^4), x = a/(a + h) (Lorentz's 9/8): within x^4
+    (the remainder is -0.53 x^4 here)."""
+    x = 1.0 / (1.0 + gap_over_radius)
+    mobility = 1.0 - 9.0 / 8.0 * x + 0.5 * x**3
+    assert 1.0 / towards_wall.resistance(gap_over_radius) == pytest.approx(mobility, abs=x**4)
+
+
+@pytest.mark.parametrize("gap_over_radius", [1e-2, 1e-3, 1e-4, 1e-5])
+def test_brenner_series_near_the_wall(gap_over_radius):
+    """Near the wall against Cox & Brenner's a/h + (1/5) ln(a/h) + 0.971: within
+    (h/a) ln(a/h) + 5e-4 (the next order, and the constant's printed digits)."""
+    exact = towards_wall.resistance(gap_over_radius)
+    bound = gap_over_radius * np.log(1.0 / gap_over_radius) + 5e-4
+    assert exact == pytest.approx(towards_wall.small_gap_resistance(gap_over_radius), abs=bound)
+
+
+@pytest.mark.parametrize("gap_over_radius", [0.1, 0.03, 0.01])
+def test_immersed_normal_film_beyond_r_a_brings_it_closer_to_the_exact_force(gap_over_radius):
+    """The immersed normal film keeps the paraboloid's pressure beyond r = a: a rigid sphere's
+    film force (1/X by 6 pi mu V a^2 / x0, lambda = a/h) is closer to Brenner's exact lambda
+    than the film cut at r = a (a/h - 2/(1 + 2 h/a), the pressure 3 |V| / H^2 integrated to
+    R_a); what it leaves out is Cox & Brenner's next order, (1/5) ln(a/h) + 0.971, to
+    (h/a) ln(a/h) + 5e-4; it is 87 % of the exact force at h = 0.1 a, 98 % at 0.01 a."""
+    delta = 0.1  # any: lambda depends on h/a alone
+    gap = gap_over_radius / delta
+    film = rigid_film.force_coefficient(gap, "immersed") / delta  # 1/X by delta: a/h
+    cut = film - 2.0 / (1.0 + 2.0 * gap_over_radius)
+    exact = towards_wall.resistance(gap_over_radius)
+    assert film == pytest.approx(1.0 / gap_over_radius, rel=1e-14)
+    assert abs(exact - film) < abs(exact - cut)
+    left_out = towards_wall.small_gap_resistance(gap_over_radius) - film
+    bound = gap_over_radius * np.log(1.0 / gap_over_radius) + 5e-4
+    assert exact - film == pytest.approx(left_out, abs=bound)

@@ -26,8 +26,9 @@ from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .inputs.settings import described, setting, validate
 from .motion.timestepping import IntegratorOptions
-from .tangential.motion import DEFORMATIONS, OUTER_FLOWS
+from .tangential.motion import DEFORMATIONS
 from .tangential.motion import MODELS as TANGENTIAL_MODELS
+from .tangential.outer_film import OUTER_FLOWS, check_outer_flow
 
 MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
@@ -176,12 +177,10 @@ class RunConfig:
             )
         if self.tangential == "lubrication" and self.lower.kind == "sphere":
             raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
-        unfit = self.tangential == "flat" or self.lower.kind == "sphere"
-        if self.outer_flow == "exact" and unfit:
+        if self.outer_flow == "exact" and self.lower.kind == "sphere":
             raise checks.InputError(
-                "outer_flow = 'exact' needs tangential couette, lubrication or gcb and a wall "
-                "below (its resistances are a sphere's near a wall; the flat model has no film "
-                "outside the Hertz disk)",
+                "outer_flow = 'exact' needs a wall below: its resistances are a sphere's near a "
+                "wall",
                 "outer_flow",
             )
 
@@ -196,13 +195,7 @@ class RunConfig:
                 "wall_roughness): smooth surfaces have no asperities",
                 "asperities",
             )
-        if self.outer_flow == "exact" and (params.layer != "immersed" or params.angle == 0.0):
-            raise checks.InputError(
-                "outer_flow = 'exact' acts only on an oblique impact (angle > 0) with an "
-                f"immersed layer, not layer = {params.layer!r} at angle {params.angle!r} (a "
-                "thin layer's film ends at its wetted edge, inside the sphere's radius)",
-                "outer_flow",
-            )
+        check_outer_flow(self.outer_flow, self.tangential, params.layer, params.angle)
         given = params.asperities_given()
         if self.asperities == "impact" and given:
             raise checks.InputError(

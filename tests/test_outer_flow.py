@@ -170,6 +170,16 @@ def test_estimate_is_the_first_order_of_the_added_flow(immersed_collision, model
     assert 0.2 < estimate.share < 0.7
 
 
+def test_gcb_with_the_outer_flow_is_the_exact_two_term_resistance(immersed_collision):
+    """gcb with outer_flow "exact" is Goldman, Cox & Brenner's two-term resistance at the
+    thinnest film, delta R_exact(delta H_min), at every step, to round-off (its recorded
+    translational resistance, J = 3 R_11 / delta)."""
+    normal = immersed_collision.normal
+    result = solve_tangential(normal, "gcb", outer_flow="exact")
+    exact = exact_resistance(normal.params.delta * normal.history.min_film)
+    np.testing.assert_allclose(result.shear / 3.0, exact[:, 0, 0], rtol=1e-13)
+
+
 def test_left_out_flow_is_noted_with_what_to_do():
     """A default immersed oblique collision warns of the left-out flow, naming its size and the
     option that adds it, and keeps the note and the estimate in its summary; with the option

@@ -71,17 +71,17 @@ import scipy.integrate
 import scipy.linalg
 
 from .. import checks
+from ..exact.sliding_sphere import LOGARITHMIC
 from ..motion.normal import NormalResult
 from ..solids.compliance import ModeOneCompliance
 from .friction import CoulombContact
 from .normal_film import film_integrals
-from .outer_film import left_out_resistance
+from .outer_film import check_outer_flow, left_out_resistance
 from .result import TangentialResult, end_index, initial_spin, tangential_result
 from .sliding_film import SlidingFilm
 
 MODELS = ("couette", "lubrication", "gcb", "flat")
 DEFORMATIONS = ("none", "gap", "full")
-OUTER_FLOWS = ("none", "exact")
 
 
 def solve_tangential(
@@ -107,27 +107,14 @@ def solve_tangential(
     delta dR of :func:`ehdfem.tangential.outer_film.left_out_resistance`; not with "flat")."""
     checks.choice("tangential model", model, MODELS)
     checks.choice("deformation", deformation, DEFORMATIONS)
-    outer = _outer_resistance(normal, model, checks.choice("outer_flow", outer_flow, OUTER_FLOWS))
+    params = normal.params
+    check_outer_flow(outer_flow, model, params.layer, params.angle)
+    outer = None if outer_flow == "none" else params.delta * left_out_resistance(model)
     if model == "lubrication":
         return SlidingFilm(normal, mode_one, surface_sum, deformation, outer).solve(unloaded)
     if model == "flat":
         return _flat(normal)
     return {"couette": _couette, "gcb": _gcb}[model](normal, outer)
-
-
-def _outer_resistance(normal: NormalResult, model: str, outer_flow: str) -> np.ndarray | None:
-    """delta dR for outer_flow "exact" (refused for a thin layer and the flat model, where
-    nothing lies beyond the film's integrals to add), None for "none"."""
-    if outer_flow == "none":
-        return None
-    if normal.params.layer != "immersed" or model == "flat":
-        raise checks.InputError(
-            "outer_flow = 'exact' needs an immersed layer and tangential couette, lubrication "
-            "or gcb: a thin layer's film ends at its wetted edge, and the flat model has no "
-            "film outside the Hertz disk",
-            "outer_flow",
-        )
-    return normal.params.delta * left_out_resistance(model)
 
 
 def _couette(normal: NormalResult, outer=None) -> TangentialResult:
@@ -187,7 +174,7 @@ def gcb_resistance(delta: float, min_film) -> np.ndarray:
     on (U, a Omega) (force by 6 pi mu a^2 U0 / x0, torque over a likewise; shape (..., 2, 2));
     the O(1) terms of the expansions are left out."""
     logarithm = -np.log(delta * np.asarray(min_film, dtype=float))
-    return delta * logarithm[..., None, None] * (np.array([[8.0, -2.0], [-2.0, 8.0]]) / 15.0)
+    return delta * logarithm[..., None, None] * LOGARITHMIC
 
 
 def _gcb(normal: NormalResult, outer=None) -> TangentialResult:

@@ -33,11 +33,30 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
+from .. import checks
 from ..exact.sliding_sphere import EXACT_CONSTANTS, left_out_by_cut
 from ..motion.normal import NormalResult
 from .result import TangentialResult, end_index
 
 OUTER_FILM_LIMIT = 0.01  # flag a left-out change of 1 - e_t above this share of it
+OUTER_FLOWS = ("none", "exact")  # the flow beyond the integrals: left out, or added
+
+
+def check_outer_flow(outer_flow: str, model: str, layer: str, angle: float) -> str:
+    """``outer_flow`` (OUTER_FLOWS) for the tangential ``model``, the ``layer`` and the impact
+    ``angle`` [deg]: "exact" is refused, naming the option, where it cannot act (a thin layer's
+    film ends at its wetted edge, a head-on impact has no tangential motion, the flat model no
+    film outside the Hertz disk)."""
+    checks.choice("outer_flow", outer_flow, OUTER_FLOWS)
+    if outer_flow == "exact" and (layer != "immersed" or angle == 0.0 or model == "flat"):
+        raise checks.InputError(
+            "outer_flow = 'exact' acts only on an oblique impact (angle > 0) through an "
+            f"immersed layer with tangential couette, lubrication or gcb, not layer = {layer!r} "
+            f"at angle {angle!r} with {model!r} (a thin layer's film ends at its wetted edge, "
+            "inside the sphere's radius; the flat model has no film outside the Hertz disk)",
+            "outer_flow",
+        )
+    return outer_flow
 
 
 def left_out_resistance(model: str) -> np.ndarray | None:

@@ -148,7 +148,9 @@ def immersed_collision():
         return collide(CollisionParameters(**IMMERSED), RunConfig.from_settings(nodes=80))
 
 
-@pytest.mark.parametrize("model", ["couette", "lubrication", "gcb"])
+@pytest.mark.parametrize(
+    "model", ["couette", pytest.param("lubrication", marks=pytest.mark.slow), "gcb"]
+)
 def test_estimate_is_the_first_order_of_the_added_flow(immersed_collision, model):
     """A real immersed collision (St 20, eps 1e-3, delta 0.01, 80 nodes): the estimate of a run
     that leaves the outer flow out against the same run that adds it (outer_flow "exact"):

@@ -36,6 +36,7 @@ from .solids.halfspace import (
 )
 from .tangential.motion import solve_tangential
 from .tangential.outer_film import OuterFilm, outer_film
+from .tangential.pair import SpherePair, solve_pair
 from .tangential.result import TangentialEnergyWarning, TangentialResult
 from .tangential.superposition import (
     SuperpositionValidity,
@@ -316,6 +317,7 @@ def collide(
     if not isinstance(config, RunConfig):
         raise checks.InputError(f"config must be a RunConfig, got {config!r}", "config")
     config.check_inputs(params)
+    _check_pair_inputs(physical, config)
     mode_one = _mode_one_at(mode_one, compliance, params.eps)
     with one_blas_thread():
         if compliance is not None:
@@ -330,6 +332,21 @@ def collide(
             except FilmClosedError:
                 if attempt == numerics.refinements:
                     raise
+
+
+def _check_pair_inputs(physical, config) -> None:
+    """Refuse physical inputs for two spheres in the half-space model or obliquely: they
+    describe one sphere (its radius and mass), while the pair's groups are by the reduced
+    radius a1 a2 / (a1 + a2) and mass m1 m2 / (m1 + m2)."""
+    if physical is None or config.lower.kind != "sphere":
+        return
+    if config.model == "halfspace" or physical.angle > 0.0:
+        raise checks.InputError(
+            "lower = 'sphere' takes scaled inputs here (St, eps and delta by the reduced radius "
+            "a1 a2 / (a1 + a2) and mass m1 m2 / (m1 + m2), ehdfem.inputs.scales.reduced_radius "
+            "and reduced_mass): the physical inputs describe one sphere",
+            "lower",
+        )
 
 
 def _mode_one_at(mode_one, compliance, eps):
@@ -432,12 +449,24 @@ def with_tangential(
     return _slide(bare, mode_one)
 
 
+def sphere_pair(params: CollisionParameters, lower) -> SpherePair:
+    """The partner of a two-sphere collision (:class:`ehdfem.tangential.pair.SpherePair`) from
+    the upper sphere's inertia factor in ``params`` and the :class:`ehdfem.config.LowerSphere`
+    ``lower`` (its mass ratio, inertia factor and spin)."""
+    return SpherePair(
+        lower.mass_ratio, params.inertia_factor, lower.lower_inertia_factor, lower.lower_spin
+    )
+
+
 def _slide(result, given_mode_one):
     """``result`` (its normal motion solved) with the tangential motion of its run
     configuration (tangential model, mode-1 deformation) added; ``given_mode_one`` as in
     :func:`_collide_on`."""
     params, normal, compliance = result.params, result.normal, result.compliance
     model, deformation = result.config.tangential, result.config.deformation
+    if result.config.lower.kind == "sphere":
+        result.tangential = solve_pair(normal, model, sphere_pair(params, result.config.lower))
+        return result
     outer_flow = result.config.outer_flow
     mode_one = None
     if model == "lubrication" and deformation != "none":

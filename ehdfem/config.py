@@ -29,6 +29,7 @@ from .motion.timestepping import IntegratorOptions
 from .tangential.motion import DEFORMATIONS
 from .tangential.motion import MODELS as TANGENTIAL_MODELS
 from .tangential.outer_film import OUTER_FLOWS, check_outer_flow
+from .tangential.pair import PAIR_MODELS
 
 MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
@@ -75,15 +76,36 @@ class CoatedWall:
 
 @dataclass(frozen=True)
 class LowerSphere:
-    """A second, free sphere below: a is the reduced radius a1 a2 / (a1 + a2)."""
+    """A second, free sphere below: a is the reduced radius a1 a2 / (a1 + a2) and m the
+    reduced mass m1 m2 / (m1 + m2), in both elasticity models. For its tangential motion
+    (:mod:`ehdfem.tangential.pair`): its density over the upper sphere's, its inertia factor
+    k2 = I2 / (m2 a2^2) and its initial spin a2 Omega2 / V0, counted about the same axis as the
+    upper sphere's (its surface at the contact then moves at U2 + a2 Omega2 along x)."""
 
     kind: ClassVar[str] = "sphere"
     radius_ratio: float = setting(
         1.0, help="upper sphere radius / lower sphere radius a1/a2", lower=0.0, lower_open=True
     )
+    density_ratio: float = setting(
+        1.0, help="lower sphere density / upper sphere density rho2/rho1 (mean densities)",
+        lower=0.0, lower_open=True,
+    )  # fmt: skip
+    lower_inertia_factor: float = setting(
+        0.4, help="lower sphere inertia I2 / (m2 a2^2) (2/5 solid, 2/3 thin shell)", lower=0.0,
+        upper=2 / 3, lower_open=True,
+    )  # fmt: skip
+    lower_spin: float = setting(
+        0.0, help="lower sphere's initial spin about the upper sphere's spin axis (its surface "
+        "at the contact moves at a2 Omega2 along the tangential velocity)", unit="a2 Omega2 / V0",
+    )  # fmt: skip
 
     def __post_init__(self):
         validate(self)
+
+    @property
+    def mass_ratio(self) -> float:
+        """m1 / m2 = (a1/a2)^3 / (rho2/rho1)."""
+        return self.radius_ratio**3 / self.density_ratio
 
     def solids(self, wall_modulus: float) -> dict:
         """Arguments of FESolids: the radius ratio."""
@@ -112,9 +134,11 @@ class Numerics:
 
 
 LOWER_SPHERE_SLIDING = (
-    "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower = "
-    "'sphere' is not supported: the sliding film's force and torque are derived for a sphere "
-    "on a wall); use tangential = 'couette'"
+    "tangential = 'lubrication' or 'gcb' needs a wall or coated wall below the sphere (lower "
+    "= 'sphere' is not supported: their film pressure is driven by each surface's velocity "
+    "relative to the gap, not by the slip alone, and the two spheres' share of its force and "
+    "torque is not derived, docs/tangential.md 'Two spheres'); use tangential = 'couette' or "
+    "'flat'"
 )
 
 
@@ -170,12 +194,11 @@ class RunConfig:
             )
         if not isinstance(self.numerics, Numerics):
             raise checks.InputError(f"numerics must be Numerics, got {self.numerics!r}")
-        if self.lower.kind != "wall" and self.model != "fem":
+        if self.lower.kind == "coated" and self.model != "fem":
             raise checks.InputError(
-                f"lower = {self.lower.kind!r} needs model = 'fem' (the half-space is a wall)",
-                "lower",
+                "lower = 'coated' needs model = 'fem' (the half-space is uniform)", "lower"
             )
-        if self.tangential == "lubrication" and self.lower.kind == "sphere":
+        if self.tangential not in PAIR_MODELS and self.lower.kind == "sphere":
             raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
         if self.outer_flow == "exact" and self.lower.kind == "sphere":
             raise checks.InputError(
@@ -202,6 +225,13 @@ class RunConfig:
                 f"{given[0]} = {getattr(params, given[0])!r} acts only with asperities = "
                 "'greenwood-tripp' (the impact model has no asperity pressure)",
                 given[0],
+            )
+        spin = getattr(self.lower, "lower_spin", 0.0)
+        if spin != 0.0 and params.tangential_speed == 0.0:
+            raise checks.InputError(
+                f"lower_spin = {spin!r} needs an oblique impact (angle > 0): the tangential "
+                "motion of a head-on impact is not solved, so its spin would be ignored",
+                "lower_spin",
             )
 
     @property

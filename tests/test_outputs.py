@@ -30,6 +30,7 @@ ROUGH_ONLY = {o.name for o in registry.OUTPUTS if "asperit" in o.name or "impact
 # the estimate of the flow beyond an immersed film's tangential integrals, left out of a thin
 # layer's summary (tests/test_outer_flow.py checks it in an immersed one's)
 IMMERSED_ONLY = {o.name for o in registry.OUTPUTS if o.name.startswith("outer_film")}
+PAIR_ONLY = {"lower_spin_change", "pair_balance_error"}  # two free spheres' outputs
 STUDY = """
 [grid]
 St = [10.0]
@@ -82,18 +83,22 @@ def test_an_entry_without_a_meaning_or_with_half_an_si_value_is_refused():
 
 def test_summary_carries_exactly_the_registry_names(sliding):
     """With the sliding film on half-spaces (a thin layer) every output but those of rough
-    surfaces (the asperities and the friction of their solid contact) and of immersed layers is
-    in the summary; with the Couette film the optional ones of the sliding film (its
-    diagnostics) are left out and only they; a rough oblique sphere's summary has the
-    asperities' and the friction's outputs."""
+    surfaces (the asperities and the friction of their solid contact), of immersed layers and of
+    two spheres is in the summary; with the Couette film the optional ones of the sliding film
+    (its diagnostics) are left out and only they, and a pair of spheres has the pair's; a rough
+    oblique sphere's summary has the asperities' and the friction's outputs."""
     summary = sliding.summary()
     rough_only = ROUGH_ONLY
-    assert set(registry.names()) - set(summary) == rough_only | IMMERSED_ONLY
+    assert set(registry.names()) - set(summary) == rough_only | IMMERSED_ONLY | PAIR_ONLY
     couette = collide(OBLIQUE, NODES_40).summary()
     missing = {name for name in registry.names() if name not in couette}
-    sliding_only = {o.name for o in registry.OUTPUTS if o.optional} - rough_only - IMMERSED_ONLY
+    optional = {o.name for o in registry.OUTPUTS if o.optional}
+    sliding_only = optional - rough_only - IMMERSED_ONLY - PAIR_ONLY
     sliding_only -= {"load_radius", "halfspace_range_flag"}
-    assert missing == sliding_only | rough_only | IMMERSED_ONLY
+    assert missing == sliding_only | rough_only | IMMERSED_ONLY | PAIR_ONLY
+    pair = collide(OBLIQUE, nodes=40, lower="sphere").summary()
+    absent = {name for name in registry.names() if name not in pair}
+    assert absent == sliding_only | rough_only | IMMERSED_ONLY
     rough = replace(
         OBLIQUE, eps=1e-6, p_cav=-float("inf"), roughness=0.01, friction_coefficient=0.2
     )
@@ -149,7 +154,7 @@ def test_a_bounce_contact_carries_every_output_once_in_si_where_it_has_a_unit():
 def test_si_values_are_the_scaled_ones_times_the_units_of_their_scales():
     """The example (steel on glass, 100 cSt oil, 1 m/s at 30 degrees, x0 = 0.3 mm, a =
     6.35 mm): x0, x0/V0, V0 and 6 pi mu V0 a^2 / x0 with V0 = |v| cos(30 deg), U0 = |v|
-    sin(30 deg), U0/a and a, formed here from the inputs; equal to 1e-14 relative (two roundings
+    sin(30 deg), U0/a, a and m U0, formed here from the inputs; equal to 1e-14 relative (two roundings
     of a product)."""
     physical = from_presets(**EXAMPLE)
     summary = collide(physical, NODES_40).summary()
@@ -165,6 +170,7 @@ def test_si_values_are_the_scaled_ones_times_the_units_of_their_scales():
         "e_t": u0,
         "spin_change": u0 / a,
         "load_radius": a,
+        "tangential_impulse": physical.mass * u0,  # 4/3 pi a^3 rho U0, no added mass here
     }
     si = summary["si"]
     absent = ROUGH_ONLY | IMMERSED_ONLY
@@ -230,7 +236,7 @@ def test_energy_error_only_without_a_cavitation_limit(changes, applies):
 
 def test_table_rows_give_name_value_scale_and_meaning(sliding):
     rows = registry.table_rows(sliding.summary())
-    absent = ROUGH_ONLY | IMMERSED_ONLY
+    absent = ROUGH_ONLY | IMMERSED_ONLY | PAIR_ONLY
     assert [row[0] for row in rows] == [n for n in registry.names() if n not in absent]
     e_n = next(row for row in rows if row[0] == "e_n")
     meaning = next(o.meaning for o in registry.OUTPUTS if o.name == "e_n")

@@ -128,9 +128,20 @@ def _effective_friction(r, tangent) -> float:
 
 
 def _psi_out(r, tangent) -> float:
-    """The contact point's slip at exit or stop over V0: tan(angle) (e_t - a Omega_end / U0)."""
+    """The contact point's slip at exit or stop over V0: tan(angle) (e_t - a Omega_end / U0),
+    for two spheres tan(angle) (e_t - w_end), w = a1 Omega1 + a2 Omega2 the contact spin."""
     t = r.tangential
-    return tangent * (t.e_t - t.spin[0] - t.spin_change)
+    if t.pair is None:
+        return tangent * (t.e_t - t.spin[0] - t.spin_change)
+    return tangent * (t.e_t - t.spin[0] - t.pair.lower_spin[0] - t.pair.contact_spin_change)
+
+
+def _pair(read):
+    """``read(pair)`` of a two-sphere collision's :class:`ehdfem.tangential.pair.PairMotion`
+    (None for a sphere on a wall or a head-on impact)."""
+    return lambda r: (
+        None if r.tangential is None or r.tangential.pair is None else read(r.tangential.pair)
+    )
 
 
 def _friction(read):
@@ -280,11 +291,12 @@ OUTPUTS: tuple[Output, ...] = (
            lambda r: len(r.normal.radii)),
     Output("time_steps", "accepted time steps of the normal motion", "-", None,
            lambda r: r.normal.steps),
-    Output("e_t", "tangential restitution U/U0 of the centre at exit or stop", "U0", "m/s",
-           _tangential("e_t"), "exit_tangential_speed_m_s", lambda p: p.tangential_speed),
-    Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop", "U0/a",
-           "rad/s", _tangential("spin_change"), "spin_change_rad_s",
-           lambda p: p.tangential_speed / p.radius),
+    Output("e_t", "tangential restitution U/U0 of the centre (two spheres: of U1 - U2) at exit "
+           "or stop", "U0", "m/s", _tangential("e_t"), "exit_tangential_speed_m_s",
+           lambda p: p.tangential_speed),
+    Output("spin_change", "spin change a (Omega - Omega0) / U0 at exit or stop (two spheres: the "
+           "upper one's, a = a1)", "U0/a", "rad/s", _tangential("spin_change"),
+           "spin_change_rad_s", lambda p: p.tangential_speed / p.radius),
     Output("outer_film_e_t_change", "estimated change of e_t by the flow beyond the immersed "
            "film's tangential integrals (r > a), left out", "U0", "m/s",
            _outer_film("e_t_change"), "outer_film_speed_change_m_s",
@@ -292,6 +304,17 @@ OUTPUTS: tuple[Output, ...] = (
     Output("outer_film_spin_change", "estimated change of spin_change by that flow, left out",
            "U0/a", "rad/s", _outer_film("spin_change_change"), "outer_film_spin_change_rad_s",
            lambda p: p.tangential_speed / p.radius, optional=True),
+    Output("lower_spin_change", "two spheres: the lower one's spin change a2 (Omega2 - Omega2(0)) "
+           "/ U0, about the upper one's axis", "U0/a2", "rad/s",
+           _pair(lambda p: p.lower_spin_change), optional=True),
+    Output("tangential_impulse", "tangential impulse on the (upper) sphere, m (U_end - U0), m the "
+           "reduced mass for two spheres", "m U0", "N s",
+           _oblique(lambda r, tangent: r.tangential.e_t - 1.0),
+           "tangential_impulse_N_s",
+           lambda p: (p.mass + p.added_mass) * p.tangential_speed),
+    Output("pair_balance_error", "two spheres: energy balance of both spheres' translation and "
+           "spin over the energy lost", "-", None, _pair(lambda p: p.balance_error),
+           optional=True),
     Output("rebound_angle", "rebound angle of the centre from the wall normal, atan(U/V) at exit",
            "deg", "deg", _oblique(_rebound_angle), applies=lambda r: r.normal.rebound,
            reason="the sphere sticks: it does not leave the layer"),

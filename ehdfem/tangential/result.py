@@ -78,7 +78,9 @@ class TangentialResult:
     (U0/V0) sqrt(delta) times the film pressure unit and times x0; None for Couette).
     ``friction``: the Coulomb friction of the solid contact (:class:`ContactFriction`; None
     without one, or with mu = 0). ``force`` is the film's force; the contact's impulses are in
-    ``friction``.
+    ``friction``. ``pair``: for two free spheres, the lower sphere's spin, the contact spin and
+    the pair's energy balance (:class:`ehdfem.tangential.pair.PairMotion`; None for a sphere on
+    a wall); ``velocity`` and ``e_t`` are then the relative ones and ``spin`` the upper sphere's.
     """
 
     model: str
@@ -96,6 +98,7 @@ class TangentialResult:
     mode_one_pressure: np.ndarray | None = None
     mode_one_gap: np.ndarray | None = None
     friction: ContactFriction | None = None
+    pair: object | None = None
 
 
 def initial_spin(params) -> float:

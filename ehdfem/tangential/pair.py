@@ -1,0 +1,179 @@
+"""Two free spheres colliding obliquely: the pair's tangential motion, mapped exactly onto the
+sphere on a wall (docs/tangential.md, "Two spheres").
+
+Sphere 1 (upper: radius a1, mass m1, inertia factor k1 = I1/(m1 a1^2)) meets sphere 2 (lower:
+a2, m2, k2) along the line of centres, the normal. U = U1 - U2 is the relative tangential
+velocity of the centres along x and s_i = a_i Omega_i the spins' surface speeds (all by U0, the
+relative tangential speed at first touch), both spins counted about the same axis, so that the
+surfaces at the contact move at U1 - s1 and U2 + s2 and slip at u_s = U - w, w = s1 + s2 (the
+contact spin). The normal motion is the half-space theory's (or the FE solids') with the
+reduced radius a and mass m; St is by m. A tangential force F on sphere 1 at the contact is
+-F on sphere 2 there, so that
+
+    St dU = J,   St ds1 = -J / (k1 (1 + m1/m2)),   St ds2 = -J / (k2 (1 + m2/m1)),
+
+for the impulse J on sphere 1 (by 6 pi mu a^2 U0 / V0), and the contact spin obeys
+k St dw = -J with 1/k = 1/(k1 (1 + m1/m2)) + 1/(k2 (1 + m2/m1)): the wall's equations with
+(U, a Omega, k) -> (U, w, k). Where the tangential force depends on the slip alone (the
+Couette shear of the ``couette`` and ``flat`` films, the solid contact's Coulomb friction) the
+pair is the sphere on a wall of inertia factor k and initial spin w0 = s1(0) + s2(0), exactly;
+each sphere then takes its share s_i - s_i(0) = c_i (w - w0), c1 = k / (k1 (1 + m1/m2)),
+c2 = k / (k2 (1 + m2/m1)), c1 + c2 = 1. The kinetic energy of the pair in its centre-of-mass
+frame (by m U0^2 / St)
+
+    E = (St/2) (U^2 + k1 (1 + m1/m2) s1^2 + k2 (1 + m2/m1) s2^2)
+
+changes at the rate F u_s, as the wall's (St/2)(U^2 + k w^2) does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .. import checks
+from ..motion.normal import NormalResult
+from .motion import solve_tangential
+from .result import TangentialResult, end_index
+
+PAIR_MODELS = ("couette", "flat")  # the tangential models whose force depends on the slip alone
+
+
+@dataclass(frozen=True)
+class SpherePair:
+    """The partner of a two-sphere collision as the tangential motion needs it: ``mass_ratio``
+    m1/m2 in (0, inf), the inertia factors ``upper_inertia`` k1 and ``lower_inertia`` k2 in
+    (0, 2/3], the lower sphere's initial spin ``lower_spin`` a2 Omega2 / V0 (module
+    docstring)."""
+
+    mass_ratio: float
+    upper_inertia: float
+    lower_inertia: float
+    lower_spin: float = 0.0
+
+    def __post_init__(self):
+        checks.positive("mass_ratio", self.mass_ratio)
+        for name in ("upper_inertia", "lower_inertia"):
+            checks.number(name, getattr(self, name), lower=0.0, upper=2 / 3, lower_open=True)
+        checks.number("lower_spin", self.lower_spin)
+
+    @property
+    def spin_weights(self) -> tuple[float, float]:
+        """(k1 (1 + m1/m2), k2 (1 + m2/m1)): each spin's inertia I_i / (m a_i^2) by the reduced
+        mass m."""
+        ratio = self.mass_ratio
+        return self.upper_inertia * (1.0 + ratio), self.lower_inertia * (1.0 + 1.0 / ratio)
+
+    @property
+    def inertia_factor(self) -> float:
+        """The pair's k = 1 / (1/(k1 (1 + m1/m2)) + 1/(k2 (1 + m2/m1))), a weighted harmonic mean
+        of k1 and k2 (k1 itself when k1 = k2), capped at the larger against rounding."""
+        upper, lower = self.spin_weights
+        exact = 1.0 / (1.0 / upper + 1.0 / lower)
+        return min(exact, max(self.upper_inertia, self.lower_inertia))
+
+    @property
+    def shares(self) -> tuple[float, float]:
+        """(c1, c2) = k / (k1 (1 + m1/m2)), k / (k2 (1 + m2/m1)): each sphere's share of the
+        contact spin's change (c1 + c2 = 1)."""
+        upper, lower = self.spin_weights
+        return upper_share(upper, lower), 1.0 - upper_share(upper, lower)
+
+
+def upper_share(upper: float, lower: float) -> float:
+    """c1 = (1/upper) / (1/upper + 1/lower) = lower / (upper + lower), for the spin weights
+    ``upper`` = k1 (1 + m1/m2) and ``lower`` = k2 (1 + m2/m1)."""
+    return lower / (upper + lower)
+
+
+@dataclass(frozen=True)
+class PairMotion:
+    """The pair's own histories and outcomes (scales of the module docstring): ``pair`` its
+    :class:`SpherePair`; ``lower_spin`` s2 = a2 Omega2 / U0 at the normal solution's steps
+    (the upper sphere's s1 is the TangentialResult's ``spin``); ``lower_spin_change`` and
+    ``contact_spin_change`` a2 (Omega2 - Omega2(0)) / U0 and (w - w0) at exit or stop;
+    ``kinetic`` the centre-of-mass frame's kinetic energy E of both spheres at the steps,
+    ``film_dissipated`` and ``friction_dissipated`` what the film's shear and the solid
+    contact took so far (by m U0^2 / St), ``balance_error`` |E(0) - E - film - friction| at
+    exit or stop over E(0) - E there."""
+
+    pair: SpherePair
+    lower_spin: np.ndarray
+    lower_spin_change: float
+    contact_spin_change: float
+    kinetic: np.ndarray
+    film_dissipated: np.ndarray
+    friction_dissipated: np.ndarray
+    balance_error: float
+
+
+def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> TangentialResult:
+    """The tangential motion of two free spheres on the normal solution ``normal`` (by the
+    reduced radius and mass), with the film ``model`` (PAIR_MODELS) and the partner ``pair``:
+    the sphere-on-wall motion of inertia factor ``pair.inertia_factor`` and initial spin
+    w0 = s1(0) + s2(0) (:func:`ehdfem.tangential.motion.solve_tangential`), split between the
+    spheres by their shares. The result's ``velocity`` and ``e_t`` are the relative ones
+    (U1 - U2), ``spin`` and ``spin_change`` the upper sphere's, ``slip`` u_s = U - s1 - s2, and
+    ``pair`` the rest (:class:`PairMotion`)."""
+    checks.choice("tangential model of two spheres", model, PAIR_MODELS)
+    params = normal.params
+    if params.tangential_speed == 0.0:
+        raise checks.InputError("the tangential motion of two spheres needs angle > 0", "angle")
+    if params.inertia_factor != pair.upper_inertia:
+        raise checks.InputError(
+            f"the pair's upper inertia factor {pair.upper_inertia!r} differs from the "
+            f"collision's inertia_factor {params.inertia_factor!r}",
+            "inertia_factor",
+        )
+    mapped = replace(params, inertia_factor=pair.inertia_factor, spin=params.spin + pair.lower_spin)
+    wall = solve_tangential(replace(normal, params=mapped), model)
+    tangent = params.tangential_speed
+    first, second = pair.shares
+    upper_start, lower_start = params.spin / tangent, pair.lower_spin / tangent
+    turned = wall.spin - wall.spin[0]  # w - w0 at the steps
+    upper, lower = upper_start + first * turned, lower_start + second * turned
+    change = wall.spin_change
+    motion = _pair_motion(normal, wall, pair, (upper, lower), change)
+    return replace(wall, spin=upper, spin_change=first * change, pair=motion)
+
+
+def _pair_motion(normal, wall, pair, spins, change) -> PairMotion:
+    """The :class:`PairMotion` of the wall-mapped result ``wall`` with the spheres' spins
+    ``spins`` (s1, s2) at the steps and the contact spin's change ``change`` at the end. The
+    film's dissipation of a step is what it took from the slip's energy (St/2) k/(1 + k) u_s^2
+    (the film conserves U + k w), from the slip after the last step's contact to the slip
+    before this step's; the end's partial step likewise."""
+    St, k = normal.params.St, pair.inertia_factor
+    weights = (1.0, *pair.spin_weights)
+
+    def kinetic_energy(*velocities):  # (U, s1, s2)
+        return 0.5 * St * sum(w * v**2 for w, v in zip(weights, velocities, strict=True))
+
+    upper, lower = spins
+    kinetic = kinetic_energy(wall.velocity, upper, lower)
+    friction = np.zeros(len(wall.velocity))
+    slip_before = wall.slip.copy()  # the slip each step's film left, before the contact acted
+    if wall.friction is not None:
+        friction = wall.friction.dissipated
+        slip_before = wall.slip - (1.0 + 1.0 / k) * wall.friction.impulse / St
+    slip_energy = 0.5 * St * k / (1.0 + k)
+    taken = slip_energy * (wall.slip[:-1] ** 2 - slip_before[1:] ** 2)
+    film = np.concatenate(([0.0], np.cumsum(taken)))
+    first, second = pair.shares
+    i = min(int(end_index(normal)), len(film) - 2)  # the end lies in step i
+    end_slip = wall.e_t - (wall.spin[0] + change)
+    film_end = film[i] + slip_energy * (wall.slip[i] ** 2 - end_slip**2)
+    at_end = kinetic_energy(wall.e_t, upper[0] + first * change, lower[0] + second * change)
+    lost = kinetic[0] - at_end
+    error = abs(lost - film_end - friction[i]) / lost if lost > 0 else 0.0
+    return PairMotion(
+        pair=pair,
+        lower_spin=lower,
+        lower_spin_change=second * change,
+        contact_spin_change=change,
+        kinetic=kinetic,
+        film_dissipated=film,
+        friction_dissipated=friction,
+        balance_error=float(error),
+    )

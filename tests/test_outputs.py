@@ -154,8 +154,8 @@ def test_a_bounce_contact_carries_every_output_once_in_si_where_it_has_a_unit():
 def test_si_values_are_the_scaled_ones_times_the_units_of_their_scales():
     """The example (steel on glass, 100 cSt oil, 1 m/s at 30 degrees, x0 = 0.3 mm, a =
     6.35 mm): x0, x0/V0, V0 and 6 pi mu V0 a^2 / x0 with V0 = |v| cos(30 deg), U0 = |v|
-    sin(30 deg), U0/a, a and m U0, formed here from the inputs; equal to 1e-14 relative (two roundings
-    of a product)."""
+    sin(30 deg), U0/a, a and m U0, formed here from the inputs; equal to 1e-14 relative (two
+    roundings of a product)."""
     physical = from_presets(**EXAMPLE)
     summary = collide(physical, NODES_40).summary()
     x0, a, mu = physical.layer_thickness, physical.radius, physical.liquid.viscosity

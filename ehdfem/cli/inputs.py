@@ -74,13 +74,15 @@ def add_run_arguments(parser, exclude=()) -> None:
     """The run configuration's settings, by group (``exclude``: names left out)."""
     run = parser.add_argument_group("run configuration")
     add_fields(run, RunConfig, exclude=exclude)
-    fe = parser.add_argument_group("lower body of the FE solids (--model fem)")
+    fe = parser.add_argument_group(
+        "lower body: a second sphere (both models) or a coated wall (--model fem)"
+    )
     fe.add_argument(
         "--lower",
         choices=tuple(LOWER_BODIES),
         default=argparse.SUPPRESS,
-        help="body below the sphere: wall block, coated wall block, or a second sphere; "
-        "default: wall",
+        help="body below the sphere: wall block, coated wall block (FE solids), or a second "
+        "free sphere (St, eps, delta by the reduced radius and mass); default: wall",
     )
     for body in LOWER_BODIES.values():
         add_fields(fe, body, exclude=exclude)
@@ -199,13 +201,21 @@ def _warn_of_options_without_effect(values: dict, coefficient: str, suction: str
         )
 
 
-TANGENTIAL_ONLY = ("tangential", "sliding_deformation", "inertia_factor", "friction_coefficient")
+TANGENTIAL_ONLY = (
+    "tangential",
+    "sliding_deformation",
+    "inertia_factor",
+    "friction_coefficient",
+    "density_ratio",
+    "lower_inertia_factor",
+)
 
 
 def _warn_of_settings_without_effect(args, inputs):
     """``inputs`` (CollisionParameters or PhysicalCollision), after a warning for each option
     given that cannot act in their run: the tangential motion's settings (its film model, the
-    solids' mode-1 deformation, the sphere's inertia factor, the contact's friction) on a
+    solids' mode-1 deformation, the spheres' inertia factors, the contact's friction, the lower
+    sphere's density) on a
     head-on impact, where no tangential motion is solved; --sliding-deformation with another
     tangential film than the sliding film; the Roelands constants with another viscosity
     law."""

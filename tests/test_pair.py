@@ -29,7 +29,8 @@ from ehdfem import CollisionParameters, collide
 from ehdfem.checks import InputError
 from ehdfem.collision import with_tangential
 from ehdfem.exact.rigid_impact import frictional_impact, pair_impact
-from ehdfem.inputs.scales import reduced_mass, reduced_radius
+from ehdfem.inputs.presets import EXAMPLE
+from ehdfem.inputs.scales import from_presets, reduced_mass, reduced_radius
 from ehdfem.tangential.pair import PAIR_MODELS, SpherePair, solve_pair
 
 pytestmark = pytest.mark.serial
@@ -306,7 +307,10 @@ def test_pair_inputs_are_checked():
 
 def test_pair_refusals(unequal):
     """gcb and the sliding film are refused for a pair (their force does not depend on the slip
-    alone), and so is a pair whose upper inertia factor is not the collision's."""
+    alone), and so is a pair whose upper inertia factor is not the collision's; physical inputs
+    (one sphere's radius and mass) are refused for a pair before any work."""
+    with pytest.raises(InputError, match="reduced radius"):
+        collide(from_presets(**EXAMPLE), lower="sphere")
     for model in ("gcb", "lubrication"):
         with pytest.raises(InputError, match="lower = 'sphere' is not supported"):
             with_tangential(unequal, model)

@@ -76,15 +76,10 @@ class SpherePair:
     @property
     def shares(self) -> tuple[float, float]:
         """(c1, c2) = k / (k1 (1 + m1/m2)), k / (k2 (1 + m2/m1)): each sphere's share of the
-        contact spin's change (c1 + c2 = 1)."""
+        contact spin's change (c1 + c2 = 1); c_i = (1/weight_i) / sum 1/weight_j for the
+        :attr:`spin_weights`."""
         upper, lower = self.spin_weights
-        return upper_share(upper, lower), 1.0 - upper_share(upper, lower)
-
-
-def upper_share(upper: float, lower: float) -> float:
-    """c1 = (1/upper) / (1/upper + 1/lower) = lower / (upper + lower), for the spin weights
-    ``upper`` = k1 (1 + m1/m2) and ``lower`` = k2 (1 + m2/m1)."""
-    return lower / (upper + lower)
+        return lower / (upper + lower), upper / (upper + lower)
 
 
 @dataclass(frozen=True)

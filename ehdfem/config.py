@@ -1,12 +1,13 @@
 """The run configuration: how a collision is computed, beside what collides
 (:class:`ehdfem.inputs.scales.CollisionParameters` or ``PhysicalCollision``).
 
-:class:`RunConfig` holds the elasticity model, the lower body of the FE model
-(:class:`Wall`, :class:`CoatedWall`, :class:`LowerSphere`), the tangential film model and its
-mode-1 deformation, and the numerics (:class:`Numerics`: film nodes, refinements and the time
-integration's :class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its
-help, unit or scale and allowed values (:mod:`ehdfem.inputs.settings`); lengths of the lower
-body are scaled by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
+:class:`RunConfig` holds the elasticity model, the lower body (:class:`Wall`;
+:class:`CoatedWall` for the FE model; :class:`LowerSphere`, a second free sphere, in both),
+the tangential film model and its mode-1 deformation, and the numerics (:class:`Numerics`:
+film nodes, refinements and the time integration's
+:class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its help, unit or
+scale and allowed values (:mod:`ehdfem.inputs.settings`); lengths of the lower body are scaled
+by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
 
 Its flat form (:meth:`RunConfig.settings`, :meth:`RunConfig.from_settings`) names every
 setting once (model, lower, coating_thickness, ..., nodes, rtol, order, ...): the keys of
@@ -144,7 +145,7 @@ LOWER_SPHERE_SLIDING = (
 
 @dataclass(frozen=True)
 class RunConfig:
-    """How one collision is computed: the elasticity model, the FE model's lower body, the
+    """How one collision is computed: the elasticity model, the lower body, the
     tangential film model (solved for oblique impacts) with the mode-1 deformation of its
     solids, the asperity model of rough surfaces, and the numerics. See the module docstring
     for the flat settings."""

@@ -113,72 +113,24 @@ def test_negative_numbers_in_scientific_notation_are_values(capsys):
     assert json.loads(capsys.readouterr().out)["p_cav"] == -10.0
 
 
+PAIR = ["--St", "1", "--eps", "1e-3", "--lower", "sphere"]  # two spheres, head-on
+
+
 @pytest.mark.parametrize(
     ("args", "flag", "allowed"),
     [
         (["--St", "10", "--eps", "1e-3", "--delta", "2"], "--delta", "(0, 1)"),
         (["--St", "10", "--eps", "1e-3", "--nodes", "5"], "--nodes", "[20, 5000]"),
         (["--St", "10", "--eps", "1e-3", "--coating-poisson", "0.6"], "--coating-poisson", ""),
-        (
-            ["--St", "10", "--eps", "1e-3", "--lower", "coated", "--coating-thickness", "0.1"],
-            "--lower",
-            "fem",
-        ),
-        (
-            [
-                "--St",
-                "1",
-                "--eps",
-                "1e-3",
-                "--angle",
-                "30",
-                "--lower",
-                "sphere",
-                "--tangential",
-                "gcb",
-            ],
-            "--tangential",
-            "'couette' or 'flat'",
-        ),
-        (
-            [
-                "--St",
-                "1",
-                "--eps",
-                "1e-3",
-                "--angle",
-                "30",
-                "--lower",
-                "sphere",
-                "--lower-inertia-factor",
-                "0.7",
-            ],
-            "--lower-inertia-factor",
-            "(0, 0.666667]",
-        ),
-        (
-            [
-                "--St",
-                "1",
-                "--eps",
-                "1e-3",
-                "--angle",
-                "30",
-                "--lower",
-                "sphere",
-                "--density-ratio",
-                "0",
-            ],
-            "--density-ratio",
-            "(0, inf)",
-        ),
-        (
-            ["--St", "1", "--eps", "1e-3", "--lower", "sphere", "--lower-spin", "0.2"],
-            "--lower-spin",
-            "angle > 0",
-        ),
+        (["--St", "10", "--eps", "1e-3", "--lower", "coated", "--coating-thickness", "0.1"],
+         "--lower", "fem"),
+        ([*PAIR, "--angle", "30", "--tangential", "gcb"], "--tangential", "'couette' or 'flat'"),
+        ([*PAIR, "--angle", "30", "--lower-inertia-factor", "0.7"], "--lower-inertia-factor",
+         "(0, 0.666667]"),
+        ([*PAIR, "--angle", "30", "--density-ratio", "0"], "--density-ratio", "(0, inf)"),
+        ([*PAIR, "--lower-spin", "0.2"], "--lower-spin", "angle > 0"),
     ],
-)
+)  # fmt: skip
 def test_a_bad_value_names_the_flag_and_the_allowed_range(args, flag, allowed, capsys):
     assert main(["collide", *args]) == 2
     err = capsys.readouterr().err

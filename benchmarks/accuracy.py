@@ -164,7 +164,7 @@ SELECTIONS = {  # the command line's choice: its cases and the file it writes
 def parameters(layer, St, eps, options, model):
     base = {**dict(eps=eps, layer=layer, angle=30.0, delta=0.01), **options}
     if St == "near":  # St_c with the fixed OLD numerics, so the case does not move with defaults
-        head_on = CollisionParameters(St=1.0, **{**base, "angle": 0.0})
+        head_on = CollisionParameters.from_settings(St=1.0, **{**base, "angle": 0.0})
         St = (
             1.2
             * critical_stokes(
@@ -174,7 +174,7 @@ def parameters(layer, St, eps, options, model):
                 RunConfig(model=model, numerics=Numerics(integrator=OLD)),
             )["St_c"]
         )
-    return CollisionParameters(St=St, **base)
+    return CollisionParameters.from_settings(St=St, **base)
 
 
 def old_radii(params, nodes=DEFAULT_NODES):

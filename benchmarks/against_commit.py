@@ -16,7 +16,8 @@ Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]   (about 2 m
 
 The commit's code is imported as it stood (its own ``ehdfem`` package), so the cases use only
 the API every version has had: ``collide(CollisionParameters(St=..., eps=..., layer=...,
-p_cav=...))``.
+p_cav=...))``, through ``CollisionParameters.from_settings`` where the commit has it (since
+the cavitation model and the viscosity law became components, the flat keys go there).
 """
 
 import json
@@ -44,7 +45,8 @@ CASES = {  # name: CollisionParameters keywords (scaled inputs, DSH 1986)
 TIMER = """
 import json, sys, time
 from ehdfem import CollisionParameters, collide
-params = CollisionParameters(**json.loads(sys.argv[1]))
+build = getattr(CollisionParameters, "from_settings", CollisionParameters)
+params = build(**json.loads(sys.argv[1]))
 collide(params)  # the first run pays for imports and caches
 start = time.perf_counter()
 normal = collide(params).normal
@@ -56,7 +58,8 @@ print(json.dumps({"seconds": time.perf_counter() - start, "steps": normal.steps,
 SAMPLED = """
 import json, sys
 from ehdfem import CollisionParameters, collide
-params = CollisionParameters(**json.loads(sys.argv[1]))
+build = getattr(CollisionParameters, "from_settings", CollisionParameters)
+params = build(**json.loads(sys.argv[1]))
 for _ in range(int(sys.argv[2])):
     collide(params)
 """

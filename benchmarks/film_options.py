@@ -26,7 +26,7 @@ OPTIONS = [
 
 def dimensionless(cavitation, viscosity):
     extra = {"alpha": 1e-3, "roelands_pressure": 2e3} if viscosity != "constant" else {}
-    return CollisionParameters(
+    return CollisionParameters.from_settings(
         St=10.0, eps=1e-3, p_cav=-2.0, cavitation=cavitation, viscosity=viscosity, **extra
     )
 

@@ -21,10 +21,12 @@ from ehdfem.inputs.scales import CollisionParameters  # noqa: E402
 from ehdfem.solids.halfspace import HalfSpaceCompliance  # noqa: E402
 
 CASES = {
-    "thin St=10 eps=1e-3 P_cav=-2": CollisionParameters(
+    "thin St=10 eps=1e-3 P_cav=-2": CollisionParameters.from_settings(
         St=10.0, eps=1e-3, layer="thin", p_cav=-2.0
     ),
-    "immersed St=50 eps=1e-4": CollisionParameters(St=50.0, eps=1e-4, layer="immersed"),
+    "immersed St=50 eps=1e-4": CollisionParameters.from_settings(
+        St=50.0, eps=1e-4, layer="immersed"
+    ),
 }
 NODES = sorted({100, 200, 400, 800, 600, DEFAULT_NODES})
 

@@ -17,7 +17,7 @@ import numpy as np
 from . import checks
 from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
 from .exact import hertz
-from .film import cavitation
+from .film import cavitation, viscosity
 from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
 from .film.viscosity import ViscosityRangeWarning, barus_range_warning
 from .inputs.scales import CollisionParameters, PhysicalCollision
@@ -220,10 +220,8 @@ class CollisionResult:
             "St": p.St,
             "eps": p.eps,
             "delta": p.delta,
-            "p_cav": cavitation.suction_limit_output(p.p_cav),
-            "cavitation": p.cavitation,
-            "viscosity": p.viscosity,
-            "alpha": p.alpha,
+            **cavitation.MODELS.flat(p.cavitation, written=True),
+            **viscosity.LAWS.flat(p.viscosity, written=True),
             "gap": n.gap.name,
             "shear_traction": getattr(self.compliance, "shear_matrix", None) is not None,
             "e_dry": p.e_dry,
@@ -247,13 +245,14 @@ class CollisionResult:
 
     def inputs(self) -> dict:
         """The inputs of this collision as a JSON-ready dict, which
-        :func:`ehdfem.config.read_inputs` reads back: "parameters", every
-        CollisionParameters field (dimensionless, DSH scales; P_cav None for no limit);
+        :func:`ehdfem.config.read_inputs` reads back: "parameters", the flat settings of the
+        CollisionParameters (:meth:`~ehdfem.inputs.scales.CollisionParameters.settings`:
+        every field, the cavitation model and viscosity law by name with their constants;
+        dimensionless, DSH scales; P_cav None for no limit);
         "physical", for physical inputs, every PhysicalCollision field (SI) with the
         materials' and the liquid's values; "run", the flat settings of the run configuration
         (:meth:`ehdfem.config.RunConfig.settings`)."""
-        parameters = asdict(self.params)
-        parameters["p_cav"] = cavitation.suction_limit_output(self.params.p_cav)
+        parameters = self.params.settings(written=True)
         config = RunConfig() if self.config is None else self.config
         run = config.settings()
         if self.model in MODELS:  # a compliance passed to collide() says which solids were used
@@ -415,7 +414,7 @@ def _check_result_range(params, physical, normal: NormalResult) -> None:
 
 def _check_viscosity_range(params, physical, normal: NormalResult) -> None:
     """Warn (ViscosityRangeWarning) when the film's largest pressure went past its viscosity
-    law's validity, :meth:`ehdfem.film.viscosity.Viscosity.validity_pressure` (SI, Pa);
+    law's validity, its ``validity_pressure`` (:mod:`ehdfem.film.viscosity`; SI, Pa);
     physical inputs only (scaled ones give no liquid to compare the law with)."""
     if physical is None:
         return

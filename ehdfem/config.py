@@ -6,7 +6,7 @@
 the tangential film model and its mode-1 deformation, and the numerics (:class:`Numerics`:
 film nodes, refinements and the time integration's
 :class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its help, unit or
-scale and allowed values (:mod:`ehdfem.inputs.settings`); lengths of the lower body are scaled
+scale and allowed values (:mod:`ehdfem.settings`); lengths of the lower body are scaled
 by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
 
 Its flat form (:meth:`RunConfig.settings`, :meth:`RunConfig.from_settings`) names every
@@ -21,12 +21,11 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from . import checks
-from .film import cavitation
 from .film.asperities import MODELS as ASPERITY_MODELS
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
-from .inputs.settings import described, setting, validate
 from .motion.timestepping import IntegratorOptions
+from .settings import described, setting, validate, without_other_components
 from .tangential.motion import DEFORMATIONS
 from .tangential.motion import MODELS as TANGENTIAL_MODELS
 from .tangential.outer_film import OUTER_FLOWS, check_outer_flow
@@ -294,14 +293,15 @@ def setting_names() -> tuple[str, ...]:
 def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, RunConfig]:
     """The collision inputs (dimensionless or physical) and the run configuration of a
     collision's JSON ``inputs`` (:meth:`ehdfem.collision.CollisionResult.inputs`): its
-    "parameters", "physical" and "run". Also reads the earlier format, whose run options
-    (model, nodes, rtol, tangential, deformation, solids) were at the top level."""
+    "parameters", "physical" and "run". Also reads the earlier formats: the one whose run
+    options (model, nodes, rtol, tangential, deformation, solids) were at the top level, and
+    the one whose "parameters" held every constant of every viscosity law and the suction
+    limit whatever the cavitation model (those of the laws not chosen are left out)."""
     if inputs.get("physical") is not None:
         collision = _physical(inputs["physical"])
     else:
-        parameters = dict(inputs["parameters"])
-        parameters["p_cav"] = cavitation.parse_suction_limit(parameters["p_cav"])
-        collision = CollisionParameters(**parameters)
+        parameters = without_other_components(CollisionParameters, inputs["parameters"])
+        collision = CollisionParameters.from_settings(read=True, **parameters)
     if "run" in inputs:
         return collision, RunConfig.from_settings(**inputs["run"])
     return collision, RunConfig.from_settings(**_earlier_run(inputs, collision))

@@ -55,7 +55,7 @@ def lower_body(spec, delta):
 def run():
     rows = []
     for delta in DELTAS:
-        params = CollisionParameters(
+        params = CollisionParameters.from_settings(
             St=10.0,
             eps=1e-3,
             delta=delta,

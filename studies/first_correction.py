@@ -84,7 +84,9 @@ def compute():
                 if table.get(case=case, delta=delta, nodes=nodes, cause="total") is not None:
                     continue
                 print(f"{case}: delta = {delta:g}, {nodes} nodes", flush=True)
-                params = CollisionParameters(St=20.0, delta=delta, angle=30.0, **inputs)
+                params = CollisionParameters.from_settings(
+                    St=20.0, delta=delta, angle=30.0, **inputs
+                )
                 shares = cause_shares(run_variants(params, nodes, IDENTICAL, CONFIG))
                 for cause, values in shares.items():
                     table.add(dict(case=case, delta=delta, nodes=nodes, cause=cause, **values))
@@ -113,7 +115,7 @@ def surface_split():
     both (relative to the theory, Richardson 120/240 nodes) at delta = SPLIT_DELTA."""
     rows = []
     for case, (inputs, _) in CASES.items():
-        params = CollisionParameters(St=20.0, delta=SPLIT_DELTA, angle=30.0, **inputs)
+        params = CollisionParameters.from_settings(St=20.0, delta=SPLIT_DELTA, angle=30.0, **inputs)
         params = variant_parameters(params, "surface")
         per_grid = []
         for nodes in NODES:

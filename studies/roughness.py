@@ -65,7 +65,7 @@ def critical_points(table):
                 key = dict(part="critical", layer=layer, eps=eps, roughness=sigma, St="", model="")
                 if table.get(**key, speed="") is not None:
                     continue
-                params = CollisionParameters(
+                params = CollisionParameters.from_settings(
                     St=10.0, eps=eps, layer=layer, roughness=sigma, e_dry=E_DRY, **extra
                 )
                 found = critical_stokes(params, BRACKETS[layer], 0.02, config)
@@ -103,7 +103,9 @@ def compared_points(table):
                        model=model)  # fmt: skip
             if table.get(**key, speed="") is not None:
                 continue
-            params = CollisionParameters(St=St, eps=COMPARED_EPS, roughness=sigma, e_dry=E_DRY)
+            params = CollisionParameters.from_settings(
+                St=St, eps=COMPARED_EPS, roughness=sigma, e_dry=E_DRY
+            )
             asperities = "impact" if model == "smooth" else model
             normal = collide(params, nodes=NODES, asperities=asperities).normal
             table.add({**key, "speed": "", "value": normal.e_n, "h_eps": ""})

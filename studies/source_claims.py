@@ -166,7 +166,7 @@ def groups() -> dict[str, list[Point]]:
                 f"eps = {eps:g}",
                 "St",
                 float(St),
-                CollisionParameters(St=float(St), eps=eps, **DIMENSIONLESS),
+                CollisionParameters.from_settings(St=float(St), eps=eps, **DIMENSIONLESS),
             )
             for St in STOKES
         ]
@@ -177,7 +177,9 @@ def groups() -> dict[str, list[Point]]:
                     "",
                     "angle [deg]",
                     angle,
-                    CollisionParameters(**{**DIMENSIONLESS, **SINGLE, "angle": angle}),
+                    CollisionParameters.from_settings(
+                        **{**DIMENSIONLESS, **SINGLE, "angle": angle}
+                    ),
                 )
                 for angle in ANGLES
             ]
@@ -189,7 +191,7 @@ def groups() -> dict[str, list[Point]]:
                 "",
                 "delta",
                 delta,
-                CollisionParameters(**{**DIMENSIONLESS, **SINGLE, "delta": delta}),
+                CollisionParameters.from_settings(**{**DIMENSIONLESS, **SINGLE, "delta": delta}),
             )
         ]
     return out

@@ -37,7 +37,7 @@ def run():
     for eps in ELASTICITY:
         for St in STOKES:
             for p_cav in SUCTION:
-                params = CollisionParameters(
+                params = CollisionParameters.from_settings(
                     St=St, eps=eps, delta=0.01, layer="thin", p_cav=p_cav, angle=30.0
                 )
                 with warnings.catch_warnings():

@@ -57,7 +57,7 @@ def parameters(eps, St, theory_gap):
     """The collision; ``theory_gap``: the paraboloid gap and the pressure alone (the half-space
     theory's), else the elasticity model's defaults."""
     extra = dict(gap="paraboloid", shear_traction=False) if theory_gap else {}
-    return CollisionParameters(
+    return CollisionParameters.from_settings(
         St=float(St), eps=eps, delta=0.01, layer="thin", p_cav=-10.0, angle=30.0, **extra
     )
 

@@ -95,7 +95,7 @@ def thin_cases(table):
                 table,
                 f"St_c {model} {eps}",
                 lambda model=model, eps=eps: critical_stokes(
-                    CollisionParameters(St=1.0, eps=eps, **THIN),
+                    CollisionParameters.from_settings(St=1.0, eps=eps, **THIN),
                     (2.0, 20.0),
                     3e-3,
                     RunConfig(model=model),
@@ -107,11 +107,11 @@ def thin_cases(table):
     }
 
     def restitution(model):
-        widest = CollisionParameters(St=4 * STOKES[-1], eps=1e-3, **THIN)
+        widest = CollisionParameters.from_settings(St=4 * STOKES[-1], eps=1e-3, **THIN)
         compliance = elasticity(widest, film_radii(widest), RunConfig(model=model))
         out = []
         for St in STOKES:
-            params = CollisionParameters(St=St, eps=1e-3, angle=45.0, **THIN)
+            params = CollisionParameters.from_settings(St=St, eps=1e-3, angle=45.0, **THIN)
             result = collide(params, compliance=compliance)
             out.append({"St": St, "e_n": result.normal.e_n, "e_t": result.tangential.e_t})
         compliance.close()
@@ -123,7 +123,7 @@ def thin_cases(table):
 
 def tangential_cases(table):
     def e_t(eps, St):
-        params = CollisionParameters(St=St, eps=eps, angle=30.0, **THIN)
+        params = CollisionParameters.from_settings(St=St, eps=eps, angle=30.0, **THIN)
         return {
             m: collide(params, RunConfig.from_settings(tangential=m)).tangential.e_t
             for m in ("couette", "lubrication")

@@ -54,7 +54,9 @@ CONFIG = RunConfig.from_settings(rtol=1e-5)
 
 def parameters(delta, compression):
     eps = compression**2.5 / (90 * math.pi**2 / 64 * ST)
-    return CollisionParameters(St=ST, eps=eps, delta=delta, layer="thin", p_cav=-2.0, angle=30.0)
+    return CollisionParameters.from_settings(
+        St=ST, eps=eps, delta=delta, layer="thin", p_cav=-2.0, angle=30.0
+    )
 
 
 def feasible(delta, compression):

@@ -39,7 +39,7 @@ THIN = dict(St=10.0, eps=1e-3, layer="thin")
 IMMERSED = dict(St=20.0, eps=1e-3, layer="immersed")
 FAST = dict(nodes=80)
 BEFORE = dict(rtol=5e-5, film_control=False)  # the time-step control the table was made with
-FE_CASE = CollisionParameters(
+FE_CASE = CollisionParameters.from_settings(
     St=10.0,
     eps=1e-3,
     delta=0.01,
@@ -53,7 +53,7 @@ FE_CASE = CollisionParameters(
 
 def cases():
     """(name, CollisionParameters or PhysicalCollision, collide() keywords)."""
-    p = CollisionParameters
+    p = CollisionParameters.from_settings
     return [
         ("thin-none-headon", p(**THIN), FAST),
         ("thin-truncate-couette", p(**THIN, p_cav=-2.0, angle=30.0), FAST),

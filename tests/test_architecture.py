@@ -3,6 +3,7 @@ no import cycle between modules, no function over 80 lines, and every DOLFINx ca
 compatibility seam. These read the source, not run it."""
 
 import ast
+import re
 from pathlib import Path
 
 import pytest
@@ -12,6 +13,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
 # Bottom to top. A module may import from its own package and from the layers below.
 LAYERS = (
     ("checks", "version", "console", "threads"),
+    ("settings",),
     ("exact",),
     ("film",),
     ("inputs",),
@@ -174,3 +176,22 @@ def test_what_differs_between_dolfinx_versions_is_in_the_seam():
                 continue
             outside.append(f"{name}:{node.lineno} {base}.{node.attr} ({DIFFERING[node.attr]})")
     assert not outside, "version-dependent DOLFINx uses outside the seam:\n" + "\n".join(outside)
+
+
+def test_viscosity_and_cavitation_names_only_in_the_film():
+    """No quoted name of a viscosity law or a cavitation model outside ehdfem/film/: the other
+    packages read the components (their classes, ``name``, flags such as ``tracks_liquid``),
+    never compare or build from the names. ("none", also the off-value of other settings,
+    is left out of the search.)"""
+    from ehdfem.film import cavitation, viscosity
+
+    names = [n for n in (*viscosity.LAWS.names(), *cavitation.MODELS.names()) if n != "none"]
+    pattern = re.compile("|".join(rf"[\"']{re.escape(n)}[\"']" for n in names))
+    found = [
+        f"{path.relative_to(PACKAGE.parent)}:{number}: {line.strip()}"
+        for path in sorted(PACKAGE.rglob("*.py"))
+        if "film" not in path.relative_to(PACKAGE).parts[:1]
+        for number, line in enumerate(path.read_text().splitlines(), 1)
+        if pattern.search(line)
+    ]
+    assert len(names) >= 5 and not found, "model names outside film/:\n" + "\n".join(found)

@@ -11,9 +11,11 @@ from ehdfem.film import cavitation
 from ehdfem.film.cavitation import (
     NO_LIMIT,
     MassConserving,
+    MassConservingSolver,
     NoCavitation,
     Truncation,
-    cavitation_model,
+    TruncationSolver,
+    Unlimited,
 )
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
@@ -58,7 +60,7 @@ def solve_step(n):
     radii = radial_grid(n, 0.5, 1.1)
     options = IntegratorOptions(newton_tol=1e-10, max_newton=100)
     still = Sphere(1e30)
-    film, cavitation = Film(radii, "thin"), MassConserving(P_CAV)
+    film, cavitation = Film(radii, "thin"), MassConservingSolver(P_CAV)
     step = ImplicitStep(film, np.zeros((n, n)), cavitation, still, options)
     _, theta, before = manufactured(radii)
     guess = (np.zeros(n), GAP, 0.0, np.ones(n), np.zeros(n, bool))
@@ -110,7 +112,7 @@ def test_liquid_volume_is_conserved_through_cavitation_and_rebound():
     options = IntegratorOptions(order=1, rtol=1e-3, newton_tol=1e-10)
     imbalance = {}
     for model in ("mass-conserving", "truncate"):
-        params = CollisionParameters(
+        params = CollisionParameters.from_settings(
             St=10.0, eps=1e-2, layer="immersed", p_cav=P_CAV, cavitation=model
         )
         compliance = collide(params, RunConfig.from_settings(nodes=80)).compliance
@@ -132,7 +134,9 @@ def test_mass_conserving_reduces_to_truncation_without_cavity():
     equations with the same Newton matrices: e_n agrees to 1e-12 and the gap history, which
     crosses zero, to 1e-10 x0 (round-off gathered over a hundred steps)."""
     results = [
-        collide(CollisionParameters(St=10.0, eps=1e-3, p_cav=-1e4, cavitation=model)).normal
+        collide(
+            CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-1e4, cavitation=model)
+        ).normal
         for model in ("truncate", "mass-conserving")
     ]
     assert results[0].history.pressure.min() > -1e4
@@ -154,13 +158,13 @@ def test_truncation_holds_nodes_where_suction_would_exceed_the_limit():
         ("mass-conserving", NO_LIMIT, False),
     ):
         residual = np.ones(40)
-        model = cavitation_model(name, p_cav)
+        model = cavitation.MODELS[name].with_limit(p_cav).solver()
         cavitated = model.limit(residual, pressure, np.zeros(40, bool), dry, lambda: np.ones(40))
         assert cavitated[:30].all() == held and not cavitated[30:].any()
         if held:
             assert residual[:30] == pytest.approx(-1.0) and residual[30:] == pytest.approx(1.0)
         else:
-            assert type(model) is NoCavitation and (residual == 1.0).all()
+            assert type(model) is Unlimited and (residual == 1.0).all()
 
 
 @pytest.mark.parametrize("opening, cavity", [(0.3, False), (3.0, True)])
@@ -178,7 +182,7 @@ def test_truncated_cavity_released_far_at_once_converges_to_the_same_step(openin
     guess = (np.where(radii < 0.7, P_CAV, 0.0), GAP, 0.0, np.ones(n), np.zeros(n, bool))
     solutions, iterates = [], []
     for reach in (True, False):
-        model = Truncation(P_CAV)
+        model = TruncationSolver(P_CAV)
         if not reach:
             model._reach_into = lambda previous, held: held
         options = IntegratorOptions(newton_tol=1e-10, max_newton=100)
@@ -195,8 +199,19 @@ def test_truncated_cavity_released_far_at_once_converges_to_the_same_step(openin
 
 
 def test_every_model_name_gives_the_model_of_that_name():
-    """cavitation_model builds the class registered under each name (a name without its class
-    is no longer possible: the names are the classes'), and no limit gives NoCavitation."""
+    """Each registered name gives its class (a name without its class is no longer possible:
+    the names are the classes'); a limit gives the solver of that model, none the unlimited
+    one (its tracking of the liquid as the model's); the "none" model ignores a limit."""
+    solvers = {
+        Truncation: TruncationSolver,
+        MassConserving: MassConservingSolver,
+        NoCavitation: Unlimited,
+    }
+    assert set(cavitation.MODELS) == {cls.name for cls in solvers}
     for name in cavitation.MODELS:
-        assert cavitation.cavitation_model(name, -1.0).name == name
-        assert cavitation.cavitation_model(name, cavitation.NO_LIMIT).name == "none"
+        model = cavitation.MODELS[name].with_limit(-1.0)
+        assert model.name == name and type(model.solver()) is solvers[type(model)]
+        assert model.solver().tracks_liquid == model.tracks_liquid
+        assert type(cavitation.MODELS[name].with_limit(NO_LIMIT).solver()) is Unlimited
+    assert NoCavitation.with_limit(-1.0).p_cav == NO_LIMIT and not cavitation.has_limit("none")
+    assert cavitation.has_limit("truncate") and cavitation.has_limit("mass-conserving")

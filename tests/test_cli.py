@@ -169,7 +169,8 @@ def test_field_instants_include_requested_times():
     from ehdfem.outputs.fields import field_snapshots
 
     normal = collide(
-        CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0), RunConfig.from_settings(nodes=60)
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0),
+        RunConfig.from_settings(nodes=60),
     ).normal
     hist = normal.history
     t = 0.5 * (hist.time[10] + hist.time[11])
@@ -851,7 +852,7 @@ def test_a_restitution_above_one_is_warned_of():
     from ehdfem.collision import ResultRangeWarning, _check_result_range
     from ehdfem.inputs.scales import CollisionParameters
 
-    params = CollisionParameters(St=10.0, eps=1e-3)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3)
     with pytest.warns(ResultRangeWarning, match=r"e_n = 1.01 is above 1.*energy error 0.02"):
         normal = SimpleNamespace(
             e_n=1.01, energy_error=0.02, unloaded_touch=False, solid_impact=None

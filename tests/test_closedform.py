@@ -189,8 +189,10 @@ def test_couette_tangential_form_is_exact_in_delta_and_inertia(layer):
     D = ln((1 + delta)/(2 delta)))."""
 
     def e_t(delta, k=0.4):
-        params = CollisionParameters(St=30.0, eps=1e-6, p_cav=-100.0, delta=delta, angle=30.0,
-                                     layer=layer, inertia_factor=k)  # fmt: skip
+        params = CollisionParameters.from_settings(
+            St=30.0, eps=1e-6, p_cav=-100.0, delta=delta, angle=30.0, layer=layer,
+            inertia_factor=k,
+        )  # fmt: skip
         return collide(params, RunConfig(tangential="couette")).summary()["e_t"]
 
     deltas = (1e-3, 0.3) if layer == "immersed" else (0.01,)

@@ -12,7 +12,7 @@ from ehdfem.cli.main import main, parsers
 from ehdfem.collision import with_tangential
 from ehdfem.config import CoatedWall, read_inputs, setting_names
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets
-from ehdfem.study.sweep import PARAMETERS, PHYSICAL_FIELDS, Study, run_study
+from ehdfem.study.sweep import PHYSICAL_FIELDS, Study, parameter_names, run_study
 
 pytestmark = pytest.mark.serial
 
@@ -28,14 +28,14 @@ def test_every_collide_option_has_help_and_a_shown_default():
 
 def test_setting_names_are_disjoint_from_the_inputs():
     """A study's grid keys name one thing each: no run setting is also an input field."""
-    assert not set(setting_names()) & (set(PARAMETERS) | set(PHYSICAL_FIELDS))
+    assert not set(setting_names()) & (set(parameter_names()) | set(PHYSICAL_FIELDS))
 
 
 def test_config_round_trips_through_the_json():
     """summary()["inputs"] -> read_inputs gives the same parameters and configuration
     (exactly: the JSON holds the values as they were), dimensionless and physical."""
     config = RunConfig.from_settings(nodes=40, tangential="gcb", rtol=1e-3, order=3)
-    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=20.0)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0, angle=20.0)
     inputs = json.loads(json.dumps(collide(params, config).summary()["inputs"]))
     assert read_inputs(inputs) == (params, config)
     physical = from_presets(
@@ -65,7 +65,7 @@ def test_the_earlier_json_format_is_read():
         "solids": {"lower": "coated", "coating": (30e9, 0.25), "coating_thickness": 0.1},
     }
     params, config = read_inputs(earlier)
-    assert params == CollisionParameters(St=10.0, eps=1e-3, angle=30.0)
+    assert params == CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0)
     assert (config.model, config.tangential, config.numerics.nodes) == ("fem", "lubrication", 60)
     assert config.options.rtol == 1e-3 and config.lower.coating_stiffness == 30e9
     physical = from_presets(
@@ -77,6 +77,48 @@ def test_the_earlier_json_format_is_read():
     found, config = read_inputs(earlier)
     assert isinstance(found, PhysicalCollision) and found == physical
     assert config.lower.coating_stiffness == pytest.approx(30e9 / 60e9, rel=1e-15)
+
+
+# the "inputs" of a result JSON as the code before the components wrote it (every field of
+# the flat CollisionParameters: each viscosity law's constants and P_cav whatever the model)
+TODAYS_INPUTS = {
+    "parameters": {
+        "St": 6.0, "eps": 1e-3, "delta": 0.01, "p_cav": -2.0, "e_dry": 1.0, "layer": "thin",
+        "angle": 30.0, "spin": 0.0, "inertia_factor": 0.4, "cavitation": "mass-conserving",
+        "viscosity": "roelands", "alpha": 0.05, "roelands_pressure": 40.0,
+        "roelands_index": 0.5, "gap": None, "shear_traction": None, "external_force": 0.0,
+        "buoyant_weight": 0.0, "friction_coefficient": 0.0, "roughness": 0.0,
+        "asperity_density": 0.04, "asperity_slope": 0.001,
+    },
+    "physical": None,
+    "run": {"model": "halfspace", "lower": "wall", "tangential": "couette", "nodes": 60},
+}  # fmt: skip
+
+
+@pytest.mark.slow
+def test_todays_json_results_replay_with_from(tmp_path, capsys):
+    """A result JSON in the format before the components (its inputs written literally here)
+    is read with the same inputs as the components' flat settings give, and `collide --from`
+    on it gives the collision of those inputs bit for bit; with the constant viscosity and no
+    cavitation limit, the constants that cannot act (alpha = 0, the Roelands index) are left
+    out."""
+    params, config = read_inputs(TODAYS_INPUTS)
+    expected = CollisionParameters.from_settings(
+        St=6.0, eps=1e-3, angle=30.0, p_cav=-2.0, cavitation="mass-conserving",
+        viscosity="roelands", alpha=0.05, roelands_pressure=40.0, roelands_index=0.5,
+    )  # fmt: skip
+    assert params == expected and config == RunConfig.from_settings(nodes=60)
+    source, again = tmp_path / "today.json", tmp_path / "again.json"
+    source.write_text(json.dumps({"e_n": 0.5, "inputs": TODAYS_INPUTS}))
+    assert main(["collide", "--from", str(source), "--json", str(again)]) == 0
+    replayed = json.loads(again.read_text())
+    direct = collide(expected, config)
+    assert replayed["e_n"] == direct.normal.e_n and replayed["e_t"] == direct.tangential.e_t
+    assert read_inputs(replayed["inputs"]) == (expected, config)
+    plain = {**TODAYS_INPUTS["parameters"], "viscosity": "constant", "alpha": 0.0}
+    plain.update(cavitation="truncate", p_cav=None, roelands_pressure=None)
+    params, _ = read_inputs({**TODAYS_INPUTS, "parameters": plain})
+    assert params == CollisionParameters(St=6.0, eps=1e-3, angle=30.0)
 
 
 def test_a_study_sweeps_the_model_and_a_lower_body_field(tmp_path):
@@ -140,7 +182,7 @@ def test_a_bad_value_names_the_flag_and_the_allowed_range(args, flag, allowed, c
 def test_collide_takes_the_flat_run_settings_as_keywords():
     """collide(params, model=..., nodes=...) is collide(params, RunConfig.from_settings(...)),
     bit for bit; both at once, or an unknown setting, is refused with its name."""
-    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
     by_keywords = collide(params, nodes=40, tangential="lubrication", rtol=1e-3).summary()
     config = RunConfig.from_settings(nodes=40, tangential="lubrication", rtol=1e-3)
     by_config = collide(params, config).summary()
@@ -155,7 +197,7 @@ def test_collide_takes_the_flat_run_settings_as_keywords():
 def test_the_json_records_how_the_collision_was_computed():
     """inputs["run"] names the solids of a compliance passed in and the tangential model that
     with_tangential put on the collision, so that read_inputs reruns what was computed."""
-    params = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
     config = RunConfig.from_settings(nodes=40)
     rigid_free = collide(params, config)
     again = with_tangential(rigid_free, "lubrication", deformation="none")

@@ -93,7 +93,9 @@ def test_same_compliance_on_two_ranks_as_on_one():
 def test_fe_collision_agrees_with_the_half_space_at_small_delta(St, delta):
     """eps = 1e-3, thin layer, P_cav = -2: the full FE model (true sphere gap, shear traction)
     and the asymptotic theory agree on e_n within 1 % at small delta."""
-    params = CollisionParameters(St=St, eps=1e-3, layer="thin", p_cav=-2.0, delta=delta)
+    params = CollisionParameters.from_settings(
+        St=St, eps=1e-3, layer="thin", p_cav=-2.0, delta=delta
+    )
     half_space = collide(params, RunConfig.from_settings(nodes=120))
     fem = collide(params, RunConfig.from_settings(model="fem", nodes=120))
     assert fem.summary()["gap"] == "exact" and fem.summary()["shear_traction"]
@@ -110,7 +112,9 @@ def test_fe_energy_balance_at_finite_delta():
     within twice its error at rtol = 1e-5, where the time steps' share is small (measured
     2.4e-5 against the half-space's 4.8e-5; the point read-out gave 4.3e-3). At the default
     rtol both are dominated by the time steps (7.8e-4 and 2.0e-4). About 3 s."""
-    params = CollisionParameters(St=20.0, eps=1e-3, layer="thin", cavitation="none", delta=0.05)
+    params = CollisionParameters.from_settings(
+        St=20.0, eps=1e-3, layer="thin", cavitation="none", delta=0.05
+    )
     errors = {
         model: collide(params, RunConfig.from_settings(model=model, rtol=1e-5)).normal.energy_error
         for model in ("halfspace", "fem")

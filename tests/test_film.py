@@ -106,7 +106,7 @@ def test_hard_impacts_grid_the_exit_constriction_finer(St):
     (0.095 at St = 1e4, the width of the exit constriction relative to the contact radius,
     (H_min/C)^(2/3) with H_min/C ~ St^(-3/4)), at least 0.03, and the axis's rises to at most
     0.5; the grid stays smooth (neighbouring spacings within 17 %)."""
-    params = CollisionParameters(St=St, eps=1e-9, layer="thin", p_cav=-1e5)
+    params = CollisionParameters.from_settings(St=St, eps=1e-9, layer="thin", p_cav=-1e5)
     radii = film_radii(params)
     rim, _ = film_extent(params)
     spacing = np.diff(radii)
@@ -124,7 +124,7 @@ def test_immersed_couette_integral_ends_at_the_sphere(St, eps, delta):
     """On the collision's film grid the Couette integral of an undeformed immersed film,
     J = int_0^{1/sqrt(delta)} R dR / (X + R^2/2) = ln(1 + 1/(2 delta X)), is exact to 1e-9:
     the grid has a node at the sphere's radius (the sinh grid without one is 0.3-1.2 % off)."""
-    params = CollisionParameters(St=St, eps=eps, layer="immersed", delta=delta)
+    params = CollisionParameters.from_settings(St=St, eps=eps, layer="immersed", delta=delta)
     radii = film_radii(params)
     film = Film(radii, "immersed")
     for gap in (1.0, 0.1, 0.01):

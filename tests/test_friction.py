@@ -72,12 +72,14 @@ def with_friction(result, normal, model, **changes):
 @pytest.fixture(scope="module")
 def smooth():
     """An oblique thin-layer collision on the half-space (60 film nodes)."""
-    return collide(CollisionParameters(St=10.0, eps=1e-3, angle=30.0, **THIN), nodes=60)
+    return collide(
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0, **THIN), nodes=60
+    )
 
 
 def test_friction_coefficient_is_checked():
     with pytest.raises(InputError, match="friction_coefficient"):
-        CollisionParameters(St=1.0, eps=1e-3, friction_coefficient=-0.1)
+        CollisionParameters.from_settings(St=1.0, eps=1e-3, friction_coefficient=-0.1)
 
 
 def test_physical_inputs_carry_the_friction_coefficient():
@@ -95,14 +97,14 @@ def test_inputs_that_never_act_are_refused_by_name():
     base = dict(St=10.0, eps=1e-3, angle=30.0, **THIN)
     for name, value in (("friction_coefficient", 0.2), ("asperity_density", 0.1)):
         with pytest.raises(InputError, match=f"{name} = .* needs roughness > 0"):
-            CollisionParameters(**base, **{name: value})
+            CollisionParameters.from_settings(**base, **{name: value})
     with pytest.raises(InputError, match="asperity_slope = .* needs roughness > 0"):
         from_presets(**EXAMPLE, asperity_slope=1e-2).dimensionless()
-    rough = CollisionParameters(**base, roughness=0.05, asperity_slope=1e-2)
+    rough = CollisionParameters.from_settings(**base, roughness=0.05, asperity_slope=1e-2)
     with pytest.raises(InputError, match="asperity_slope = 0.01 acts only with asperities"):
         collide(rough, asperities="impact")
     with pytest.raises(InputError, match="asperities = 'greenwood-tripp' needs roughness > 0"):
-        collide(CollisionParameters(**base), asperities="greenwood-tripp")
+        collide(CollisionParameters.from_settings(**base), asperities="greenwood-tripp")
 
 
 @pytest.mark.parametrize("k", [0.4, 2 / 3])
@@ -127,7 +129,7 @@ def test_constant_asperity_load_stops_the_slip_linearly():
     """With no film, a constant asperity load F_a slows the slip linearly, du_s/dT =
     -(1 + 1/k) (mu / tan(angle)) F_a / St, and holds it at 0 from T* = u_s0 St tan(angle) /
     ((1 + 1/k) mu F_a): the per-step projection reproduces it exactly (rounding)."""
-    params = CollisionParameters(
+    params = CollisionParameters.from_settings(
         St=4.0,
         eps=1e-3,
         angle=40.0,
@@ -213,7 +215,7 @@ def test_oblique_outputs_are_those_of_the_exit_state():
     """psi_in = tan(angle) - a Omega0 / V0; psi_out = tan(angle) u_s(exit) / U0; the
     rebound angle atan(e_t tan(angle) / e_n); the effective friction tan(angle) (1 - e_t) /
     (1 + e_n) (the film alone: of order 1e-3, docs/tangential.md)."""
-    params = CollisionParameters(St=10.0, eps=1e-3, angle=30.0, spin=0.2, **THIN)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0, spin=0.2, **THIN)
     result = collide(params, nodes=60)
     out, t, tangent = registry.computed(result), result.tangential, params.tangential_speed
     assert out["psi_in"] == pytest.approx(tangent - 0.2, rel=1e-14)
@@ -248,7 +250,9 @@ def test_a_rough_collision_applies_the_impact_friction_at_its_own_step(model):
     step to -e_dry V_c; the asperity load history has the history's length; the tangential
     jump there follows the rigid-body closed form; mu = 0 gives the smooth tangential model of
     the same rough normal motion, which differs from it."""
-    params = CollisionParameters(St=10.0, eps=1e-6, angle=30.0, roughness=0.03, e_dry=0.8, **THIN)
+    params = CollisionParameters.from_settings(
+        St=10.0, eps=1e-6, angle=30.0, roughness=0.03, e_dry=0.8, **THIN
+    )
     rough = collide(replace(params, friction_coefficient=0.05), nodes=60, tangential=model)
     normal, impact = rough.normal, rough.normal.solid_impact
     assert impact is not None and len(normal.asperity_force) == len(normal.history.time)
@@ -267,7 +271,7 @@ def test_a_rough_collision_applies_the_impact_friction_at_its_own_step(model):
 @cache
 def rough_collision(St, eps, sigma, asperities):
     """A real rough oblique collision (30 degrees, no friction yet), thin layer."""
-    params = CollisionParameters(St=St, eps=eps, angle=30.0, roughness=sigma, **ROUGH)
+    params = CollisionParameters.from_settings(St=St, eps=eps, angle=30.0, roughness=sigma, **ROUGH)
     return collide(params, nodes=NODES, asperities=asperities, tangential="couette")
 
 

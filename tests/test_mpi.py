@@ -15,7 +15,7 @@ OUTPUTS = """
 import json, sys
 from ehdfem.collision import collide
 from ehdfem.inputs.scales import CollisionParameters
-result = collide(CollisionParameters(**json.loads(sys.argv[1])))
+result = collide(CollisionParameters.from_settings(**json.loads(sys.argv[1])))
 values = (result.normal.e_n, result.normal.min_film_thickness, result.tangential.e_t)
 print(json.dumps([repr(v) for v in values]))
 """
@@ -27,7 +27,7 @@ def test_collision_is_identical_on_every_rank():
     Python (its own imports, caches and memory layout), so the test compares two processes
     either way."""
     comm = MPI.COMM_WORLD
-    result = collide(CollisionParameters(**CASE))
+    result = collide(CollisionParameters.from_settings(**CASE))
     values = [repr(v) for v in (result.normal.e_n, result.normal.min_film_thickness)]
     values.append(repr(result.tangential.e_t))
     if comm.size > 1:

@@ -36,7 +36,7 @@ def test_rigid_sphere_stops_at_the_exact_gap(layer):
     St = 3.0
     loss, outer = RIGID[layer]
     stop = brentq(lambda x: loss(x) - St, 1e-12, 0.999)
-    params = CollisionParameters(St=St, eps=1.0, layer=layer)
+    params = CollisionParameters.from_settings(St=St, eps=1.0, layer=layer)
     result = solve_normal(
         params, RigidSolids(radial_grid(200, np.sqrt(stop), outer)), IntegratorOptions(rtol=1e-5)
     )
@@ -52,7 +52,7 @@ def test_rigid_sphere_stops_at_the_exact_gap(layer):
 def test_dry_hertz_limit_of_the_maximum_compression():
     """At large St the film is negligible: the approach reaches the Hertz compression
     (13.88 eps St)^(2/5) (within 2 %) and the sphere comes back at nearly its impact speed."""
-    params = CollisionParameters(St=5e3, eps=1e-6, layer="thin")
+    params = CollisionParameters.from_settings(St=5e3, eps=1e-6, layer="thin")
     result = collide(params, RunConfig.from_settings(refinements=0))
     assert result.normal.max_compression == pytest.approx(
         hertz.max_compression(1e-6, 5e3), rel=0.02
@@ -69,7 +69,7 @@ def test_energy_balance_without_cavitation():
     at the defaults); fully immersed it stays below 1e-3 (measured 9.7e-4: the part left at
     fine steps, 6.3e-4, is the far field beyond R = 30, whose force is in the dynamics but
     whose dissipation is not in the balance)."""
-    thin = CollisionParameters(St=10.0, eps=1e-3, layer="thin")
+    thin = CollisionParameters.from_settings(St=10.0, eps=1e-3, layer="thin")
     errors = [
         collide(
             thin, RunConfig(numerics=Numerics(integrator=IntegratorOptions(rtol=r)))
@@ -78,7 +78,7 @@ def test_energy_balance_without_cavitation():
     ]
     assert errors[0] < 1e-3 and errors[2] < 3e-5
     assert errors[0] > errors[1] > errors[2]
-    immersed = CollisionParameters(St=10.0, eps=1e-3, layer="immersed")
+    immersed = CollisionParameters.from_settings(St=10.0, eps=1e-3, layer="immersed")
     assert collide(immersed).normal.energy_error < 1e-3
 
 
@@ -92,21 +92,27 @@ def test_no_step_creates_mechanical_energy(layer):
     continues V's trend; elsewhere it falls at every step). The earlier order-3 control let
     it rise by up to 6.7e-5 (thin layer, St = 20, at exit)."""
     for St, eps in ((8.0, 1e-3), (20.0, 1e-3), (50.0, 0.1), (1000.0, 1e-6)):
-        history = collide(CollisionParameters(St=St, eps=eps, layer=layer)).normal.history
+        history = collide(
+            CollisionParameters.from_settings(St=St, eps=eps, layer=layer)
+        ).normal.history
         mechanical = history.kinetic + history.elastic
         assert np.diff(mechanical).max() < 1e-5 * 0.5 * St, (St, eps)
 
 
 def test_no_rebound_below_the_critical_stokes_number():
-    result = collide(CollisionParameters(St=2.0, eps=1e-3, layer="thin", p_cav=-2.0)).normal
+    result = collide(
+        CollisionParameters.from_settings(St=2.0, eps=1e-3, layer="thin", p_cav=-2.0)
+    ).normal
     assert not result.rebound and result.e_n == 0.0 and result.status == "stick"
 
 
 def test_rebound_and_e_dry():
     """Above St_c the sphere leaves the layer; e_n = e_dry * (EHD exit speed)."""
-    pure = collide(CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)).normal
+    pure = collide(
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0)
+    ).normal
     damped = collide(
-        CollisionParameters(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, e_dry=0.8)
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, e_dry=0.8)
     ).normal
     assert pure.rebound and 0 < pure.e_n < 1
     assert damped.e_n == pytest.approx(0.8 * pure.e_n, rel=1e-12)
@@ -126,7 +132,7 @@ def test_grid_convergence_of_the_restitution():
     nodes = (DEFAULT_NODES // 2, DEFAULT_NODES, 2 * DEFAULT_NODES)
 
     def restitutions(cavitation):
-        params = CollisionParameters(
+        params = CollisionParameters.from_settings(
             St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, cavitation=cavitation
         )
         config = [RunConfig(numerics=Numerics(nodes=n, integrator=options)) for n in nodes]
@@ -154,7 +160,7 @@ def test_film_control_resolves_the_thinnest_film(case):
     the default step control (0.28 % and 0.10 % measured); controlling X and V alone (the old
     default, BDF up to order 3) leaves it more than 2 % off (7.6 % and 2.8 % measured), so the
     film's own error estimate is what resolves it."""
-    params = CollisionParameters(**case)
+    params = CollisionParameters.from_settings(**case)
 
     def thinnest(options):
         return collide(
@@ -176,7 +182,7 @@ def test_a_growing_cavity_costs_no_run_of_short_steps():
     216 on the earlier order-3 control)."""
 
     def steps(**cavitation):
-        params = CollisionParameters(St=50.0, eps=0.1, layer="thin", **cavitation)
+        params = CollisionParameters.from_settings(St=50.0, eps=0.1, layer="thin", **cavitation)
         normal = collide(params, RunConfig.from_settings(nodes=120)).normal
         return normal.steps + normal.rejected_steps
 

@@ -4,6 +4,7 @@ the SI unit of their scale, formed here from the inputs; a new entry reaches eve
 the energy balance is withheld where a cavitation limit makes it meaningless."""
 
 import math
+import warnings
 from dataclasses import replace
 from pathlib import Path
 
@@ -13,13 +14,14 @@ from ehdfem.bounce.inputs import BounceInputs
 from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig, setting_names
+from ehdfem.film.cavitation import Truncation
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.outputs import registry
 from ehdfem.study.sweep import Study, run_point
 
 DOCS = Path(__file__).resolve().parent.parent / "docs"
-OBLIQUE = CollisionParameters(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
+OBLIQUE = CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
 NODES_40 = RunConfig.from_settings(nodes=40)
 # the outputs of rough surfaces' asperities, left out of a smooth collision's summary
 ROUGH_ONLY = {o.name for o in registry.OUTPUTS if "asperit" in o.name or "impact" in o.name} | {
@@ -100,7 +102,11 @@ def test_summary_carries_exactly_the_registry_names(sliding):
     absent = {name for name in registry.names() if name not in pair}
     assert absent == sliding_only | rough_only | IMMERSED_ONLY
     rough = replace(
-        OBLIQUE, eps=1e-6, p_cav=-float("inf"), roughness=0.01, friction_coefficient=0.2
+        OBLIQUE,
+        eps=1e-6,
+        cavitation=Truncation(),
+        roughness=0.01,
+        friction_coefficient=0.2,
     )
     greenwood_tripp_only = {"max_asperity_force", "max_asperity_share"}  # impact model here
     assert rough_only - greenwood_tripp_only <= set(collide(rough, NODES_40).summary())
@@ -214,7 +220,7 @@ def test_a_new_entry_reaches_the_summary_the_study_row_and_the_table(tmp_path, m
     "changes,applies",
     [
         ({}, True),  # P_cav = -inf: no limit
-        ({"p_cav": -2.0, "cavitation": "none"}, True),
+        ({"p_cav": -2.0, "cavitation": "none"}, True),  # warned of: no limit with "none"
         ({"p_cav": -2.0}, False),
         ({"p_cav": -2.0, "cavitation": "mass-conserving"}, False),
     ],
@@ -222,7 +228,10 @@ def test_a_new_entry_reaches_the_summary_the_study_row_and_the_table(tmp_path, m
 def test_energy_error_only_without_a_cavitation_limit(changes, applies):
     """The balance is reported without a cavitation limit, else None with the reason; the
     raw number stays available either way."""
-    result = collide(replace(CollisionParameters(St=10.0, eps=1e-3), **changes), NODES_40)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # p_cav has no effect with "none"
+        params = CollisionParameters.from_settings(St=10.0, eps=1e-3, **changes)
+    result = collide(params, NODES_40)
     summary = result.summary()
     raw = registry.computed(result)["energy_error"]
     assert raw == result.normal.energy_error

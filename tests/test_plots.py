@@ -107,7 +107,7 @@ def test_the_linear_range_is_the_power_of_ten_at_or_below_the_suction():
 
 def test_the_tours_collision_profiles_have_no_overlapping_label():
     """The README tour's first collision, as ``collide --plots`` draws it."""
-    params = CollisionParameters(St=10, eps=1e-3, layer="thin", p_cav=-2)
+    params = CollisionParameters.from_settings(St=10, eps=1e-3, layer="thin", p_cav=-2)
     result = collide(params, RunConfig.from_settings(nodes=80)).normal
     for draw in (plots.plot_profiles, plots.plot_histories):
         assert overlapping_texts(draw(result, "figure.png")) == []

@@ -30,7 +30,7 @@ UNITS = Scales(
 
 @pytest.fixture(scope="module")
 def fe_collision():
-    params = CollisionParameters(
+    params = CollisionParameters.from_settings(
         St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, delta=0.01, angle=30.0
     )
     return collide(params, RunConfig.from_settings(model="fem", nodes=40))

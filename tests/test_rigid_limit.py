@@ -19,7 +19,7 @@ from ehdfem.collision import film_radii
 from ehdfem.exact.rigid_film import stopping_gap as rigid_stopping_gap
 from ehdfem.exact.rigid_film import velocity_loss as rigid_velocity_loss
 from ehdfem.film.reynolds import Film
-from ehdfem.film.viscosity import Viscosity
+from ehdfem.film.viscosity import Barus
 from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
@@ -119,7 +119,7 @@ def test_piezoviscous_rigid_film_converges_to_the_reduced_pressure():
 def piezoviscous_force(radii, gap, alpha):
     """f.P of the quasi-steady rigid immersed film at V = -1 with Barus' viscosity, by Newton
     on K(P) P = m from the reduced pressure's P."""
-    film = Film(radii, "immersed", Viscosity("barus", alpha))
+    film = Film(radii, "immersed", Barus(alpha=alpha))
     thickness = gap + 0.5 * radii**2
     pressure = -np.log1p(-3.0 * alpha / thickness**2) / alpha
     for _ in range(30):

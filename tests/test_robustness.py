@@ -32,7 +32,7 @@ FIELDS = ("St", "eps", "delta", "p_cav", "e_dry", "angle", "spin", "inertia_fact
 def test_parameters_are_valid_or_refused_by_name(changes):
     values = {"St": 10.0, "eps": 1e-3, **changes}
     try:
-        params = CollisionParameters(**values)
+        params = CollisionParameters.from_settings(**values)
     except InputError as err:
         assert any(name in str(err) for name in changes)
         return
@@ -57,7 +57,9 @@ def test_valid_inputs_give_a_physical_result_or_a_solver_error(St, eps, layer, p
     Inside the box a solver error fails the test (none in 60 random points and the 48 corners
     with no, zero and -1000 suction at 0 and 80 degrees on this coarse grid), so a solver
     that always fails cannot pass."""
-    params = CollisionParameters(St=St, eps=eps, layer=layer, p_cav=p_cav, angle=angle)
+    params = CollisionParameters.from_settings(
+        St=St, eps=eps, layer=layer, p_cav=p_cav, angle=angle
+    )
     try:
         result = collide(params, RunConfig.from_settings(nodes=40, refinements=0))
     except NormalSolverError as err:

@@ -52,7 +52,9 @@ def test_rigid_sphere_impact_matches_the_closed_form(layer, St):
     |V_c| (measured 1.5e-3 and 6e-4 thin, 3e-4 and 3e-4 immersed: the film's P1 force on the
     grid), 2e-3/St... 5e-3/St on V(X) along the way as in tests/test_normal.py."""
     sigma, e_dry = 0.01, 0.9
-    params = CollisionParameters(St=St, eps=1.0, layer=layer, roughness=sigma, e_dry=e_dry)
+    params = CollisionParameters.from_settings(
+        St=St, eps=1.0, layer=layer, roughness=sigma, e_dry=e_dry
+    )
     grid = radial_grid(200, np.sqrt(sigma), OUTER[layer])
     result = solve_normal(params, RigidSolids(grid), IntegratorOptions(rtol=1e-5))
     impact, hist = result.solid_impact, result.history
@@ -79,7 +81,7 @@ def test_nearly_rigid_half_spaces_reach_sigma_at_the_rigid_speed():
     within 1e-3 (measured 7e-4; 5e-3 at the default rtol, the approach's accumulated time-step
     error) and e_n within 5e-3 (measured 4e-3, 5e-4 on 480 nodes: the grid's share)."""
     St, sigma, e_dry = 10.0, 0.01, 0.9
-    params = CollisionParameters(St=St, eps=1e-9, roughness=sigma, e_dry=e_dry)
+    params = CollisionParameters.from_settings(St=St, eps=1e-9, roughness=sigma, e_dry=e_dry)
     normal = collide(params, rtol=1e-5).normal
     speed = 1 - rigid_velocity_loss(sigma, "thin") / St
     assert -normal.solid_impact.approach_velocity == pytest.approx(speed, rel=1e-3)
@@ -92,7 +94,7 @@ def test_smooth_surfaces_are_unchanged():
     """roughness = 0 (the default) has no asperity load, no impact and no asperity outputs in
     the summary (the regression table guards the numbers themselves); Greenwood-Tripp, which
     would have nothing to act on, is refused by name."""
-    params = CollisionParameters(St=10.0, eps=1e-3)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3)
     result = collide(params, nodes=80)
     assert result.normal.asperity_force is None and result.normal.solid_impact is None
     assert "asperity_contact" not in result.summary()
@@ -231,7 +233,7 @@ def test_energy_balance_of_the_impact_model():
     (1 - e_dry^2) St V_c^2 / 2 is in the dissipation and the balance closes to the time steps'
     error, below 3e-4 at rtol 2e-6 (measured 1.2e-4; 5e-3 at the default rtol, already before
     the impact: the stiff approach's own error)."""
-    params = CollisionParameters(St=10.0, eps=1e-6, roughness=0.01, e_dry=0.9)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-6, roughness=0.01, e_dry=0.9)
     normal = collide(params, rtol=2e-6, nodes=120).normal
     assert normal.solid_impact is not None and normal.rebound
     assert normal.energy_error < 3e-4
@@ -246,7 +248,9 @@ def test_energy_balance_of_the_greenwood_tripp_model():
     elastic energy, the motion stays continuous and the balance closes below 3e-4 at rtol 2e-6
     (9e-4 at the default rtol, as for smooth surfaces); the histories file carries the
     asperities' load."""
-    params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2)
+    params = CollisionParameters.from_settings(
+        St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2
+    )
     result = collide(params, asperities="greenwood-tripp", rtol=2e-6, nodes=120)
     normal, summary = result.normal, result.summary()
     assert normal.solid_impact is None and normal.asperity_force.max() > 0
@@ -264,7 +268,7 @@ def test_greenwood_tripp_with_fe_solids_on_every_rank():
     7e-4); the impact model on the FE solids (eps = 1e-6, sigma = 0.01) closes its balance
     below 6e-3 at the default rtol (measured 5.3e-3, the stiff approach's time-step error, as
     on half-spaces); under mpirun -n 2 every rank gets the same results bit for bit."""
-    params = CollisionParameters(St=10.0, eps=1e-3, roughness=0.03, cavitation="none")
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, roughness=0.03, cavitation="none")
     fem = collide(params, model="fem", asperities="greenwood-tripp", nodes=80).normal
     half_space = collide(params, asperities="greenwood-tripp", nodes=80).normal
     assert fem.asperity_force.max() > 0 and fem.rebound
@@ -286,7 +290,7 @@ def test_physical_roughness_combines_the_two_surfaces():
     with pytest.raises(InputError, match="sphere_roughness"):
         from_presets(**{**physical_inputs(), "sphere_roughness": 5e-4})
     with pytest.raises(InputError, match="roughness"):
-        CollisionParameters(St=1.0, eps=1e-3, roughness=1.0)
+        CollisionParameters.from_settings(St=1.0, eps=1e-3, roughness=1.0)
     with pytest.raises(InputError, match="asperities"):
         RunConfig(asperities="plastic")
     assert RunConfig.from_settings(asperities="greenwood-tripp").settings()["asperities"] == (
@@ -322,7 +326,9 @@ def test_a_film_thinner_than_the_roughness_after_a_rebound_is_no_impact():
     pulled back by its weight W = 1) whose film then thins below sigma at the rim of its
     contact has no solid impact: when it turns to approach again it has stopped (stick), as a
     smooth one does; sigma lies between the thinnest film before the turn and after it."""
-    params = CollisionParameters(St=5.0, eps=1e-3, layer="immersed", buoyant_weight=1.0)
+    params = CollisionParameters.from_settings(
+        St=5.0, eps=1e-3, layer="immersed", buoyant_weight=1.0
+    )
     smooth = collide(params, nodes=80).normal
     turn = int(np.argmax(smooth.history.velocity > 0))
     before, after = smooth.history.min_film[:turn].min(), smooth.history.min_film[turn:].min()
@@ -336,7 +342,9 @@ def test_a_roughness_the_film_never_reaches_changes_nothing():
     V_exit for rough surfaces as for smooth ones, so a roughness the film never reaches (1e-6
     x0, the film's thinnest is 0.017) leaves e_n, e_t and the spin change bit-identical to the
     smooth collision with the same e_dry (before, e_n was 0.3306 instead of 0.2645)."""
-    smooth = CollisionParameters(St=10.0, eps=1e-3, layer="thin", e_dry=0.8, angle=30.0)
+    smooth = CollisionParameters.from_settings(
+        St=10.0, eps=1e-3, layer="thin", e_dry=0.8, angle=30.0
+    )
     results = [collide(p) for p in (smooth, replace(smooth, roughness=1e-6))]
     assert results[1].normal.solid_impact is None and not results[1].normal.unloaded_touch
     for part, name in (("normal", "e_n"), ("tangential", "e_t"), ("tangential", "spin_change")):
@@ -351,7 +359,9 @@ def test_a_touch_the_impact_model_does_not_load_is_flagged():
     and warned of, not silently dropped. The result keeps e_n = e_dry V_exit (no impact)."""
     from ehdfem.collision import ResultRangeWarning
 
-    params = CollisionParameters(St=50.0, eps=1e-2, layer="thin", e_dry=0.9, roughness=0.06)
+    params = CollisionParameters.from_settings(
+        St=50.0, eps=1e-2, layer="thin", e_dry=0.9, roughness=0.06
+    )
     with pytest.warns(ResultRangeWarning, match="below the roughness"):
         result = collide(params)
     normal = result.normal
@@ -367,7 +377,9 @@ def test_an_impact_through_loaded_solids_is_flagged():
     as an output."""
     from ehdfem.collision import ResultRangeWarning
 
-    params = CollisionParameters(St=10.0, eps=1e-3, layer="thin", e_dry=0.9, roughness=0.05)
+    params = CollisionParameters.from_settings(
+        St=10.0, eps=1e-3, layer="thin", e_dry=0.9, roughness=0.05
+    )
     with pytest.warns(ResultRangeWarning, match="loaded solids: they held 4"):
         result = collide(params)
     assert result.normal.solid_impact.stored_share == pytest.approx(0.45, abs=0.01)
@@ -382,7 +394,9 @@ def test_the_critical_stokes_number_of_a_rigid_rough_sphere(layer):
     (ehdfem.exact.rigid_film.rough_critical_stokes), 6.60 thin and 9.72 immersed, within
     0.5 % (measured 0.13 % and 0.10 %: the film's P1 force on 120 nodes, and the bracket's
     0.2 %)."""
-    params = CollisionParameters(St=10.0, eps=1e-9, layer=layer, roughness=0.01, e_dry=0.9)
+    params = CollisionParameters.from_settings(
+        St=10.0, eps=1e-9, layer=layer, roughness=0.01, e_dry=0.9
+    )
     config = RunConfig.from_settings(nodes=120)
     found = critical_stokes(params, bracket=(4.0, 20.0), rtol=2e-3, config=config)
     exact = rigid_film.rough_critical_stokes(0.01, 0.9, layer)

@@ -91,7 +91,7 @@ def test_presets_are_physical():
 )
 def test_bad_dimensionless_inputs(changes, name):
     with pytest.raises(InputError, match=name):
-        CollisionParameters(**{"St": 10.0, "eps": 1e-3, **changes})
+        CollisionParameters.from_settings(**{"St": 10.0, "eps": 1e-3, **changes})
 
 
 @pytest.mark.parametrize(

@@ -28,7 +28,9 @@ FAST = RunConfig.from_settings(nodes=80, tangential="lubrication")
 
 
 def thin(eps, St, **extra):
-    return CollisionParameters(St=St, eps=eps, delta=0.01, p_cav=-10.0, angle=30.0, **extra)
+    return CollisionParameters.from_settings(
+        St=St, eps=eps, delta=0.01, p_cav=-10.0, angle=30.0, **extra
+    )
 
 
 def test_on_rigid_solids_the_sliding_film_only_dissipates():
@@ -133,7 +135,7 @@ def test_a_film_frozen_by_its_viscosity_stops_the_sliding_film():
     SlidingFilmError naming the tilt, while the Couette model runs."""
 
     def barus(alpha):
-        return CollisionParameters(
+        return CollisionParameters.from_settings(
             St=20.0, eps=1e-3, delta=0.01, angle=30.0, viscosity="barus", alpha=alpha
         )
 
@@ -152,7 +154,7 @@ def test_a_sliding_film_that_creates_energy_is_flagged():
     "none") the film gives the sliding the normal motion's work and e_t exceeds 1 (measured
     1.0070, E_t up by 1.4 %): flagged and warned of. With the mode-1 gap the tangential kinetic
     energy never rises above its impact value (gain exactly 0) and e_t < 1."""
-    params = CollisionParameters(St=1000, eps=1e-3, delta=0.01, angle=45.0)
+    params = CollisionParameters.from_settings(St=1000, eps=1e-3, delta=0.01, angle=45.0)
     with pytest.warns(TangentialEnergyWarning, match="deformation 'none'"):
         none = collide(params, tangential="lubrication", deformation="none")
     assert none.tangential.e_t > 1.0

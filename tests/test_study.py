@@ -111,14 +111,14 @@ def test_killed_sweep_resumes_with_every_point_once(tmp_path):
 def test_critical_stokes_number_agrees_with_a_scan():
     """Bisection on the outcome brackets St_c to 1e-3; a scan in 1 % steps finds the first
     rebound inside the bracket widened by one scan step."""
-    params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0)
+    params = CollisionParameters.from_settings(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0)
     found = critical_stokes(params, (1.0, 20.0), 1e-3, RunConfig.from_settings(nodes=60))
     lo, hi = found["bracket"]
     assert hi / lo - 1 <= 1e-3
     scan = found["St_c"] * np.exp(np.linspace(-0.05, 0.05, 11))
     outcome = [
         collide(
-            CollisionParameters(St=s, eps=1e-2, layer="thin", p_cav=-5.0),
+            CollisionParameters.from_settings(St=s, eps=1e-2, layer="thin", p_cav=-5.0),
             RunConfig.from_settings(nodes=60),
         ).normal.rebound
         for s in scan
@@ -179,7 +179,9 @@ def test_bad_study_files_are_refused_before_any_work(tmp_path, text, message):
 @pytest.mark.serial
 def test_critical_stokes_number_of_the_fe_model():
     """At delta = 1e-3 the FE solids are half-spaces to 1 %: St_c agrees within 1 %."""
-    params = CollisionParameters(St=1.0, eps=1e-2, layer="thin", p_cav=-5.0, delta=1e-3)
+    params = CollisionParameters.from_settings(
+        St=1.0, eps=1e-2, layer="thin", p_cav=-5.0, delta=1e-3
+    )
     half_space = critical_stokes(params, (1.0, 20.0), config=RunConfig.from_settings(nodes=60))[
         "St_c"
     ]

@@ -26,7 +26,7 @@ from ehdfem.tangential.superposition import (
 
 
 def sliding_collision(eps, St, p_cav, options=None, **extra):
-    params = CollisionParameters(
+    params = CollisionParameters.from_settings(
         St=St, eps=eps, delta=0.01, layer="thin", p_cav=p_cav, angle=30.0, **extra
     )
     with warnings.catch_warnings():
@@ -130,7 +130,7 @@ def test_two_dimensional_film_with_a_piezoviscous_liquid():
 def test_large_tilt_is_flagged_with_a_warning_and_in_the_summary():
     """eps = 0.1, St = 1000, P_cav = -10: the mode-1 gap reaches more than TILT_LIMIT of the
     film thickness (measured 0.36): a SuperpositionWarning, and the summary says so."""
-    params = CollisionParameters(
+    params = CollisionParameters.from_settings(
         St=1000.0, eps=0.1, delta=0.01, layer="thin", p_cav=-10.0, angle=30.0
     )
     with pytest.warns(SuperpositionWarning, match="tilt"):
@@ -154,7 +154,7 @@ def test_check_refuses_what_the_disk_film_cannot_represent(extra, message):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SuperpositionWarning)
         result = collide(
-            CollisionParameters(**values),
+            CollisionParameters.from_settings(**values),
             RunConfig.from_settings(nodes=40, tangential="lubrication"),
         )
     with pytest.raises(InputError, match=re.escape(message)):
@@ -162,7 +162,7 @@ def test_check_refuses_what_the_disk_film_cannot_represent(extra, message):
 
 
 def test_check_needs_the_sliding_film_and_steps_in_range():
-    params = CollisionParameters(St=20.0, eps=1e-3, delta=0.01, angle=30.0)
+    params = CollisionParameters.from_settings(St=20.0, eps=1e-3, delta=0.01, angle=30.0)
     couette = collide(params, RunConfig.from_settings(nodes=40))
     assert couette.superposition is None
     with pytest.raises(InputError, match="needs an oblique tangential='lubrication'"):

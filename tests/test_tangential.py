@@ -29,7 +29,9 @@ PARAMS = dict(St=10.0, eps=1e-3, layer="thin", p_cav=-2.0, delta=0.01, angle=30.
 
 @pytest.fixture(scope="module")
 def rigid_approach():
-    params = CollisionParameters(St=3.0, eps=1.0, delta=0.01, angle=40.0, layer="thin")
+    params = CollisionParameters.from_settings(
+        St=3.0, eps=1.0, delta=0.01, angle=40.0, layer="thin"
+    )
     normal = solve_normal(params, RigidSolids(radial_grid(160, 0.1, 1.5)))
     return params, normal
 
@@ -61,7 +63,8 @@ def test_slip_decays_as_the_exact_exponential(rigid_approach):
 @pytest.mark.slow
 def test_restitution_does_not_depend_on_the_impact_angle():
     e_t = [
-        collide(CollisionParameters(**{**PARAMS, "angle": a})).tangential.e_t for a in (5, 30, 70)
+        collide(CollisionParameters.from_settings(**{**PARAMS, "angle": a})).tangential.e_t
+        for a in (5, 30, 70)
     ]
     assert np.ptp(e_t) < 1e-12
 
@@ -74,7 +77,8 @@ def test_one_minus_e_t_is_linear_in_delta(model):
     1 - e_t -> k/(1+k) (1 + 1/k) delta/(3 St) int J dT = delta int_0^exit J dT / (3 St)."""
     results = {
         d: collide(
-            CollisionParameters(**{**PARAMS, "delta": d}), RunConfig.from_settings(tangential=model)
+            CollisionParameters.from_settings(**{**PARAMS, "delta": d}),
+            RunConfig.from_settings(tangential=model),
         )
         for d in (5e-4, 1e-3, 2e-3)
     }
@@ -91,14 +95,14 @@ def test_one_minus_e_t_is_linear_in_delta(model):
 
 
 def test_couette_spin_change_is_the_lost_tangential_speed_over_k():
-    result = collide(CollisionParameters(**PARAMS))
+    result = collide(CollisionParameters.from_settings(**PARAMS))
     t = result.tangential
     assert t.at == "exit" and 0 < t.e_t < 1
     assert t.spin_change == pytest.approx((1 - t.e_t) / 0.4, rel=1e-12)
 
 
 def test_sticking_sphere_reports_the_state_at_the_stop():
-    result = collide(CollisionParameters(**{**PARAMS, "St": 2.0}))
+    result = collide(CollisionParameters.from_settings(**{**PARAMS, "St": 2.0}))
     assert not result.normal.rebound and result.tangential.at == "stop"
 
 
@@ -179,7 +183,7 @@ def test_flat_contact_is_the_hertz_disk_and_the_couette_integral():
         if (new == active).all():
             break
         active = new
-    params = CollisionParameters(St=10.0, eps=eps)
+    params = CollisionParameters.from_settings(St=10.0, eps=eps)
     force = Film(radii).full_mass @ pressure / 3  # by 6 pi mu V0 a^2 / x0
     assert flat_contact(params, force, 0.05)[0] == pytest.approx(c, rel=0.02)
     radius, shear = flat_contact(params, force, 0.05)
@@ -193,7 +197,7 @@ def test_reduced_models_lose_energy_and_keep_their_balance(model):
     never rises, 0 < e_t < 1, and the force history is St dU/dT (to the step's second-order
     error: the integrated force gives U at exit within 1e-3 of 1 - e_t)."""
     for eps, St in ((0.1, 1000.0), (1e-3, 20.0)):
-        params = CollisionParameters(**{**PARAMS, "eps": eps, "St": St})
+        params = CollisionParameters.from_settings(**{**PARAMS, "eps": eps, "St": St})
         result = collide(params, RunConfig.from_settings(nodes=80, tangential=model))
         t, k = result.tangential, params.inertia_factor
         kinetic = t.velocity**2 + k * t.spin**2
@@ -209,7 +213,7 @@ def test_another_tangential_model_on_the_same_normal_motion():
     """with_tangential keeps the normal motion and solves only the tangential one: for every
     model its e_t, spin change and histories equal a new collide call's exactly (same
     arithmetic), and the normal result is the same object."""
-    params = CollisionParameters(**PARAMS)
+    params = CollisionParameters.from_settings(**PARAMS)
     first = collide(params, RunConfig.from_settings(nodes=80))
     for model in ("lubrication", "gcb", "flat", "couette"):
         again = with_tangential(first, model)
@@ -222,7 +226,8 @@ def test_another_tangential_model_on_the_same_normal_motion():
     with pytest.raises(InputError, match="tangential"):
         with_tangential(first, "coulomb")
     head_on = collide(
-        CollisionParameters(**{**PARAMS, "angle": 0.0}), RunConfig.from_settings(nodes=80)
+        CollisionParameters.from_settings(**{**PARAMS, "angle": 0.0}),
+        RunConfig.from_settings(nodes=80),
     )
     with pytest.raises(InputError, match="oblique"):
         with_tangential(head_on, "gcb")
@@ -237,7 +242,8 @@ def test_couette_loss_is_the_exponential_decay_of_the_slip():
     c = {}
     for delta in (0.003, 0.03, 0.1):
         e_t = collide(
-            CollisionParameters(**{**PARAMS, "delta": delta}), RunConfig.from_settings(nodes=80)
+            CollisionParameters.from_settings(**{**PARAMS, "delta": delta}),
+            RunConfig.from_settings(nodes=80),
         ).tangential.e_t
         c[delta] = -np.log(1 - (1 - e_t) * (1 + k) / k) / ((1 + 1 / k) * delta)
     assert max(c.values()) / min(c.values()) - 1 < 1e-9

@@ -21,7 +21,7 @@ import json, sys
 from threadpoolctl import threadpool_info
 from ehdfem.collision import collide
 from ehdfem.inputs.scales import CollisionParameters
-params = CollisionParameters(St=3.0, eps=0.01, p_cav=-10.0, angle=30.0)
+params = CollisionParameters.from_settings(St=3.0, eps=0.01, p_cav=-10.0, angle=30.0)
 result = collide(params, tangential="lubrication", deformation="gap", nodes=80)
 threads = max(info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas")
 values = (result.normal.e_n, result.normal.min_film_thickness, result.normal.steps,

@@ -16,7 +16,8 @@ from ehdfem.film.reynolds import Film, FilmError
 from ehdfem.film.viscosity import (
     ROELANDS_LOG_VISCOSITY,
     ROELANDS_PRESSURE,
-    Viscosity,
+    Barus,
+    Roelands,
     ViscosityRangeWarning,
     barus_validity_pressure,
     roelands_index,
@@ -35,20 +36,20 @@ def test_barus_with_zero_alpha_is_the_constant_viscosity():
     """alpha = 0 is the constant-viscosity collision to round-off (and alpha = 1e-14, where
     exp(alpha P) - 1 < 1e-9, within 1e-8)."""
     base = dict(St=10.0, eps=1e-3, p_cav=-2.0, angle=30.0)
-    constant = collide(CollisionParameters(**base))
+    constant = collide(CollisionParameters.from_settings(**base))
     for alpha, tol in ((0.0, 1e-14), (1e-14, 1e-8)):
-        barus = collide(CollisionParameters(**base, viscosity="barus", alpha=alpha))
+        barus = collide(CollisionParameters.from_settings(**base, viscosity="barus", alpha=alpha))
         assert barus.normal.e_n == pytest.approx(constant.normal.e_n, rel=tol)
         assert barus.tangential.e_t == pytest.approx(constant.tangential.e_t, rel=tol)
 
 
-def exact_force(gap, velocity, law: Viscosity):
+def exact_force(gap, velocity, law):
     """Thin-layer rigid sphere: the reduced pressure q = int_0^P mu0/mu dp obeys the
     constant-viscosity film, q = -3 V (1/H^2 - 1), so P = q^-1 and F = (1/3) int_X^1 P dH."""
 
     def pressure(h):
         q = -3 * velocity * (1 / h**2 - 1)
-        if law.law == "barus":
+        if isinstance(law, Barus):
             return -math.log1p(-law.alpha * q) / law.alpha
         from scipy.optimize import brentq
 
@@ -61,7 +62,7 @@ def exact_force(gap, velocity, law: Viscosity):
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "law",
-    [Viscosity("barus", 5e-4), Viscosity("roelands", 5e-4, roelands_pressure=300.0)],
+    [Barus(alpha=5e-4), Roelands(alpha=5e-4, roelands_pressure=300.0)],
     ids=["barus", "roelands"],
 )
 def test_rigid_sphere_force_with_piezoviscosity(law):
@@ -70,13 +71,7 @@ def test_rigid_sphere_force_with_piezoviscosity(law):
     rigid constant-viscosity force has the same error on 200 nodes) while the viscosity in the
     gap grows up to alpha q = 0.7, i.e. about 3.3 times mu0 (Barus). The steps are sampled
     while V < 0: as the sphere comes to rest, BDF4 lets V overshoot to +1e-7 (within rtol)."""
-    params = CollisionParameters(
-        St=3.0,
-        eps=1.0,
-        viscosity=law.law,
-        alpha=law.alpha,
-        roelands_pressure=law.roelands_pressure,
-    )
+    params = CollisionParameters(St=3.0, eps=1.0, viscosity=law)
     radii = radial_grid(200, 0.1, 1.05 * math.sqrt(2))
     hist = solve_normal(params, RigidSolids(radii), IntegratorOptions(rtol=1e-5)).history
     approach = np.flatnonzero(hist.velocity < 0)
@@ -106,7 +101,7 @@ def test_roelands_constants_from_physical_inputs():
     law = params.viscosity_law()
     _, slope = law.ratio(1e-9)
     assert slope / scale == pytest.approx(oil.pressure_viscosity, rel=1e-6)
-    z = params.roelands_index
+    z = params.viscosity.roelands_index
     ratio, _ = law.ratio(1.96e8 / scale)
     assert math.log(ratio) == pytest.approx((math.log(oil.viscosity) + 9.67) * (2**z - 1), 1e-12)
 
@@ -115,7 +110,7 @@ def test_film_refuses_an_infinite_viscosity():
     """A pressure iterate at which exp(alpha P) overflows would let the node carry any pressure
     (zero conductance): the film refuses it, so the integrator retries the step smaller."""
     radii = radial_grid(20, 0.3, 1.5)
-    film = Film(radii, "thin", viscosity=Viscosity("barus", 1.0))
+    film = Film(radii, "thin", viscosity=Barus(alpha=1.0))
     h = 0.1 + 0.5 * radii**2
     film.assemble(h, np.full(20, 700.0))  # exp(700) is finite
     with pytest.raises(FilmError, match="barus viscosity overflows.*use the Roelands law"):

@@ -39,6 +39,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from .. import checks
+from ..film import cavitation
 from ..inputs.scales import elasticity_parameter
 from ..motion.forces import HistoryForce
 from . import unsteady
@@ -212,7 +213,7 @@ class FarField:
         self.fluid_mass = inputs.volume * liquid.density
         self.net_weight = (self.mass - self.fluid_mass) * inputs.gravity
         self.stokes = 6.0 * math.pi * liquid.viscosity * a
-        capped = inputs.cavitation != "none"
+        capped = cavitation.has_limit(inputs.cavitation)
         self.suction_limit = inputs.ambient_pressure - liquid.vapour_pressure if capped else None
         modes = len(unsteady.history_weights(inputs.history, 0.0))
         viscous_time = a * a * liquid.density / liquid.viscosity

@@ -66,7 +66,7 @@ class BounceInputs:
     drag: str = "schiller-naumann"
     added_mass: float = 0.5
     gravity: float = GRAVITY
-    cavitation: str = "truncate"
+    cavitation: str = cavitation.Truncation.name
     ambient_pressure: float = ATMOSPHERE
     history: str = "mei-adrian"
     history_memory: str = "keep"

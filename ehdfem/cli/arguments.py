@@ -1,5 +1,5 @@
 """Command-line options built from the input dataclasses' field metadata
-(:mod:`ehdfem.inputs.settings`), and the output helpers shared by the commands.
+(:mod:`ehdfem.settings`), and the output helpers shared by the commands.
 
 Each field becomes ``--name`` (underscores as dashes, or the field's ``flag``) with its help,
 unit or scale, allowed values and default in ``--help``. Options are not set unless given
@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from ..console.progress import rank, settle_ranks
-from ..inputs.settings import allowed_text, default_text, described, kind, meta
 from ..outputs import registry
+from ..settings import allowed_text, default_text, flat_fields, kind, meta
 from ..study.sweep import write_atomic
 
 NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf$")
@@ -79,13 +79,14 @@ def _on_off(text: str) -> bool:
 
 
 def add_fields(group, cls, names=None, exclude=()) -> None:
-    """An option per scalar field of the dataclass ``cls`` (those in ``names`` if given, none
-    in ``exclude``): floats and integers typed, strings with their choices, booleans as
-    on/off; unset unless given."""
-    for f in described(cls):
+    """An option per flat setting of the dataclass ``cls`` (those in ``names`` if given, none
+    in ``exclude``): its scalar fields, its components by name (``--viscosity barus``) and the
+    fields of every registered component (:func:`ehdfem.settings.flat_fields`); floats and
+    integers typed, strings with their choices, booleans as on/off; unset unless given."""
+    for owner, f in flat_fields(cls):
         if (names is not None and f.name not in names) or f.name in exclude:
             continue
-        base = kind(cls, f)
+        base = kind(owner, f)
         extra = {"choices": meta(f, "choices")} if meta(f, "choices") else {}
         if base is bool:
             extra = {"type": _on_off, "metavar": "{on,off}"}
@@ -95,14 +96,14 @@ def add_fields(group, cls, names=None, exclude=()) -> None:
             option(f),
             dest=destination(f),
             default=argparse.SUPPRESS,
-            help=help_text(cls, f),
+            help=help_text(owner, f),
             **extra,
         )
 
 
 def given(args, cls, names=None) -> dict:
-    """The values of ``cls``'s fields given on the command line, by field name."""
-    fields = [f for f in described(cls) if names is None or f.name in names]
+    """The values of ``cls``'s flat settings given on the command line, by name."""
+    fields = [f for _, f in flat_fields(cls) if names is None or f.name in names]
     return {f.name: getattr(args, destination(f)) for f in fields if hasattr(args, destination(f))}
 
 

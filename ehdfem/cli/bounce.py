@@ -84,10 +84,10 @@ def add_bounce(b) -> None:
     model.add_argument(
         "--cavitation",
         choices=cavitation.MODELS,
-        default="truncate",
+        default=cavitation.Truncation.name,
         help=_with_default(
-            "film cavitation at the liquid's vapour pressure: truncate, mass-conserving or none",
-            "truncate",
+            f"film cavitation at the liquid's vapour pressure: {', '.join(cavitation.MODELS)}",
+            cavitation.Truncation.name,
         ),
     )
     model.add_argument(

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 from dataclasses import asdict
 
-from ..film import cavitation
 from ..inputs.scales import CollisionParameters, PhysicalCollision
 from ..outputs import provenance
 from ..study.sweep import critical_speed, critical_stokes
@@ -92,7 +91,6 @@ def _search(args, inputs, kind, bracket, config, label):
         unit = " m/s"
     else:
         found = critical_stokes(inputs, bracket, args.bracket_rtol, config, progress_label=label)
-        given = {k: v for k, v in asdict(inputs).items() if k not in NOT_ASKED}
-        given["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
+        given = {k: v for k, v in inputs.settings(written=True).items() if k not in NOT_ASKED}
         where, unit = f"St_c = {found['St_c']:.6g}", ""
     return found, given, where, unit

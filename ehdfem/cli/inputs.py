@@ -11,6 +11,8 @@ import warnings
 
 from .. import CollisionParameters, PhysicalCollision, RunConfig, checks, from_presets
 from ..config import LOWER_BODIES, Numerics, setting_classes
+from ..film import cavitation
+from ..film import viscosity as viscosity_laws
 from ..inputs.presets import (
     EXAMPLE,
     LIQUID_RANGES,
@@ -20,8 +22,8 @@ from ..inputs.presets import (
     liquid,
     material,
 )
-from ..inputs.settings import described
 from ..motion.timestepping import IntegratorOptions
+from ..settings import components, described, flat_names
 from .arguments import add_fields, destination, given
 
 BODIES = ("sphere", "wall", "liquid")
@@ -40,7 +42,7 @@ SCALED = {"alpha": "pressure_viscosity", "p_cav": "cavitation_pressure"}  # scal
 
 
 def _names(cls) -> set[str]:
-    return {f.name for f in described(cls)}
+    return set(flat_names(cls))
 
 
 def shared() -> set[str]:
@@ -159,15 +161,16 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
     values.update(given(args, PhysicalCollision))
     values.update(given(args, CollisionParameters, shared()))
     own_liquid = args.liquid is None and not getattr(args, "example", False)
-    viscosity = values.get("viscosity", "constant")
-    if own_liquid and viscosity != "constant" and "pressure_viscosity" not in values:
+    viscosity = values.get("viscosity", viscosity_laws.ConstantViscosity.name)
+    dependent = viscosity_laws.LAWS[viscosity].pressure_dependent
+    if own_liquid and dependent and "pressure_viscosity" not in values:
         raise checks.InputError(
             f"--viscosity {viscosity} with a liquid of your own needs its "
             "--pressure-viscosity [1/Pa], [0, 1e-6]"
         )
-    _warn_of_options_without_effect(values, "pressure_viscosity", "cavitation_pressure")
+    _warn_of_physical_options_without_effect(values, dependent)
     coefficient = values.get("pressure_viscosity", values["liquid"].pressure_viscosity)
-    if viscosity != "constant" and coefficient == 0.0:
+    if dependent and coefficient == 0.0:
         warnings.warn(
             f"--viscosity {viscosity} has no effect: the pressure-viscosity coefficient of "
             f"{values['liquid'].name} is 0 (give --pressure-viscosity [1/Pa] for a liquid that "
@@ -184,19 +187,21 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
         raise
 
 
-def _warn_of_options_without_effect(values: dict, coefficient: str, suction: str) -> None:
-    """Warn of a given pressure-viscosity ``coefficient`` (its field name) with the constant
-    viscosity, and of a given ``suction`` limit with the cavitation model "none" (their
-    defaults are "constant" and "truncate"): such options cannot act in the run."""
-    if coefficient in values and values.get("viscosity", "constant") == "constant":
+def _warn_of_physical_options_without_effect(values: dict, dependent: bool) -> None:
+    """Warn of a given --pressure-viscosity with a viscosity law that takes none (not
+    ``dependent`` on pressure), and of a given --cavitation-pressure with a cavitation model
+    that has no suction limit: such options cannot act in the run."""
+    if "pressure_viscosity" in values and not dependent:
+        laws = [n for n in viscosity_laws.LAWS if viscosity_laws.LAWS[n].pressure_dependent]
         warnings.warn(
-            f"{_option(coefficient)} has no effect with the constant viscosity (give "
-            "--viscosity barus or roelands)",
+            f"--pressure-viscosity has no effect with --viscosity {values['viscosity']} "
+            f"(give --viscosity {' or '.join(laws)})",
             stacklevel=3,
         )
-    if suction in values and values.get("cavitation") == "none":
+    model = values.get("cavitation", cavitation.Truncation.name)
+    if "cavitation_pressure" in values and not cavitation.has_limit(model):
         warnings.warn(
-            f"{_option(suction)} has no effect with --cavitation none (unlimited suction)",
+            f"--cavitation-pressure has no effect with --cavitation {model} (unlimited suction)",
             stacklevel=3,
         )
 
@@ -217,8 +222,8 @@ def _warn_of_settings_without_effect(args, inputs):
     solids' mode-1 deformation, the spheres' inertia factors, the contact's friction, the lower
     sphere's density) on a
     head-on impact, where no tangential motion is solved; --sliding-deformation with another
-    tangential film than the sliding film; the Roelands constants with another viscosity
-    law."""
+    tangential film than the sliding film; a constant of another viscosity law or cavitation
+    model than the one chosen (left out of the inputs: :func:`_foreign`)."""
     if inputs.angle == 0.0:
         for name in (n for n in TANGENTIAL_ONLY if hasattr(args, n)):
             warnings.warn(
@@ -234,28 +239,40 @@ def _warn_of_settings_without_effect(args, inputs):
                 "solids under the sliding film, --tangential lubrication)",
                 stacklevel=3,
             )
-    for name in ("roelands_index", "roelands_pressure"):
-        if hasattr(args, name) and inputs.viscosity != "roelands":
+    if isinstance(inputs, CollisionParameters):
+        for role, name, key, owners in _foreign(given(args, CollisionParameters)):
             warnings.warn(
-                f"{_option(name)} has no effect with --viscosity {inputs.viscosity} (give "
-                "--viscosity roelands)",
+                f"{_option(key)} has no effect with --{role} {name} (give --{role} "
+                f"{' or '.join(owners)})",
                 stacklevel=3,
             )
     return inputs
+
+
+def _foreign(values: dict) -> list[tuple[str, str, str, list[str]]]:
+    """(role, chosen name, key, the components that have it) of each constant in ``values``
+    (flat settings) of a component other than the one chosen for its role."""
+    out = []
+    for f, registry in components(CollisionParameters):
+        name = values.get(f.name, f.default.name)
+        out += [(f.name, name, k, registry.owners(k)) for k in registry.foreign(name, values)]
+    return out
 
 
 def _dimensionless(args, sought: dict) -> CollisionParameters:
     """The dimensionless inputs (DSH scales) of the arguments (and ``sought``'s)."""
     values = {k: v for k, v in sought.items() if k in _names(CollisionParameters)}
     values.update(given(args, CollisionParameters))
-    _warn_of_options_without_effect(values, "alpha", "p_cav")
     example = ", or --example" if hasattr(args, "example") else ""
     for name in ("St", "eps"):
         if name not in values:
             raise checks.InputError(
                 f"--{name} is required (or give physical inputs{example})", name
             )
-    return CollisionParameters(**values)
+    foreign = {key for _, _, key, _ in _foreign(values)}  # warned of with the others
+    return CollisionParameters.from_settings(
+        **{k: v for k, v in values.items() if k not in foreign}
+    )
 
 
 def _option(dest: str) -> str:

@@ -10,18 +10,19 @@ from __future__ import annotations
 from .. import checks
 from ..inputs.scales import CollisionParameters
 
+_FIELDS = CollisionParameters.__dataclass_fields__
 # the labels besides eps and delta that tell the fit groups apart, with their defaults (P_cav
-# None: no cavitation limit)
+# None: no cavitation limit; the default cavitation model and viscosity law by name)
 GROUPED = (
     ("layer", "thin"),
     ("p_cav", None),
-    ("cavitation", "truncate"),
-    ("viscosity", "constant"),
+    ("cavitation", _FIELDS["cavitation"].default.name),
+    ("viscosity", _FIELDS["viscosity"].default.name),
     ("alpha", 0.0),
 )
 REQUIRED_COLUMNS = ("status", "St", "eps", "e_n")  # the others have their defaults
 NUMBERS = ("St", "eps", "delta", "e_n", "e_t", "spin_change", "alpha", "p_cav")  # None if empty
-DEFAULTS = {"delta": CollisionParameters.__dataclass_fields__["delta"].default, **dict(GROUPED)}
+DEFAULTS = {"delta": _FIELDS["delta"].default, **dict(GROUPED)}
 EMPTY = ("", "None", "none", "-inf", None)  # an empty cell; for P_cav, no limit
 
 

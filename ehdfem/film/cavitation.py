@@ -1,16 +1,18 @@
 """Cavitation models: how far the film pressure may fall below ambient, and where the liquid goes.
 
 The pressure P is scaled by mu V0 a / x0^2 and P_cav = (p_cav - p_ambient) x0^2 / (mu V0 a) <= 0
-is the suction the liquid can hold (-inf: no limit). Three models, one class each, behind the
-interface that the implicit step (:mod:`ehdfem.motion.implicit_step`) uses on every Newton iterate:
+is the suction the liquid can hold (-inf: no limit). Three models, each a component
+(:mod:`ehdfem.settings`: a frozen dataclass with its name and its scaled P_cav, the members of
+:class:`CavitationModel`, registered in :data:`MODELS`), whose ``solver()`` gives the object the
+implicit step (:mod:`ehdfem.motion.implicit_step`) uses on every Newton iterate:
 
-- :class:`NoCavitation` ("none", or any model with P_cav = -inf): unlimited suction; the
+- :class:`NoCavitation` (or any model with P_cav = -inf): unlimited suction; the
   Reynolds equation holds at every wet node.
-- :class:`Truncation` ("truncate", the source's model): P >= P_cav as a complementarity with
+- :class:`Truncation` (the source's model): P >= P_cav as a complementarity with
   the Reynolds residual r = m dH/dT + K P: at a cavitated node P = P_cav and the film would need
   r >= 0 there; the semismooth-Newton active set is min(P - P_cav, r / s) = 0 with s the
   residual's diagonal sensitivity. Liquid in the cavity is neither tracked nor conserved.
-- :class:`MassConserving` ("mass-conserving": Jakobsson-Floberg-Olsson, Elrod-Adams p-theta
+- :class:`MassConserving` (Jakobsson-Floberg-Olsson, Elrod-Adams p-theta
   form): the liquid fraction theta in [0, 1] of the gap is an unknown and everywhere
 
       d(theta H)/dT = (1 / (12 R)) d/dR (R H^3 dP/dR),
@@ -27,10 +29,13 @@ columns of the Newton matrix change) and ``switch`` (after the update).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import ClassVar, Protocol
 
 import numpy as np
 
 from .. import checks
+from ..settings import Registry, setting
 
 NO_LIMIT = -math.inf  # P_cav of a film without a cavitation limit
 
@@ -52,23 +57,45 @@ def suction_limit_output(p_cav: float) -> float | None:
     return None if p_cav == NO_LIMIT else p_cav
 
 
-def cavitation_model(name: str, p_cav: float):
-    """The cavitation model ``name`` (one of MODELS) with the limit ``p_cav`` (scaled): the
-    model of that name, or :class:`NoCavitation` where there is no limit (P_cav = -inf)."""
-    checks.choice("cavitation", name, MODELS)
-    p_cav = suction_limit(p_cav)
-    return NoCavitation() if p_cav == NO_LIMIT else _BY_NAME[name](p_cav)
+class CavitationModel(Protocol):
+    """A cavitation model as an input (scaled): ``name``, its flat name; ``p_cav``, the suction
+    limit P_cav (-inf: none); ``tracks_liquid``, whether a cavity keeps its liquid (the disk
+    film's obstacle limit cannot stand for such a model); ``solver()``, a new object with the
+    per-iterate methods of :class:`Unlimited` for one film; ``with_limit(p_cav)`` (a
+    classmethod), the model with the limit P_cav, physical inputs' route to it."""
+
+    name: ClassVar[str]
+    tracks_liquid: ClassVar[bool]
+    p_cav: float
+
+    def solver(self): ...
+    def with_limit(cls, p_cav: float): ...
 
 
-class NoCavitation:
-    """Unlimited suction: no node is ever held at a cavitation pressure."""
+MODELS = Registry("cavitation", CavitationModel)  # the cavitation models by name
 
-    name = "none"
+P_CAV = {
+    "help": "cavitation pressure (p_cav - p_ambient), <= 0 (none: no limit)",
+    "unit": "by mu V0 a / x0^2",
+    "default_text": "none",
+    "checked": False,
+    "read": parse_suction_limit,
+    "write": suction_limit_output,
+}
+
+
+def has_limit(name: str) -> bool:
+    """Whether the cavitation model ``name`` holds the pressure at a suction limit when given
+    one (a model that ignores the limit has unlimited suction)."""
+    return MODELS[name].with_limit(-1.0).p_cav != NO_LIMIT
+
+
+class Unlimited:
+    """Unlimited suction: no node is ever held at a cavitation pressure. The per-iterate
+    methods every model's solver has (module docstring)."""
+
     p_cav = NO_LIMIT
     tracks_liquid = False
-
-    def __init__(self, p_cav: float = NO_LIMIT):
-        """A film without a limit takes any P_cav and ignores it."""
 
     def start(self, fill, cavitated):
         """(theta, cavitated) at the start of a step's Newton iteration: a full film."""
@@ -97,7 +124,7 @@ class NoCavitation:
         return pressure, fill, cavitated
 
 
-class Truncation(NoCavitation):
+class TruncationSolver(Unlimited):
     """P >= P_cav by a semismooth-Newton active set (module docstring); P_cav scaled.
 
     The active set frees a cavitated node only once its neighbour's pressure has risen, so a
@@ -108,8 +135,6 @@ class Truncation(NoCavitation):
     node by node. The converged set satisfies the same complementarity either way: the reach
     only shortens the path to it.
     """
-
-    name = "truncate"
 
     def __init__(self, p_cav: float):
         self.p_cav = p_cav
@@ -153,10 +178,9 @@ class Truncation(NoCavitation):
         return held
 
 
-class MassConserving(NoCavitation):
+class MassConservingSolver(Unlimited):
     """JFO cavitation in the Elrod-Adams p-theta form (module docstring); P_cav scaled."""
 
-    name = "mass-conserving"
     tracks_liquid = True
 
     def __init__(self, p_cav: float):
@@ -194,5 +218,66 @@ class MassConserving(NoCavitation):
         return pressure, fill, cavitated
 
 
-_BY_NAME = {model.name: model for model in (Truncation, MassConserving, NoCavitation)}
-MODELS = tuple(_BY_NAME)  # the models by name: a new model is a class here and its entry
+@MODELS.register
+@dataclass(frozen=True)
+class Truncation:
+    """The source's model: P >= P_cav, the liquid in a cavity neither tracked nor conserved
+    (:class:`TruncationSolver`); P_cav = -inf (the default): no limit."""
+
+    name: ClassVar[str] = "truncate"
+    tracks_liquid: ClassVar[bool] = False
+    p_cav: float = setting(NO_LIMIT, **P_CAV)
+
+    def __post_init__(self):
+        suction_limit(self.p_cav)
+
+    def solver(self):
+        """A new :class:`TruncationSolver`, or :class:`Unlimited` without a limit."""
+        return Unlimited() if self.p_cav == NO_LIMIT else TruncationSolver(self.p_cav)
+
+    @classmethod
+    def with_limit(cls, p_cav: float):
+        """The model with the scaled limit ``p_cav``."""
+        return cls(p_cav=p_cav)
+
+
+@MODELS.register
+@dataclass(frozen=True)
+class MassConserving:
+    """Jakobsson-Floberg-Olsson cavitation, a cavity keeps its liquid
+    (:class:`MassConservingSolver`); P_cav = -inf (the default): no limit."""
+
+    name: ClassVar[str] = "mass-conserving"
+    tracks_liquid: ClassVar[bool] = True
+    p_cav: float = setting(NO_LIMIT, **P_CAV)
+
+    def __post_init__(self):
+        suction_limit(self.p_cav)
+
+    def solver(self):
+        """A new :class:`MassConservingSolver`, or :class:`Unlimited` without a limit."""
+        return Unlimited() if self.p_cav == NO_LIMIT else MassConservingSolver(self.p_cav)
+
+    @classmethod
+    def with_limit(cls, p_cav: float):
+        """The model with the scaled limit ``p_cav``."""
+        return cls(p_cav=p_cav)
+
+
+@MODELS.register
+@dataclass(frozen=True)
+class NoCavitation:
+    """Unlimited suction whatever the liquid (:class:`Unlimited`)."""
+
+    name: ClassVar[str] = "none"
+    tracks_liquid: ClassVar[bool] = False
+    p_cav: ClassVar[float] = NO_LIMIT
+
+    def solver(self):
+        """A new :class:`Unlimited`."""
+        return Unlimited()
+
+    @classmethod
+    def with_limit(cls, p_cav: float):
+        """No limit, whatever ``p_cav``."""
+        return cls()

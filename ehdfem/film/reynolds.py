@@ -41,7 +41,7 @@ import numpy as np
 from .. import checks
 from .elements import assemble_bands, squeeze_shear_load, surface_transport_bands
 from .gap import Paraboloid
-from .viscosity import Viscosity
+from .viscosity import ConstantViscosity, ViscosityLaw
 
 LAYERS = ("thin", "immersed")
 
@@ -169,7 +169,7 @@ class Film:
     """Reynolds film on the radial nodes ``radii`` (scaled by sqrt(a x0)).
 
     ``layer``: "thin" (P = 0 at the wetted edge where H = 1) or "immersed" (far-field condition
-    P ~ H^-2 at the last node). ``viscosity``: a :class:`ehdfem.film.viscosity.Viscosity` (default
+    P ~ H^-2 at the last node). ``viscosity``: a law of :data:`ehdfem.film.viscosity.LAWS` (default
     constant). ``gap``: the undeformed gap S(R) of :mod:`ehdfem.film.gap` (default the paraboloid
     R^2/2), kept exactly between the nodes; the immersed far field assumes the paraboloid.
     ``undeformed``: S at the nodes (by x0).
@@ -179,12 +179,12 @@ class Film:
         self,
         radii: np.ndarray,
         layer: str = "thin",
-        viscosity: Viscosity | None = None,
+        viscosity: ViscosityLaw | None = None,
         gap: Paraboloid | None = None,
     ):
         self.radii = np.asarray(radii, dtype=float)
         self.layer = checks.choice("layer", layer, LAYERS)
-        self.viscosity = viscosity or Viscosity()
+        self.viscosity = viscosity or ConstantViscosity()
         self.gap = gap or Paraboloid()
         if self.layer == "immersed" and self.gap.name != "paraboloid":
             raise checks.InputError(

@@ -18,6 +18,10 @@ alpha by a factor e (:func:`barus_validity_pressure`, 0.26 GPa for the main job'
 alpha_SI = 2e-8 1/Pa) it is outside its validity, and a collision whose film goes past it is
 flagged (:class:`ViscosityRangeWarning`).
 
+Each law is a component (:mod:`ehdfem.settings`): a frozen dataclass with its ``name``, its
+scaled constants declared with ``setting(...)`` and the members of :class:`ViscosityLaw`,
+registered in :data:`LAWS`. A new law is one such class, here or in a module of its own.
+
 Decision: the laws act on the compressive part of the pressure, max(P, 0). Under suction the
 viscosity is mu0: a liquid holds at most about an atmosphere of suction, where alpha_SI p is
 of order 1e-3, and the clip keeps Roelands defined for any suction the film computes.
@@ -27,13 +31,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar, Protocol
 
 import numpy as np
 from scipy.optimize import brentq
 
 from .. import checks
+from ..settings import Registry, setting, validate
 
-LAWS = ("constant", "barus", "roelands")
 ROELANDS_PRESSURE = 1.96e8  # Pa, the reference pressure p_r of the Roelands law
 ROELANDS_LOG_VISCOSITY = 9.67  # -ln(6.31e-5), mu in Pa s: the Roelands asymptote
 ROELANDS_INDEX = 0.6  # Z of typical mineral oils, used when alpha does not give one
@@ -74,7 +79,7 @@ def barus_range_warning(largest: float, validity: float) -> str:
         f"the Barus viscosity is outside its validity: the film's pressure reached "
         f"{largest:.3g} Pa, past {validity:.3g} Pa where exp(alpha p) exceeds the Roelands law "
         "of the same alpha by a factor e (docs/model.md, Barus's range): use the Roelands law "
-        "(viscosity roelands)"
+        f"(viscosity {Roelands.name})"
     )
 
 
@@ -96,74 +101,180 @@ def check_roelands_viscosity(liquid: str, viscosity: float) -> None:
         )
 
 
+class ViscosityLaw(Protocol):
+    """What the film, the sliding film and the checks ask of a viscosity law (scaled: pressure
+    by mu0 V0 a / x0^2, viscosity by mu0).
+
+    ``name``: its flat name; ``pressure_dependent``: whether it takes the liquid's
+    pressure-viscosity coefficient alpha (its physical inputs then need one);
+    ``constant``: mu = mu0 at every pressure; ``ratio(P)``: (mu/mu0, d ln(mu/mu0)/dP);
+    ``log_ratio(P+)``: ln(mu/mu0) at the compressive pressure, numpy or UFL;
+    ``overflow(P)``: why mu/mu0 overflowed; ``validity_pressure(alpha_SI, mu0)``: the
+    pressure [Pa] up to which it holds; ``of_liquid(alpha_SI, mu0, pressure_scale)`` (a
+    classmethod): the law of a liquid of viscosity mu0 [Pa s] and coefficient alpha_SI
+    [1/Pa] at the pressure scale [Pa], the physical inputs' route to it."""
+
+    name: ClassVar[str]
+    pressure_dependent: ClassVar[bool]
+    constant: bool
+
+    def ratio(self, pressure): ...
+    def log_ratio(self, compressive): ...
+    def overflow(self, pressure) -> str: ...
+    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float: ...
+    def of_liquid(cls, pressure_viscosity, viscosity, pressure_scale): ...
+
+
+LAWS = Registry("viscosity", ViscosityLaw)  # the viscosity laws by name
+
+
+def _ratio(law, pressure, slope):
+    """(mu/mu0, its log-slope) of ``law`` at ``pressure`` with the log-slope ``slope`` at the
+    compressive part; mu0 and slope 0 under suction."""
+    pressure = np.asarray(pressure, dtype=float)
+    with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
+        ratio = np.exp(law.log_ratio(np.maximum(pressure, 0.0)))
+    return ratio, np.where(pressure > 0.0, slope, 0.0)
+
+
+def _overflow(law, pressure) -> str:
+    """Why mu/mu0 overflowed (> 1e308, ln > 709) at the scaled pressures ``pressure``."""
+    largest = float(np.max(pressure))
+    return (
+        f"the {law.name} viscosity overflows (mu/mu0 > 1e308) at the pressure iterate "
+        f"{largest:.4g} (by mu V0 a / x0^2; alpha P = {law.alpha * largest:.4g})"
+    )
+
+
+ALPHA_HELP = "pressure-viscosity coefficient, the law's slope d ln(mu)/dP at low pressure"
+ALPHA_UNIT = "by x0^2 / (mu V0 a), the inverse pressure scale"
+
+
+@LAWS.register
 @dataclass(frozen=True)
-class Viscosity:
-    """A viscosity law in scaled form (see the module docstring).
+class ConstantViscosity:
+    """mu / mu0 = 1 at every pressure."""
 
-    ``law``: "constant", "barus" or "roelands"; ``alpha``: the scaled pressure-viscosity
-    coefficient alpha_SI mu0 V0 a / x0^2, >= 0; ``roelands_pressure``: P_r scaled by
-    mu0 V0 a / x0^2 (Roelands only); ``roelands_index``: Z in (0, 2] (Roelands only).
-    """
+    name: ClassVar[str] = "constant"
+    pressure_dependent: ClassVar[bool] = False
+    constant: ClassVar[bool] = True
 
-    law: str = "constant"
-    alpha: float = 0.0
-    roelands_pressure: float | None = None
-    roelands_index: float = ROELANDS_INDEX
+    def ratio(self, pressure):
+        """(1, 0) at the scaled pressures ``pressure``."""
+        pressure = np.asarray(pressure, dtype=float)
+        return np.ones_like(pressure), np.zeros_like(pressure)
+
+    def log_ratio(self, compressive):
+        """ln(mu / mu0) = 0."""
+        return 0.0 * compressive
+
+    def overflow(self, pressure) -> str:
+        """Never: mu / mu0 = 1."""
+        return "the constant viscosity does not overflow"
+
+    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float:
+        """inf [Pa]: the law holds at every pressure (within its model)."""
+        return math.inf
+
+    @classmethod
+    def of_liquid(cls, pressure_viscosity, viscosity, pressure_scale):
+        """The constant law whatever the liquid."""
+        return cls()
+
+
+@LAWS.register
+@dataclass(frozen=True)
+class Barus:
+    """Barus (1893): mu / mu0 = exp(alpha P), alpha scaled by the inverse pressure scale."""
+
+    name: ClassVar[str] = "barus"
+    pressure_dependent: ClassVar[bool] = True
+    alpha: float = setting(0.0, help=ALPHA_HELP, unit=ALPHA_UNIT, lower=0.0)
 
     def __post_init__(self):
-        checks.choice("viscosity", self.law, LAWS)
-        checks.number("alpha", self.alpha, lower=0.0)
-        checks.number("roelands_index", self.roelands_index, lower=0.0, upper=2.0, lower_open=True)
-        if self.law == "roelands":
-            if self.roelands_pressure is None:
-                raise checks.InputError(
-                    "the Roelands law needs roelands_pressure (1.96e8 Pa scaled by "
-                    "mu0 V0 a / x0^2), > 0"
-                )
-            checks.positive("roelands_pressure", self.roelands_pressure)
+        validate(self)
 
     @property
     def constant(self) -> bool:
-        """True when mu = mu0 at every pressure (the constant law, or alpha = 0)."""
-        return self.law == "constant" or self.alpha == 0.0
+        """True when alpha = 0."""
+        return self.alpha == 0.0
 
     def log_ratio(self, compressive):
-        """ln(mu / mu0) at the compressive part max(P, 0) of the scaled pressure (a numpy array
-        or a UFL expression; not for the constant law)."""
-        if self.law == "barus":
-            return self.alpha * compressive
+        """ln(mu / mu0) = alpha P at the compressive part P = max(P, 0) (numpy or UFL)."""
+        return self.alpha * compressive
+
+    def ratio(self, pressure):
+        """(mu / mu0, d ln(mu / mu0) / dP = alpha for P > 0) at the scaled ``pressure``."""
+        return _ratio(self, pressure, self.alpha)
+
+    def overflow(self, pressure) -> str:
+        """Why mu/mu0 overflowed at the scaled pressures ``pressure``."""
+        return _overflow(self, pressure) + (
+            f": far outside the Barus law's validity, use the Roelands law (viscosity "
+            f"{Roelands.name})"
+        )
+
+    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float:
+        """:func:`barus_validity_pressure` [Pa]: where the law leaves the Roelands law."""
+        return barus_validity_pressure(pressure_viscosity, viscosity)
+
+    @classmethod
+    def of_liquid(cls, pressure_viscosity, viscosity, pressure_scale):
+        """alpha = alpha_SI [1/Pa] times the pressure scale [Pa]."""
+        return cls(alpha=pressure_viscosity * pressure_scale)
+
+
+@LAWS.register
+@dataclass(frozen=True)
+class Roelands:
+    """Roelands (1966): mu / mu0 = exp((alpha P_r / Z) [(1 + P / P_r)^Z - 1]), P_r by the
+    pressure scale, Z in (0, 2] (module docstring)."""
+
+    name: ClassVar[str] = "roelands"
+    pressure_dependent: ClassVar[bool] = True
+    roelands_pressure: float = setting(
+        help="Roelands p_r = 1.96e8 Pa", unit="by mu V0 a / x0^2", lower=0.0, lower_open=True
+    )
+    alpha: float = setting(0.0, help=ALPHA_HELP, unit=ALPHA_UNIT, lower=0.0)
+    roelands_index: float = setting(
+        ROELANDS_INDEX, help="Roelands index Z", lower=0.0, upper=2.0, lower_open=True
+    )
+
+    def __post_init__(self):
+        validate(self)
+
+    @property
+    def constant(self) -> bool:
+        """True when alpha = 0."""
+        return self.alpha == 0.0
+
+    def log_ratio(self, compressive):
+        """ln(mu / mu0) = (alpha P_r / Z) [(1 + P / P_r)^Z - 1] at the compressive part P."""
         z, p_r = self.roelands_index, self.roelands_pressure
         return self.alpha * p_r / z * ((1.0 + compressive / p_r) ** z - 1.0)
 
     def ratio(self, pressure):
-        """(mu / mu0, d ln(mu / mu0) / dP) at the scaled pressures ``pressure``."""
-        pressure = np.asarray(pressure, dtype=float)
-        compressive = np.maximum(pressure, 0.0)
-        if self.constant:
-            return np.ones_like(pressure), np.zeros_like(pressure)
-        if self.law == "barus":
-            slope = np.where(pressure > 0.0, self.alpha, 0.0)
-        else:
-            base = 1.0 + compressive / self.roelands_pressure
-            slope = np.where(pressure > 0.0, self.alpha * base ** (self.roelands_index - 1.0), 0.0)
-        with np.errstate(over="ignore"):  # inf: the film refuses the iterate (FilmError)
-            return np.exp(self.log_ratio(compressive)), slope
-
-    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float:
-        """The pressure [Pa] up to which the law holds for a liquid of ``viscosity`` mu0 [Pa s]
-        and ``pressure_viscosity`` alpha [1/Pa]: :func:`barus_validity_pressure` for the Barus
-        law (where it leaves the Roelands law), inf for the others."""
-        if self.law != "barus":
-            return math.inf
-        return barus_validity_pressure(pressure_viscosity, viscosity)
+        """(mu / mu0, alpha (1 + P / P_r)^(Z - 1) for P > 0) at the scaled ``pressure``."""
+        base = 1.0 + np.maximum(np.asarray(pressure, dtype=float), 0.0) / self.roelands_pressure
+        return _ratio(self, pressure, self.alpha * base ** (self.roelands_index - 1.0))
 
     def overflow(self, pressure) -> str:
-        """Why mu/mu0 overflowed (> 1e308, ln > 709) at the scaled pressures ``pressure``."""
-        largest = float(np.max(pressure))
-        note = (
-            f"the {self.law} viscosity overflows (mu/mu0 > 1e308) at the pressure iterate "
-            f"{largest:.4g} (by mu V0 a / x0^2; alpha P = {self.alpha * largest:.4g})"
+        """Why mu/mu0 overflowed at the scaled pressures ``pressure``."""
+        return _overflow(self, pressure)
+
+    def validity_pressure(self, pressure_viscosity: float, viscosity: float) -> float:
+        """inf [Pa]: the law is bounded at high pressure."""
+        return math.inf
+
+    @classmethod
+    def of_liquid(cls, pressure_viscosity, viscosity, pressure_scale):
+        """P_r = 1.96e8 Pa and alpha by the pressure scale, Z from alpha_SI and mu0
+        (:func:`roelands_index`; ROELANDS_INDEX when alpha is 0); refuses a liquid at or below
+        the Roelands asymptote."""
+        check_roelands_viscosity("the liquid", viscosity)
+        index = roelands_index(pressure_viscosity, viscosity) if pressure_viscosity > 0 else None
+        return cls(
+            roelands_pressure=ROELANDS_PRESSURE / pressure_scale,
+            alpha=pressure_viscosity * pressure_scale,
+            roelands_index=ROELANDS_INDEX if index is None else index,
         )
-        if self.law == "barus":
-            note += ": far outside the Barus law's validity, use the Roelands law"
-        return note

@@ -24,15 +24,9 @@ from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
 from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
-from ..film.viscosity import (
-    ROELANDS_INDEX,
-    ROELANDS_PRESSURE,
-    Viscosity,
-    check_roelands_viscosity,
-    roelands_index,
-)
+from ..film.viscosity import ConstantViscosity, ViscosityLaw
+from ..settings import check_components, component, flat, from_flat, setting, validate
 from .presets import Liquid, Material, body, check_vapour_pressure
-from .settings import setting, validate
 
 ATMOSPHERE = 101325.0  # Pa
 
@@ -67,16 +61,15 @@ def reduced_mass(m1: float, m2: float) -> float:
 class CollisionParameters:
     """Dimensionless inputs of one collision (DSH scales; see the module docstring).
 
-    St > 0; eps > 0; delta = x0/a in (0, 1); p_cav <= 0 (-inf: no cavitation limit, the
-    default); e_dry in (0, 1] (1: pure EHD); layer "thin" or "immersed"; angle [deg] of the
-    impact velocity from the wall normal, in [0, 90); spin = a Omega0 / V0 (positive in the
-    rolling sense, see ehdfem.tangential.motion); inertia_factor k = I/(m a^2) in (0, 2/3] (2/5
-    solid, 2/3 thin shell); cavitation "truncate" (the source's), "mass-conserving" (JFO) or "none"
-    (:mod:`ehdfem.film.cavitation`); viscosity "constant", "barus" or "roelands" with alpha >= 0 the
-    pressure-viscosity coefficient scaled by the pressure scale (alpha_SI mu0 V0 a / x0^2),
-    roelands_pressure the Roelands p_r scaled likewise and roelands_index Z in (0, 2]
-    (:mod:`ehdfem.film.viscosity`); gap "paraboloid" (the asymptotic theory), "exact" (the true
-    spheres, thin layer only) or None, the elasticity model's default (:mod:`ehdfem.film.gap`);
+    St > 0; eps > 0; delta = x0/a in (0, 1); e_dry in (0, 1] (1: pure EHD); layer "thin" or
+    "immersed"; angle [deg] of the impact velocity from the wall normal, in [0, 90); spin =
+    a Omega0 / V0 (positive in the rolling sense, see ehdfem.tangential.motion); inertia_factor
+    k = I/(m a^2) in (0, 2/3] (2/5 solid, 2/3 thin shell); cavitation: a cavitation model with
+    its scaled suction limit P_cav (a component of :data:`ehdfem.film.cavitation.MODELS`, by
+    default truncation without a limit); viscosity: a viscosity law with its scaled constants
+    (a component of :data:`ehdfem.film.viscosity.LAWS`, by default constant); gap "paraboloid"
+    (the asymptotic theory), "exact" (the true spheres, thin layer only) or None, the
+    elasticity model's default (:mod:`ehdfem.film.gap`);
     shear_traction: the tangential surface effects of order sqrt(delta) (True: the squeeze
     flow's shear traction loads the solids too and the film carries the liquid the faces' radial
     velocity drags), only the pressure (False), or None, the model's default (on for the FE
@@ -101,13 +94,6 @@ class CollisionParameters:
         0.01, help="layer thickness x0 / a", lower=0.0, upper=1.0, lower_open=True,
         upper_open=True,
     )  # fmt: skip
-    p_cav: float = setting(
-        cavitation.NO_LIMIT,
-        help="cavitation pressure (p_cav - p_ambient), <= 0 (none: no limit)",
-        unit="by mu V0 a / x0^2",
-        default_text="none",
-        checked=False,
-    )
     e_dry: float = setting(
         1.0, help="dry restitution (1: pure EHD)", lower=0.0, upper=1.0, lower_open=True
     )
@@ -121,22 +107,13 @@ class CollisionParameters:
         0.4, help="sphere inertia I / (m a^2) (2/5 solid, 2/3 thin shell)", lower=0.0,
         upper=2 / 3, lower_open=True,
     )  # fmt: skip
-    cavitation: str = setting(
-        "truncate",
-        help="cavitation model: truncate at P_cav (the source's), mass-conserving (JFO), none",
-        choices=cavitation.MODELS,
+    viscosity: ViscosityLaw = component(
+        VISCOSITY_LAWS, ConstantViscosity(), help="viscosity law against pressure"
     )
-    viscosity: str = setting("constant", help="viscosity against pressure", choices=VISCOSITY_LAWS)
-    alpha: float = setting(
-        0.0, help="pressure-viscosity coefficient (with viscosity barus or roelands)",
-        unit="by x0^2 / (mu V0 a), the inverse pressure scale", lower=0.0,
-    )  # fmt: skip
-    roelands_pressure: float | None = setting(
-        None, help="Roelands p_r = 1.96e8 Pa (viscosity roelands)", unit="by mu V0 a / x0^2",
-        lower=0.0, lower_open=True,
-    )  # fmt: skip
-    roelands_index: float = setting(
-        ROELANDS_INDEX, help="Roelands index Z", lower=0.0, upper=2.0, lower_open=True
+    cavitation: cavitation.CavitationModel = component(
+        cavitation.MODELS,
+        cavitation.Truncation(),
+        help="cavitation model: truncate at P_cav (the source's), mass-conserving (JFO), none",
     )
     gap: str | None = setting(
         None,
@@ -191,14 +168,13 @@ class CollisionParameters:
 
     def __post_init__(self):
         validate(self)
-        cavitation.suction_limit(self.p_cav)
+        check_components(self)
         if self.spin != 0.0 and self.tangential_speed == 0.0:
             raise checks.InputError(
                 f"spin = {self.spin!r} needs an oblique impact (angle > 0): the tangential "
                 "motion of a head-on impact is not solved, so its spin would be ignored",
                 "spin",
             )
-        self.viscosity_law()  # validates the Roelands constants together
         self._check_solid_contact()
         if self.gap == "exact" and self.layer == "immersed":
             raise checks.InputError(
@@ -231,13 +207,30 @@ class CollisionParameters:
         defaults = {"asperity_density": ASPERITY_DENSITY, "asperity_slope": ASPERITY_SLOPE}
         return [name for name, value in defaults.items() if getattr(self, name) != value]
 
-    def cavitation_model(self):
-        """The film's cavitation model with its limit P_cav (:mod:`ehdfem.film.cavitation`)."""
-        return cavitation.cavitation_model(self.cavitation, self.p_cav)
+    @classmethod
+    def from_settings(cls, read: bool = False, **values) -> CollisionParameters:
+        """The inputs of flat settings (:meth:`settings`: the fields, each component's name
+        and its fields' keys, e.g. a viscosity law's name and ``alpha=3.0``); ``read``: values of a
+        study file or JSON (P_cav None or "none" for no limit)."""
+        return from_flat(cls, values, read)
 
-    def viscosity_law(self) -> Viscosity:
-        """The film's viscosity law mu(P)/mu0 (scaled, :class:`ehdfem.film.viscosity.Viscosity`)."""
-        return Viscosity(self.viscosity, self.alpha, self.roelands_pressure, self.roelands_index)
+    def settings(self, written: bool = False) -> dict:
+        """The flat settings (``written``: for a study file or JSON, P_cav None for no
+        limit)."""
+        return flat(self, written)
+
+    @property
+    def p_cav(self) -> float:
+        """The cavitation model's suction limit P_cav (scaled; -inf: none)."""
+        return self.cavitation.p_cav
+
+    def cavitation_model(self):
+        """A new solver of the film's cavitation model (:mod:`ehdfem.film.cavitation`)."""
+        return self.cavitation.solver()
+
+    def viscosity_law(self) -> ViscosityLaw:
+        """The film's viscosity law mu(P)/mu0 (scaled, :mod:`ehdfem.film.viscosity`)."""
+        return self.viscosity
 
     @property
     def tangential_speed(self) -> float:
@@ -323,8 +316,18 @@ class PhysicalCollision:
         lower=0.0,
         checked=False,
     )
-    cavitation: str = "truncate"
-    viscosity: str = "constant"
+    cavitation: str = setting(
+        cavitation.Truncation.name,
+        help="cavitation model: truncate at P_cav (the source's), mass-conserving (JFO), none",
+        choices=cavitation.MODELS,
+        checked=False,
+    )
+    viscosity: str = setting(
+        ConstantViscosity.name,
+        help="viscosity law against pressure",
+        choices=VISCOSITY_LAWS,
+        checked=False,
+    )
     pressure_viscosity: float | None = setting(
         None, help="pressure-viscosity coefficient alpha, [0, 1e-6]", unit="1/Pa",
         default_text="the liquid's", checked=False,
@@ -384,9 +387,8 @@ class PhysicalCollision:
         self._check_roughness()
         if self.pressure_viscosity is not None:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
-        checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS)
-        if self.viscosity == "roelands":
-            check_roelands_viscosity(self.liquid.name, self.liquid.viscosity)
+        checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS.names())
+        checks.choice("cavitation", self.cavitation, cavitation.MODELS.names())
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
 
     def _check_roughness(self):
@@ -446,7 +448,8 @@ class PhysicalCollision:
         return (self.mass - fluid_density * volume) * self.gravity / self.scales().force
 
     def dimensionless(self) -> CollisionParameters:
-        """St, eps, delta, P_cav, e_dry, alpha, ... for these inputs."""
+        """St, eps, delta, e_dry, ... for these inputs, the cavitation model with its scaled
+        P_cav and the viscosity law of the liquid (its ``of_liquid``)."""
         mu, a, x0, v0 = self.liquid.viscosity, self.radius, self.layer_thickness, self.normal_speed
         p_cav = (
             self.liquid.vapour_pressure
@@ -454,24 +457,19 @@ class PhysicalCollision:
             else self.cavitation_pressure
         )
         pressure_scale = mu * v0 * a / x0**2
-        roelands = self.viscosity == "roelands"
         return CollisionParameters(
             St=stokes_number(self.mass + self.added_mass, v0, mu, a),
             eps=elasticity_parameter(self.theta, mu, v0, a, x0),
             delta=x0 / a,
-            p_cav=(p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a),
             e_dry=self.e_dry,
             layer=self.layer,
             angle=self.angle,
             spin=self.spin * a / v0,
             inertia_factor=self.inertia_factor,
-            cavitation=self.cavitation,
-            viscosity=self.viscosity,
-            alpha=0.0 if self.viscosity == "constant" else self.alpha * pressure_scale,
-            roelands_pressure=ROELANDS_PRESSURE / pressure_scale if roelands else None,
-            roelands_index=roelands_index(self.alpha, mu)
-            if roelands and self.alpha > 0
-            else ROELANDS_INDEX,
+            cavitation=cavitation.MODELS[self.cavitation].with_limit(
+                (p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a)
+            ),
+            viscosity=VISCOSITY_LAWS[self.viscosity].of_liquid(self.alpha, mu, pressure_scale),
             gap=self.gap,
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,

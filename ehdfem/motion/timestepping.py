@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..inputs.settings import setting, validate
+from ..settings import setting, validate
 
 PREDICTOR_DEGREE = 3  # the highest degree of the polynomial that starts Newton (BDFStepper.guess)
 

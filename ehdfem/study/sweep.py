@@ -5,9 +5,9 @@ A study is a TOML file (see studies/*.toml):
     [grid]                        # every combination is one point
     St = {geomspace = [3, 1000, 12]}   # or a list, or {linspace = [a, b, n]}
     eps = [1e-5, 1e-3]
-    layer = ["thin"]              # any CollisionParameters field, e.g.
-    cavitation = ["truncate", "mass-conserving"]
-    viscosity = ["barus"]         # with alpha (scaled), see ehdfem.film.viscosity
+    layer = ["thin"]              # any CollisionParameters field, a cavitation model or a
+    p_cav = [-10.0, -1.0]         # viscosity law by name (ehdfem.film.cavitation.MODELS,
+    alpha = [0.0, 3.0]            # ehdfem.film.viscosity.LAWS) or any of their constants
     model = ["halfspace", "fem"]  # or any run setting (ehdfem.config.setting_names)
     [run]                         # run settings held fixed, e.g.
     tangential = "lubrication"
@@ -67,19 +67,16 @@ from .. import checks
 from ..collision import collide, elasticity, film_radii
 from ..config import Numerics, RunConfig, setting_names
 from ..console.progress import Counter
-from ..film import cavitation
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
-from ..inputs.settings import described
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
 from ..outputs import provenance
 from ..outputs import registry as outputs
+from ..settings import described, flat_names
 from ..version import __version__
 from .threshold import threshold
 
-PARAMETERS = tuple(f.name for f in fields(CollisionParameters))
 RUN_SETTINGS = setting_names()
-GRID_KEYS = (*PARAMETERS, *RUN_SETTINGS)
 PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
 PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
@@ -140,9 +137,7 @@ class Study:
         "run" (the flat run settings)."""
         first = self.points[0]
         inputs = self.inputs(first)
-        values = asdict(inputs)
-        if self.physical is None:
-            values["p_cav"] = cavitation.suction_limit_output(inputs.p_cav)
+        values = asdict(inputs) if self.physical else inputs.settings(written=True)
         settings = self.config(first).settings()
         return {
             "parameters" if self.physical is None else "physical": {
@@ -177,7 +172,7 @@ def _check_grid(grid: dict, physical: dict | None) -> None:
     [physical] table, the grid is over PhysicalCollision fields and the two tables together
     need the sphere, wall, liquid, radius, speed and layer thickness."""
     if physical is None:
-        _known_keys("[grid]", grid, GRID_KEYS)
+        _known_keys("[grid]", grid, grid_keys())
         for name in ("St", "eps"):
             if name not in grid:
                 raise checks.InputError(f"[grid] needs {name}")
@@ -214,11 +209,21 @@ def _values(name, value):
     return list(value) if isinstance(value, list) else [value]
 
 
+def parameter_names() -> tuple[str, ...]:
+    """The keys of the dimensionless inputs: CollisionParameters' flat settings (its fields,
+    each component's name and the fields of every registered component of its role)."""
+    return flat_names(CollisionParameters)
+
+
+def grid_keys() -> tuple[str, ...]:
+    """The keys a dimensionless [grid] takes: the inputs' and the run settings."""
+    return (*parameter_names(), *RUN_SETTINGS)
+
+
 def _parameters(point) -> CollisionParameters:
-    values = {k: v for k, v in point.items() if k in PARAMETERS}
-    if "p_cav" in values:
-        values["p_cav"] = cavitation.parse_suction_limit(values["p_cav"])
-    return CollisionParameters(**values)
+    names = parameter_names()
+    values = {k: v for k, v in point.items() if k in names}
+    return CollisionParameters.from_settings(read=True, **values)
 
 
 def point_key(point) -> str:
@@ -246,7 +251,7 @@ def run_point(study: Study, point: dict) -> dict:
         result = collide(study.inputs(point), config)
         summary = result.summary()
         if study.physical is not None:
-            row.update({name: summary[name] for name in SCALED_GROUPS})
+            row.update({name: summary.get(name) for name in SCALED_GROUPS})
         row.update(_output_columns(study, summary))
         row["status"] = "ok:" + summary["status"]
     except (NormalSolverError, checks.InputError, np.linalg.LinAlgError) as err:
@@ -370,7 +375,7 @@ def write_table(study: Study, rows: list[dict]) -> Path:
         "physical_table": study.physical,
         "fixed": study.fixed(),
     }
-    table = write_csv(study.table, rows, list(GRID_KEYS))
+    table = write_csv(study.table, rows, list(grid_keys()))
     write_atomic(study.provenance_file, json.dumps(sidecar, indent=2) + "\n")
     return table
 
@@ -454,14 +459,12 @@ def critical_stokes(
             f"bracket = {bracket[0]:g} .. {bracket[1]:g} must be increasing", "bracket"
         )
     checks.number("bracket_rtol", rtol, lower=1e-8, upper=0.5)
-    values = {name: getattr(params, name) for name in PARAMETERS}
-    widest = CollisionParameters(**{**values, "St": 4 * hi})
+    widest = replace(params, St=4 * hi)
     config = RunConfig() if config is None else config
     compliance = elasticity(widest, film_radii(widest, config.numerics.nodes), config)
 
     def rebounds(St):
-        params = CollisionParameters(**{**values, "St": St})
-        return collide(params, config, compliance=compliance).normal.e_n
+        return collide(replace(params, St=St), config, compliance=compliance).normal.e_n
 
     try:
         lo, hi, evaluations = threshold(rebounds, lo, hi, rtol, "St", (1e-3, 1e7), progress_label)

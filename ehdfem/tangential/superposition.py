@@ -191,8 +191,9 @@ def check_superposition(
     force, of the strongest suction, of the largest suction overlap and of the largest
     tangential force). ``element_size``: the disk mesh size at the centre, by sqrt(a x0)
     (None: R_edge / 200, growing four times to the edge). Thin layer only (the disk film has
-    P = 0 at the wetted edge), cavitation "truncate" or "none" (the disk film's limit is the
-    obstacle problem, without mass conservation); any viscosity law. ``amplitude``: the
+    P = 0 at the wetted edge), a cavitation model that does not track the liquid in a cavity
+    (the disk film's limit is the obstacle problem, without mass conservation); any viscosity
+    law. ``amplitude``: the
     sliding amplitude of the 2-D film (None: the collision's s); at a smaller one the 2-D film
     must tend to the superposition, which tells its error from the discretisation's.
     ``comm``: the communicator of the disk mesh (None: MPI.COMM_WORLD)."""
@@ -205,7 +206,7 @@ def check_superposition(
     if params.cavitation_model().tracks_liquid:
         raise checks.InputError(
             f"check_superposition needs a cavitation model that does not track the liquid, not "
-            f"{params.cavitation!r} (the disk film's limit is not mass-conserving)"
+            f"{params.cavitation.name!r} (the disk film's limit is not mass-conserving)"
         )
     validity = result.superposition
     if amplitude is not None:

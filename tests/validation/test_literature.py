@@ -46,9 +46,9 @@ def test_critical_stokes_number_decreases_weakly_with_eps():
     eps = np.array([1e-6, 1e-4, 1e-2])
     St_c = np.array(
         [
-            critical_stokes(CollisionParameters(St=1.0, eps=e, p_cav=-10.0), (2.0, 20.0), 1e-2)[
-                "St_c"
-            ]
+            critical_stokes(
+                CollisionParameters.from_settings(St=1.0, eps=e, p_cav=-10.0), (2.0, 20.0), 1e-2
+            )["St_c"]
             for e in eps
         ]
     )
@@ -66,7 +66,9 @@ def test_normal_restitution_follows_the_davis_form():
     St = np.geomspace(6.0, 1000.0, 8)
     for angle in (0.0, 45.0):
         e_n = [
-            collide(CollisionParameters(St=s, eps=1e-3, p_cav=-10.0, angle=angle)).normal.e_n
+            collide(
+                CollisionParameters.from_settings(St=s, eps=1e-3, p_cav=-10.0, angle=angle)
+            ).normal.e_n
             for s in St
         ]
         e_inf, St_c = fit_normal(St, e_n)
@@ -80,7 +82,7 @@ def test_normal_restitution_follows_the_davis_form():
 def test_tangential_restitution_is_close_to_one(eps, St):
     """Kantak & Davis 2006: e_t is close to unity (delta = 0.01, 30 degrees, both film
     models of the tangential motion)."""
-    params = CollisionParameters(St=St, eps=eps, p_cav=-10.0, angle=30.0)
+    params = CollisionParameters.from_settings(St=St, eps=eps, p_cav=-10.0, angle=30.0)
     for model in ("couette", "lubrication"):
         e_t = collide(params, RunConfig.from_settings(tangential=model)).tangential.e_t
         assert lit.TANGENTIAL_CLOSE_TO_ONE.band[0] <= e_t <= 1.0

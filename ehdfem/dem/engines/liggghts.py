@@ -37,7 +37,7 @@ import numpy as np
 from ... import checks
 from ...exact import hertz
 from ...inputs.scales import PhysicalCollision
-from ...inputs.settings import setting, validate
+from ...settings import setting, validate
 from .rebound import EngineRebound, read_rebound, run_binary
 
 SCRIPT = "in.collision"

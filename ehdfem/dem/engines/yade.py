@@ -37,7 +37,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from ...inputs.scales import PhysicalCollision
-from ...inputs.settings import setting, validate
+from ...settings import setting, validate
 from .rebound import EngineError, EngineRebound, read_rebound, run_binary
 
 SCRIPT = "collision.py"

@@ -378,7 +378,7 @@ def _collide_on(params, compliance, config, physical, given_mode_one=None, force
     tangential model, mode-1 deformation and time integration of ``config``;
     ``given_mode_one``: a mode-1 compliance at params.eps that is not closed here (None: built
     here when needed, and closed); ``forces``: the further forces on the sphere."""
-    normal = solve_normal(params, compliance, config.options, config.asperities, forces)
+    normal = solve_normal(params, compliance, config.options, forces)
     result = CollisionResult(
         params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )

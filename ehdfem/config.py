@@ -21,7 +21,6 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from . import checks
-from .film.asperities import MODELS as ASPERITY_MODELS
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.timestepping import IntegratorOptions
@@ -146,7 +145,7 @@ LOWER_SPHERE_SLIDING = (
 class RunConfig:
     """How one collision is computed: the elasticity model, the lower body, the
     tangential film model (solved for oblique impacts) with the mode-1 deformation of its
-    solids, the asperity model of rough surfaces, and the numerics. See the module docstring
+    solids, and the numerics. See the module docstring
     for the flat settings."""
 
     model: str = setting(
@@ -177,13 +176,6 @@ class RunConfig:
         "Brenner's exact remainder for a rigid sphere ('exact'; docs/tangential.md)",
         choices=OUTER_FLOWS,
     )
-    asperities: str = setting(
-        "impact",
-        help="asperity contact of rough surfaces (roughness > 0): 'impact' (a solid collision "
-        "with e_dry when the thinnest film reaches the roughness) or 'greenwood-tripp' (mixed "
-        "lubrication: the asperities' pressure shares the load with the film; docs/model.md)",
-        choices=ASPERITY_MODELS,
-    )
     numerics: Numerics = field(default_factory=Numerics)
 
     def __post_init__(self):
@@ -208,24 +200,10 @@ class RunConfig:
             )
 
     def check_inputs(self, params: CollisionParameters) -> None:
-        """Refuse a setting that does not apply to ``params`` (scaled inputs): asperities =
-        'greenwood-tripp' on smooth surfaces, asperities other than the defaults with the
-        impact model, which has no asperity pressure, and outer_flow = 'exact' without an
-        oblique impact through an immersed layer."""
-        if self.asperities == "greenwood-tripp" and params.roughness == 0.0:
-            raise checks.InputError(
-                "asperities = 'greenwood-tripp' needs roughness > 0 (sphere_roughness or "
-                "wall_roughness): smooth surfaces have no asperities",
-                "asperities",
-            )
+        """Refuse a setting that does not apply to ``params`` (scaled inputs): outer_flow =
+        'exact' without an oblique impact through an immersed layer, and a lower sphere's spin
+        on a head-on impact."""
         check_outer_flow(self.outer_flow, self.tangential, params.layer, params.angle)
-        given = params.asperities_given()
-        if self.asperities == "impact" and given:
-            raise checks.InputError(
-                f"{given[0]} = {getattr(params, given[0])!r} acts only with asperities = "
-                "'greenwood-tripp' (the impact model has no asperity pressure)",
-                given[0],
-            )
         spin = getattr(self.lower, "lower_spin", 0.0)
         if spin != 0.0 and params.tangential_speed == 0.0:
             raise checks.InputError(
@@ -295,15 +273,20 @@ def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, 
     collision's JSON ``inputs`` (:meth:`ehdfem.collision.CollisionResult.inputs`): its
     "parameters", "physical" and "run". Also reads the earlier formats: the one whose run
     options (model, nodes, rtol, tangential, deformation, solids) were at the top level, and
-    the one whose "parameters" held every constant of every viscosity law and the suction
-    limit whatever the cavitation model (those of the laws not chosen are left out)."""
+    the one whose "parameters" held every constant of every viscosity law, the suction
+    limit whatever the cavitation model and the asperity constants whatever the asperity model
+    (those of the components not chosen are left out), and whose run settings held the
+    asperity model (now an input)."""
+    run = dict(inputs["run"]) if "run" in inputs else None
+    moved = {"asperities": run.pop("asperities")} if run and "asperities" in run else {}
     if inputs.get("physical") is not None:
-        collision = _physical(inputs["physical"])
+        collision = _physical({**inputs["physical"], **moved})
     else:
-        parameters = without_other_components(CollisionParameters, inputs["parameters"])
+        parameters = {**inputs["parameters"], **moved}
+        parameters = without_other_components(CollisionParameters, parameters)
         collision = CollisionParameters.from_settings(read=True, **parameters)
-    if "run" in inputs:
-        return collision, RunConfig.from_settings(**inputs["run"])
+    if run is not None:
+        return collision, RunConfig.from_settings(**run)
     return collision, RunConfig.from_settings(**_earlier_run(inputs, collision))
 
 

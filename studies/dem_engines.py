@@ -257,7 +257,7 @@ ROUGH_OBLIQUE = (3e-6, (0.0, 0.3))  # the sphere's roughness sigma [m], friction
 
 def oblique_full_model(physical, asperities="impact"):
     """The full model's St, e_n, e_t and spin change of ``physical`` by ``asperities``."""
-    result = collide(physical, RunConfig(asperities=asperities))
+    result = collide(dataclasses.replace(physical, asperities=asperities), RunConfig())
     motion = result.tangential
     return {"St": physical.dimensionless().St, "e_n": result.normal.e_n, "e_t": motion.e_t,
             "spin_change": motion.spin_change}  # fmt: skip
@@ -392,7 +392,7 @@ def rough_full_model(table, engine, point, speed):
     for model in ASPERITY_MODELS:
         key = f"rough|{engine}|{case}|{sigma}|full model {model}|{speed}"
         if key not in table:
-            e_n = collide(full, RunConfig(asperities=model)).normal.e_n
+            e_n = collide(dataclasses.replace(full, asperities=model), RunConfig()).normal.e_n
             table[key] = {"St": full.dimensionless().St, "e_n": e_n}
             write_atomic(TABLE, json.dumps(table, indent=1))
             print(key, f"e_n = {e_n:.4f}", flush=True)

@@ -55,8 +55,9 @@ KEPT = (
 )  # fmt: skip
 
 
-def collision(angle, roughness, friction):
-    """The physical inputs at ``angle`` [deg], sphere roughness [m], Coulomb mu."""
+def collision(angle, roughness, friction, asperities="impact"):
+    """The physical inputs at ``angle`` [deg], sphere roughness [m], Coulomb mu, asperity
+    model."""
     return from_presets(
         sphere="steel",
         wall="zerodur",
@@ -68,6 +69,7 @@ def collision(angle, roughness, friction):
         e_dry=E_DRY,
         sphere_roughness=roughness,
         friction_coefficient=friction,
+        asperities=asperities,
     )
 
 
@@ -76,10 +78,9 @@ def outcome(angle, model, friction):
     roughness = 0.0 if model == "smooth" else ROUGHNESS * RADIUS
     asperities = "impact" if model == "smooth" else model
     result = collide(
-        collision(angle, roughness, friction),
+        collision(angle, roughness, friction, asperities),
         nodes=NODES,
         tangential="lubrication",
-        asperities=asperities,
     )
     out = registry.computed(result)
     return result.params, {key: out.get(key) for key in KEPT}

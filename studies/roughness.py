@@ -103,11 +103,11 @@ def compared_points(table):
                        model=model)  # fmt: skip
             if table.get(**key, speed="") is not None:
                 continue
-            params = CollisionParameters.from_settings(
-                St=St, eps=COMPARED_EPS, roughness=sigma, e_dry=E_DRY
-            )
             asperities = "impact" if model == "smooth" else model
-            normal = collide(params, nodes=NODES, asperities=asperities).normal
+            params = CollisionParameters.from_settings(
+                St=St, eps=COMPARED_EPS, roughness=sigma, e_dry=E_DRY, asperities=asperities
+            )
+            normal = collide(params, nodes=NODES).normal
             table.add({**key, "speed": "", "value": normal.e_n, "h_eps": ""})
             print(f"{model} St {St}: e_n = {normal.e_n:.4f}")
 

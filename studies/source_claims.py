@@ -32,7 +32,7 @@ import csv
 import math
 import sys
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 import matplotlib
@@ -135,7 +135,7 @@ def groups() -> dict[str, list[Point]]:
         held = _physical(wall=wall, speed=1.0, layer_thickness=1e-4).dimensionless().p_cav
         out[f"speed {wall} P_cav held"] = [
             Point("speed", f"{wall}, P_cav = {held:.2f} held", "V0 [m/s]", v,
-                  replace(inputs.dimensionless(), p_cav=held), materials=inputs)
+                  inputs.dimensionless().with_settings(p_cav=held), materials=inputs)
             for v, inputs in at_speed.items()
         ]  # fmt: skip
         for x0 in LAYERS:  # one group per thickness: delta sets the FE mesh

@@ -195,3 +195,21 @@ def test_viscosity_and_cavitation_names_only_in_the_film():
         if pattern.search(line)
     ]
     assert len(names) >= 5 and not found, "model names outside film/:\n" + "\n".join(found)
+
+
+def test_the_inputs_hold_components_in_at_most_fifteen_fields():
+    """CollisionParameters holds the liquid's laws and the surfaces' asperity model as
+    components (issue 46: at most 15 fields); every component constant's flat key is unique
+    across the roles and differs from the inputs' own fields, so a flat key names one thing."""
+    import dataclasses
+
+    from ehdfem.inputs.scales import CollisionParameters
+    from ehdfem.settings import components, described
+
+    assert len(dataclasses.fields(CollisionParameters)) <= 15
+    own = {f.name for f in described(CollisionParameters)}
+    roles = components(CollisionParameters)
+    assert {f.name for f, _ in roles} == {"viscosity", "cavitation", "asperities"}
+    keys = [{g.name for _, g in registry.fields()} for _, registry in roles]
+    for i, mine in enumerate(keys):
+        assert not mine & own and not any(mine & other for other in keys[i + 1 :])

@@ -11,6 +11,7 @@ from ehdfem.checks import InputError
 from ehdfem.cli.main import main, parsers
 from ehdfem.collision import with_tangential
 from ehdfem.config import CoatedWall, read_inputs, setting_names
+from ehdfem.film.asperities import GreenwoodTrippAsperities
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ehdfem.study.sweep import PHYSICAL_FIELDS, Study, parameter_names, run_study
 
@@ -91,7 +92,10 @@ TODAYS_INPUTS = {
         "asperity_density": 0.04, "asperity_slope": 0.001,
     },
     "physical": None,
-    "run": {"model": "halfspace", "lower": "wall", "tangential": "couette", "nodes": 60},
+    "run": {
+        "model": "halfspace", "lower": "wall", "tangential": "couette", "deformation": "gap",
+        "asperities": "impact", "nodes": 60,
+    },
 }  # fmt: skip
 
 
@@ -101,7 +105,7 @@ def test_todays_json_results_replay_with_from(tmp_path, capsys):
     is read with the same inputs as the components' flat settings give, and `collide --from`
     on it gives the collision of those inputs bit for bit; with the constant viscosity and no
     cavitation limit, the constants that cannot act (alpha = 0, the Roelands index) are left
-    out."""
+    out; the asperity model, then a run setting, becomes the inputs' with its constants."""
     params, config = read_inputs(TODAYS_INPUTS)
     expected = CollisionParameters.from_settings(
         St=6.0, eps=1e-3, angle=30.0, p_cav=-2.0, cavitation="mass-conserving",
@@ -119,6 +123,11 @@ def test_todays_json_results_replay_with_from(tmp_path, capsys):
     plain.update(cavitation="truncate", p_cav=None, roelands_pressure=None)
     params, _ = read_inputs({**TODAYS_INPUTS, "parameters": plain})
     assert params == CollisionParameters(St=6.0, eps=1e-3, angle=30.0)
+    rough = {**plain, "roughness": 0.03, "asperity_slope": 0.002}
+    run = {**TODAYS_INPUTS["run"], "asperities": "greenwood-tripp"}
+    params, config = read_inputs({**TODAYS_INPUTS, "parameters": rough, "run": run})
+    assert params.asperities == GreenwoodTrippAsperities(0.03, asperity_slope=0.002)
+    assert config == RunConfig.from_settings(nodes=60)
 
 
 def test_a_study_sweeps_the_model_and_a_lower_body_field(tmp_path):

@@ -220,9 +220,9 @@ def test_rough_engine_rebound_beside_the_full_model(tmp_path, engine, wall, fact
     asperity parameter that ``ehdfem dem`` sets from the roughness is within the error the study
     states for it of the full model by the asperity model it stands for; 1e-3 more for the
     run's own spread (time steps move e_n by < 1e-4)."""
-    collision = small(wall=wall, speed=1.2, sphere_roughness=3e-6)
+    collision = small(wall=wall, speed=1.2, sphere_roughness=3e-6, asperities=asperities)
     law = engine_law(engine, collision, {})
-    result = compare(engine, collision, law, tmp_path, RunConfig(asperities=asperities))
+    result = compare(engine, collision, law, tmp_path, RunConfig())
     assert result["engine"]["rebounded"]
     assert result["full_model"]["roughness"] == pytest.approx(0.03, rel=1e-12)
     limit = stated_rough_error(engine, factor, asperities)

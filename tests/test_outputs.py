@@ -5,7 +5,6 @@ the energy balance is withheld where a cavitation limit makes it meaningless."""
 
 import math
 import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -14,7 +13,7 @@ from ehdfem.bounce.inputs import BounceInputs
 from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig, setting_names
-from ehdfem.film.cavitation import Truncation
+from ehdfem.film.cavitation import NO_LIMIT
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.outputs import registry
@@ -101,12 +100,8 @@ def test_summary_carries_exactly_the_registry_names(sliding):
     pair = collide(OBLIQUE, nodes=40, lower="sphere").summary()
     absent = {name for name in registry.names() if name not in pair}
     assert absent == sliding_only | rough_only | IMMERSED_ONLY
-    rough = replace(
-        OBLIQUE,
-        eps=1e-6,
-        cavitation=Truncation(),
-        roughness=0.01,
-        friction_coefficient=0.2,
+    rough = OBLIQUE.with_settings(
+        eps=1e-6, p_cav=NO_LIMIT, roughness=0.01, friction_coefficient=0.2
     )
     greenwood_tripp_only = {"max_asperity_force", "max_asperity_share"}  # impact model here
     assert rough_only - greenwood_tripp_only <= set(collide(rough, NODES_40).summary())

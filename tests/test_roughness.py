@@ -30,7 +30,12 @@ from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.exact import rigid_film
 from ehdfem.exact.rigid_film import velocity_loss as rigid_velocity_loss
-from ehdfem.film.asperities import GreenwoodTripp, gaussian_integral, stiffness
+from ehdfem.film.asperities import (
+    GreenwoodTripp,
+    ImpactAsperities,
+    gaussian_integral,
+    stiffness,
+)
 from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.motion.normal import solve_normal
@@ -99,7 +104,7 @@ def test_smooth_surfaces_are_unchanged():
     assert result.normal.asperity_force is None and result.normal.solid_impact is None
     assert "asperity_contact" not in result.summary()
     with pytest.raises(InputError, match="asperities = 'greenwood-tripp' needs roughness > 0"):
-        collide(params, asperities="greenwood-tripp", nodes=80)
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, asperities="greenwood-tripp")
 
 
 def test_gaussian_integral_against_quadrature_and_the_standard_fit():
@@ -153,8 +158,11 @@ def test_greenwood_tripp_pressure_is_the_sum_over_hertzian_summit_pairs():
         layer_thickness=1e-4,
         sphere_roughness=sphere_sigma,
         wall_roughness=wall_sigma,
+        asperities="greenwood-tripp",
     )
-    law = GreenwoodTripp.of(physical.dimensionless())
+    params = physical.dimensionless()
+    law = params.asperities.pressure_law(params.eps, params.delta)
+    assert isinstance(law, GreenwoodTripp)
     x0, unit = physical.layer_thickness, physical.scales().pressure
     sigma = physical.roughness
     beta = sigma / physical.asperity_slope
@@ -249,9 +257,9 @@ def test_energy_balance_of_the_greenwood_tripp_model():
     (9e-4 at the default rtol, as for smooth surfaces); the histories file carries the
     asperities' load."""
     params = CollisionParameters.from_settings(
-        St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2
+        St=10.0, eps=1e-3, roughness=0.03, asperity_density=0.2, asperities="greenwood-tripp"
     )
-    result = collide(params, asperities="greenwood-tripp", rtol=2e-6, nodes=120)
+    result = collide(params, rtol=2e-6, nodes=120)
     normal, summary = result.normal, result.summary()
     assert normal.solid_impact is None and normal.asperity_force.max() > 0
     assert summary["asperity_contact"] and summary["max_asperity_share"] > 0.01
@@ -268,13 +276,16 @@ def test_greenwood_tripp_with_fe_solids_on_every_rank():
     7e-4); the impact model on the FE solids (eps = 1e-6, sigma = 0.01) closes its balance
     below 6e-3 at the default rtol (measured 5.3e-3, the stiff approach's time-step error, as
     on half-spaces); under mpirun -n 2 every rank gets the same results bit for bit."""
-    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, roughness=0.03, cavitation="none")
-    fem = collide(params, model="fem", asperities="greenwood-tripp", nodes=80).normal
-    half_space = collide(params, asperities="greenwood-tripp", nodes=80).normal
+    params = CollisionParameters.from_settings(
+        St=10.0, eps=1e-3, roughness=0.03, cavitation="none", asperities="greenwood-tripp"
+    )
+    fem = collide(params, model="fem", nodes=80).normal
+    half_space = collide(params, nodes=80).normal
     assert fem.asperity_force.max() > 0 and fem.rebound
     assert fem.e_n == pytest.approx(half_space.e_n, rel=0.02)
     assert fem.energy_error < 2e-3
-    impact = collide(replace(params, eps=1e-6, roughness=0.01), model="fem", nodes=80).normal
+    impact = replace(params, eps=1e-6, asperities=ImpactAsperities(roughness=0.01))
+    impact = collide(impact, model="fem", nodes=80).normal
     assert impact.solid_impact is not None and impact.energy_error < 6e-3
     values = (fem.e_n, fem.min_film_thickness, float(fem.asperity_force.max()), impact.e_n)
     assert all(other == values for other in MPI.COMM_WORLD.allgather(values))
@@ -282,7 +293,7 @@ def test_greenwood_tripp_with_fe_solids_on_every_rank():
 
 def test_physical_roughness_combines_the_two_surfaces():
     """sigma = sqrt(s1^2 + s2^2) / x0 in the scaled inputs; a combined roughness as thick as the
-    layer is refused, naming the parameter; the asperity model is a run setting; a steel ball
+    layer is refused, naming the parameter; the asperity model is an input; a steel ball
     of Gondret's roughness (1e-4 a) on glass at 1 m/s ends its approach on the asperities, and
     its SI outputs are the scaled ones times their units."""
     physical = from_presets(**physical_inputs(), sphere_roughness=3e-6, wall_roughness=4e-6)
@@ -292,8 +303,9 @@ def test_physical_roughness_combines_the_two_surfaces():
     with pytest.raises(InputError, match="roughness"):
         CollisionParameters.from_settings(St=1.0, eps=1e-3, roughness=1.0)
     with pytest.raises(InputError, match="asperities"):
-        RunConfig(asperities="plastic")
-    assert RunConfig.from_settings(asperities="greenwood-tripp").settings()["asperities"] == (
+        CollisionParameters.from_settings(St=1.0, eps=1e-3, asperities="plastic")
+    rough = {"St": 1.0, "eps": 1e-3, "roughness": 0.1, "asperities": "greenwood-tripp"}
+    assert CollisionParameters.from_settings(**rough).settings()["asperities"] == (
         "greenwood-tripp"
     )
     assert {"asperity_contact", "solid_impact_velocity"} <= set(registry.names())
@@ -333,7 +345,7 @@ def test_a_film_thinner_than_the_roughness_after_a_rebound_is_no_impact():
     turn = int(np.argmax(smooth.history.velocity > 0))
     before, after = smooth.history.min_film[:turn].min(), smooth.history.min_film[turn:].min()
     assert after < 0.5 * before and smooth.status == "stick"
-    rough = collide(replace(params, roughness=0.5 * (before + after)), nodes=80).normal
+    rough = collide(params.with_settings(roughness=0.5 * (before + after)), nodes=80).normal
     assert rough.status == "stick" and rough.solid_impact is None
 
 
@@ -345,7 +357,7 @@ def test_a_roughness_the_film_never_reaches_changes_nothing():
     smooth = CollisionParameters.from_settings(
         St=10.0, eps=1e-3, layer="thin", e_dry=0.8, angle=30.0
     )
-    results = [collide(p) for p in (smooth, replace(smooth, roughness=1e-6))]
+    results = [collide(p) for p in (smooth, smooth.with_settings(roughness=1e-6))]
     assert results[1].normal.solid_impact is None and not results[1].normal.unloaded_touch
     for part, name in (("normal", "e_n"), ("tangential", "e_t"), ("tangential", "spin_change")):
         values = [getattr(getattr(r, part), name) for r in results]

@@ -163,8 +163,13 @@ def test_critical_speed_agrees_with_the_critical_stokes_number():
         ('[grid]\nSt = [1.0]\neps = [0.1]\ncavitation = ["jfo"]\n', "cavitation"),
         ('[grid]\nSt = [1.0]\neps = [0.1]\nviscosity = ["roelands"]\n', "roelands_pressure"),
         ('[grid]\nSt = [1.0]\neps = [0.1]\nviscosity = ["barus"]\nalpha = [-1]\n', "alpha"),
-        ('[grid]\nSt = [1.0]\neps = [0.1]\n[run]\nasperities = "greenwood-tripp"\n', "roughness"),
-        ("[grid]\nSt = [1.0]\neps = [0.1]\nroughness = [0.1]\nasperity_slope = [0.01]\n", "impact"),
+        ('[grid]\nSt = [1.0]\neps = [0.1]\nasperities = ["greenwood-tripp"]\n', "roughness"),
+        (
+            '[grid]\nSt = [1.0]\neps = [0.1]\nroughness = [0.1]\nasperities = ["greenwood-tripp"]\n'
+            "asperity_slope = [1.5]\n",
+            "asperity_slope",
+        ),
+        ('[grid]\nSt = [1.0]\neps = [0.1]\n[run]\nasperities = "impact"\n', "unknown key"),
         ("[grid]\nSt = [1.0]\neps = [0.1]\nfriction_coefficient = [0.3]\n", "roughness > 0"),
     ],
 )

@@ -171,10 +171,11 @@ class ImmersedCollision:
             gravity=inputs.gravity if inputs.contact_gravity else 0.0,
             sphere_roughness=inputs.sphere_roughness,  # sigma / x0 differs between contacts
             wall_roughness=inputs.wall_roughness,
+            asperities=inputs.asperities,
         )
         options = replace(self.options, exit_gap=exit_gap / gap)
         numerics = Numerics(nodes=self.nodes, integrator=options)
-        config = RunConfig(asperities=inputs.asperities, numerics=numerics)  # half-space
+        config = RunConfig(numerics=numerics)  # half-space
         forces = ()
         if inputs.contact_history and len(start.memory):
             forces = (far.contact_history_force(gap, speed, start.memory),)

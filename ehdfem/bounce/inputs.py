@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from .. import checks
 from ..film import cavitation
 from ..film.asperities import MODELS as ASPERITY_MODELS
+from ..film.asperities import ImpactAsperities
 from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import ATMOSPHERE, elastic_theta, stokes_number
 from .unsteady import HISTORY_KERNELS
@@ -75,7 +76,7 @@ class BounceInputs:
     clear_exit: bool = True
     sphere_roughness: float = 0.0
     wall_roughness: float = 0.0
-    asperities: str = "impact"
+    asperities: str = ImpactAsperities.name
     contact_history: bool = True
     contact_drag: bool = False
 

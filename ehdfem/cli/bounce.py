@@ -15,6 +15,7 @@ from ..bounce.unsteady import HISTORY_KERNELS
 from ..config import DEFAULT_NODES
 from ..film import cavitation
 from ..film.asperities import MODELS as ASPERITY_MODELS
+from ..film.asperities import ImpactAsperities
 from ..inputs.scales import ATMOSPHERE
 from ..study.sweep import write_csv
 from . import paths
@@ -196,9 +197,10 @@ def _add_flight_choices(model) -> None:
     model.add_argument(
         "--asperities",
         choices=ASPERITY_MODELS,
-        default=ASPERITY_MODELS[0],
+        default=ImpactAsperities.name,
         help=_with_default(
-            "asperity contact of rough surfaces at each contact (docs/model.md)", ASPERITY_MODELS[0]
+            "asperity contact of rough surfaces at each contact (docs/model.md)",
+            ImpactAsperities.name,
         ),
     )
 

@@ -34,36 +34,28 @@ pressure P and gap X the thickness solves H = X + S(R) + C (P + P_a(H)) (:meth:`
 thickness`), and the implicit step's Newton matrix takes dH/dP = (I - C D)^-1 C and dH/dX =
 (I - C D)^-1 1 with D = diag(dP_a/dH) (:meth:`GreenwoodTripp.loaded`).
 
-The other asperity model, "impact", has no pressure law: the approach ends in a solid collision
-when the thinnest film reaches sigma (:mod:`ehdfem.motion.normal`).
+The other asperity model, the impact, has no pressure law: the approach ends in a solid
+collision when the thinnest film reaches sigma (:mod:`ehdfem.motion.normal`).
+
+Each asperity model is a component (:mod:`ehdfem.settings`): a frozen dataclass with its
+name, the surfaces' roughness sigma (by x0; 0: smooth), the Coulomb friction coefficient of
+their solid contact and its own constants, with the members of :class:`AsperityModel`,
+registered in :data:`MODELS`.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Protocol
+from typing import ClassVar, Protocol
 
 import numpy as np
 from scipy.special import gamma, pbdv
 
 from .. import checks
+from ..settings import Registry, setting, validate
 from .reynolds import FilmError
 
-
-class RoughInputs(Protocol):
-    """The inputs of a rough collision the asperity law takes (as
-    :class:`ehdfem.inputs.scales.CollisionParameters` holds them, scaled): roughness sigma (by
-    x0), eta beta sigma, sigma/beta, eps and delta."""
-
-    roughness: float
-    asperity_density: float
-    asperity_slope: float
-    eps: float
-    delta: float
-
-
-MODELS = ("impact", "greenwood-tripp")
 REACH = 6.0  # H/sigma beyond which P_a is taken as 0 (F_{5/2}(6) = 3e-11, 5e-11 of F_{5/2}(0))
 NEWTON_TOL = 1e-13  # the loaded thickness's Newton tolerance, relative to H
 STIFF = 1e-6  # a node is in the Newton matrices where |dP_a/dH| times its compliance exceeds this
@@ -118,12 +110,6 @@ class GreenwoodTripp:
     def __post_init__(self):
         checks.positive("roughness", self.roughness)
         checks.positive("stiffness", self.stiffness)
-
-    @classmethod
-    def of(cls, params: RoughInputs) -> GreenwoodTripp:
-        """The law of a rough collision: sigma, eta beta sigma, sigma/beta, eps and delta."""
-        k = stiffness(params.asperity_density, params.asperity_slope, params.eps, params.delta)
-        return cls(params.roughness, k)
 
     def pressure(self, h) -> np.ndarray:
         """P_a = K F_{5/2}(H/sigma) (by mu V0 a / x0^2)."""
@@ -193,3 +179,135 @@ def _stiff(slope, reach) -> np.ndarray:
     """The nodes whose asperity stiffness |dP_a/dH| times their largest compliance ``reach``
     exceeds STIFF: those whose load moves the film by a part of its change."""
     return np.flatnonzero(np.abs(slope) * reach > STIFF)
+
+
+class AsperityModel(Protocol):
+    """An asperity model of the surfaces as an input (scaled): ``name``; ``roughness`` sigma
+    (by x0, 0: smooth) and ``friction_coefficient`` of the solid contact; ``pressure_law(eps,
+    delta)``, the asperities' pressure law for the film (None: no pressure); ``touch()``, the
+    thinnest film (by x0) at which the approach ends in a solid collision (None: none);
+    ``of_surfaces(roughness, friction_coefficient, asperity_density, asperity_slope)`` (a
+    classmethod), the physical inputs' route to it (roughness by x0)."""
+
+    name: ClassVar[str]
+    roughness: float
+    friction_coefficient: float
+
+    def pressure_law(self, eps: float, delta: float) -> GreenwoodTripp | None: ...
+    def touch(self) -> float | None: ...
+    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope): ...
+
+
+MODELS = Registry("asperities", AsperityModel)  # the asperity models by name
+
+ROUGHNESS = {
+    "help": "combined rms roughness sqrt(s1^2 + s2^2) of the surfaces (0: smooth)",
+    "unit": "by x0",
+    "lower": 0.0,
+    "upper": 1.0,
+    "upper_open": True,
+}
+FRICTION = {
+    "help": "Coulomb friction coefficient of the solid (asperity) contact, tangential over "
+    "normal load (0: none)",
+    "lower": 0.0,
+}
+
+
+def _check_solid_contact(model) -> None:
+    """Refuse a friction coefficient > 0 on smooth surfaces (roughness 0), where it never acts."""
+    if model.roughness == 0.0 and model.friction_coefficient > 0.0:
+        raise checks.InputError(
+            f"friction_coefficient = {model.friction_coefficient!r} needs roughness > 0: "
+            "smooth surfaces never touch through the film, so Coulomb friction never acts",
+            "friction_coefficient",
+        )
+
+
+@MODELS.register
+@dataclass(frozen=True)
+class ImpactAsperities:
+    """The asperities collide when the thinnest film reaches sigma (a solid impact with e_dry,
+    :mod:`ehdfem.motion.normal`); no asperity pressure before. The default, smooth with
+    roughness 0."""
+
+    name: ClassVar[str] = "impact"
+    roughness: float = setting(0.0, **ROUGHNESS)
+    friction_coefficient: float = setting(0.0, **FRICTION)
+
+    def __post_init__(self):
+        validate(self)
+        _check_solid_contact(self)
+
+    def pressure_law(self, eps: float, delta: float) -> None:
+        """None: the impact model puts no pressure on the film."""
+        return None
+
+    def touch(self) -> float | None:
+        """sigma (by x0), None for smooth surfaces."""
+        return self.roughness if self.roughness > 0.0 else None
+
+    @classmethod
+    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope):
+        """The model of the surfaces; refuses asperity constants other than the defaults, which
+        only Greenwood & Tripp's pressure takes."""
+        for name, value, default in (
+            ("asperity_density", asperity_density, ASPERITY_DENSITY),
+            ("asperity_slope", asperity_slope, ASPERITY_SLOPE),
+        ):
+            if value != default:
+                raise checks.InputError(
+                    f"{name} = {value!r} acts only with asperities = "
+                    f"{GreenwoodTrippAsperities.name!r} (the impact model has no asperity "
+                    "pressure)",
+                    name,
+                )
+        return cls(roughness=roughness, friction_coefficient=friction_coefficient)
+
+
+@MODELS.register
+@dataclass(frozen=True)
+class GreenwoodTrippAsperities:
+    """Mixed lubrication: Greenwood & Tripp's asperity pressure shares the load with the film
+    (module docstring), with eta beta sigma and sigma/beta; needs roughness > 0."""
+
+    name: ClassVar[str] = "greenwood-tripp"
+    roughness: float = setting(0.0, **ROUGHNESS)
+    friction_coefficient: float = setting(0.0, **FRICTION)
+    asperity_density: float = setting(
+        ASPERITY_DENSITY,
+        help="asperity density x tip radius x roughness, eta beta sigma",
+        lower=0.0,
+        lower_open=True,
+    )
+    asperity_slope: float = setting(
+        ASPERITY_SLOPE,
+        help="roughness over asperity tip radius, sigma / beta",
+        lower=0.0,
+        upper=1.0,
+        lower_open=True,
+        upper_open=True,
+    )
+
+    def __post_init__(self):
+        validate(self)
+        if self.roughness == 0.0:
+            raise checks.InputError(
+                f"asperities = {self.name!r} needs roughness > 0 (sphere_roughness or "
+                "wall_roughness): smooth surfaces have no asperities",
+                "asperities",
+            )
+
+    def pressure_law(self, eps: float, delta: float) -> GreenwoodTripp:
+        """P_a(H) = K F_{5/2}(H/sigma) with K of eta beta sigma, sigma/beta, eps and delta."""
+        k = stiffness(self.asperity_density, self.asperity_slope, eps, delta)
+        return GreenwoodTripp(self.roughness, k)
+
+    def touch(self) -> None:
+        """None: the asperities' pressure carries the load, no solid impact."""
+        return None
+
+    @classmethod
+    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope):
+        """The model of the surfaces with their asperity constants."""
+        return cls(roughness, friction_coefficient, asperity_density, asperity_slope)

@@ -20,12 +20,21 @@ from dataclasses import dataclass, field
 
 from .. import checks
 from ..film import cavitation
-from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE
+from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE, AsperityModel, ImpactAsperities
+from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..film.gap import GAPS
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
 from ..film.viscosity import ConstantViscosity, ViscosityLaw
-from ..settings import check_components, component, flat, from_flat, setting, validate
+from ..settings import (
+    check_components,
+    component,
+    flat,
+    from_flat,
+    setting,
+    validate,
+    without_other_components,
+)
 from .presets import Liquid, Material, body, check_vapour_pressure
 
 ATMOSPHERE = 101325.0  # Pa
@@ -78,12 +87,12 @@ class CollisionParameters:
     away from the wall (finite; 0: none);
     buoyant_weight: the sphere's weight less the displaced fluid's, (m - rho_f V_s) g, scaled
     likewise, positive towards the wall (finite; 0: no gravity) (:mod:`ehdfem.motion.forces`);
-    friction_coefficient: Coulomb's mu >= 0 of the solid contact, which acts where the normal
-    motion has one (a solid impact, an asperity load; :mod:`ehdfem.tangential.friction`).
-    roughness: the combined rms roughness sigma = sqrt(sigma_1^2 + sigma_2^2) of the two
-    surfaces by x0, in [0, 1) (0: smooth); asperity_density eta beta sigma > 0 and asperity_slope
-    sigma/beta in (0, 1): the asperities of Greenwood & Tripp's pressure (run setting asperities
-    = "greenwood-tripp"; :mod:`ehdfem.film.asperities`, defaults and sources there).
+    asperities: the asperity model of the surfaces (a component of
+    :data:`ehdfem.film.asperities.MODELS`) with their combined rms roughness sigma =
+    sqrt(sigma_1^2 + sigma_2^2) by x0, in [0, 1) (0: smooth, the default), the Coulomb
+    friction coefficient mu >= 0 of their solid contact, which acts where the normal motion has
+    one (a solid impact, an asperity load; :mod:`ehdfem.tangential.friction`), and the model's
+    own constants (Greenwood & Tripp's eta beta sigma and sigma/beta).
     """
 
     St: float = setting(help="Stokes number m V0 / (6 pi mu a^2)", lower=0.0, lower_open=True)
@@ -137,33 +146,12 @@ class CollisionParameters:
         help="the sphere's weight less its buoyancy, positive towards the wall",
         unit="by 6 pi mu V0 a^2 / x0",
     )
-    friction_coefficient: float = setting(
-        0.0,
-        help="Coulomb friction coefficient of the solid (asperity) contact, tangential over "
-        "normal load (0: none)",
-        lower=0.0,
-    )
-    roughness: float = setting(
-        0.0,
-        help="combined rms roughness sqrt(s1^2 + s2^2) of the surfaces (0: smooth)",
-        unit="by x0",
-        lower=0.0,
-        upper=1.0,
-        upper_open=True,
-    )
-    asperity_density: float = setting(
-        ASPERITY_DENSITY,
-        help="asperity density x tip radius x roughness, eta beta sigma (greenwood-tripp)",
-        lower=0.0,
-        lower_open=True,
-    )
-    asperity_slope: float = setting(
-        ASPERITY_SLOPE,
-        help="roughness over asperity tip radius, sigma / beta (greenwood-tripp)",
-        lower=0.0,
-        upper=1.0,
-        lower_open=True,
-        upper_open=True,
+    asperities: AsperityModel = component(
+        ASPERITY_MODELS,
+        ImpactAsperities(),
+        help="asperity contact of rough surfaces (roughness > 0): a solid collision with e_dry "
+        "when the thinnest film reaches the roughness, or mixed lubrication (the asperities' "
+        "pressure shares the load with the film; docs/model.md)",
     )
 
     def __post_init__(self):
@@ -175,37 +163,12 @@ class CollisionParameters:
                 "motion of a head-on impact is not solved, so its spin would be ignored",
                 "spin",
             )
-        self._check_solid_contact()
         if self.gap == "exact" and self.layer == "immersed":
             raise checks.InputError(
                 "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
                 "sphere and its far-field closure assumes the paraboloid",
                 "gap",
             )
-
-    def _check_solid_contact(self) -> None:
-        """Refuse the solid contact's inputs on smooth surfaces (roughness 0), where they never
-        act: a friction coefficient > 0, asperities other than the defaults."""
-        if self.roughness > 0.0:
-            return
-        if self.friction_coefficient > 0.0:
-            raise checks.InputError(
-                f"friction_coefficient = {self.friction_coefficient!r} needs roughness > 0: "
-                "smooth surfaces never touch through the film, so Coulomb friction never acts",
-                "friction_coefficient",
-            )
-        given = self.asperities_given()
-        if given:
-            raise checks.InputError(
-                f"{given[0]} = {getattr(self, given[0])!r} needs roughness > 0: smooth surfaces "
-                "have no asperities",
-                given[0],
-            )
-
-    def asperities_given(self) -> list[str]:
-        """The names of the asperity inputs (Greenwood-Tripp's) that differ from their defaults."""
-        defaults = {"asperity_density": ASPERITY_DENSITY, "asperity_slope": ASPERITY_SLOPE}
-        return [name for name, value in defaults.items() if getattr(self, name) != value]
 
     @classmethod
     def from_settings(cls, read: bool = False, **values) -> CollisionParameters:
@@ -214,10 +177,27 @@ class CollisionParameters:
         study file or JSON (P_cav None or "none" for no limit)."""
         return from_flat(cls, values, read)
 
+    def with_settings(self, **changes) -> CollisionParameters:
+        """These inputs with some flat settings changed (e.g. ``roughness=0.01``, or another
+        component by name with its constants); a component's constants are kept where the
+        component is, dropped where it changes to one without them."""
+        kept = without_other_components(type(self), {**self.settings(), **changes})
+        return from_flat(type(self), {**kept, **changes})
+
     def settings(self, written: bool = False) -> dict:
         """The flat settings (``written``: for a study file or JSON, P_cav None for no
         limit)."""
         return flat(self, written)
+
+    @property
+    def roughness(self) -> float:
+        """The surfaces' combined rms roughness sigma (by x0; 0: smooth)."""
+        return self.asperities.roughness
+
+    @property
+    def friction_coefficient(self) -> float:
+        """Coulomb's friction coefficient of the surfaces' solid contact."""
+        return self.asperities.friction_coefficient
 
     @property
     def p_cav(self) -> float:
@@ -267,7 +247,10 @@ class PhysicalCollision:
     density when the sphere is immersed; in a thin layer the sphere is in the ambient gas, whose
     buoyancy is neglected (rho_f = 0). The surfaces' rms roughness sphere_roughness and
     wall_roughness [m] (default 0: smooth) combine to sigma = sqrt(s1^2 + s2^2) < x0; the
-    asperities' eta beta sigma and sigma/beta are pure numbers (:class:`CollisionParameters`).
+    asperities' eta beta sigma and sigma/beta are pure numbers, taken by the asperity model
+    ``asperities`` that uses them (:class:`CollisionParameters`). The cavitation model, the
+    viscosity law and the asperity model are named here; their scaled constants come from the
+    physical inputs through their classes (``with_limit``, ``of_liquid``, ``of_surfaces``).
     The friction coefficient of the solid contact is dimensionless (as in
     :class:`CollisionParameters`).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
@@ -343,6 +326,12 @@ class PhysicalCollision:
         checked=False,
     )
     friction_coefficient: float = 0.0
+    asperities: str = setting(
+        ImpactAsperities.name,
+        help="asperity contact of rough surfaces",
+        choices=ASPERITY_MODELS,
+        checked=False,
+    )
     sphere_roughness: float = setting(
         0.0, help="rms roughness of the sphere's surface (combined with the wall's, less "
         "than the layer thickness)", unit="m", lower=0.0, checked=False,
@@ -389,6 +378,7 @@ class PhysicalCollision:
             checks.number("pressure_viscosity", self.pressure_viscosity, lower=0.0, upper=1e-6)
         checks.choice("viscosity", self.viscosity, VISCOSITY_LAWS.names())
         checks.choice("cavitation", self.cavitation, cavitation.MODELS.names())
+        checks.choice("asperities", self.asperities, ASPERITY_MODELS.names())
         self.dimensionless()  # validates e_dry, layer, spin, inertia_factor and the groups
 
     def _check_roughness(self):
@@ -473,10 +463,12 @@ class PhysicalCollision:
             gap=self.gap,
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,
-            friction_coefficient=self.friction_coefficient,
-            roughness=self.roughness / x0,
-            asperity_density=self.asperity_density,
-            asperity_slope=self.asperity_slope,
+            asperities=ASPERITY_MODELS[self.asperities].of_surfaces(
+                self.roughness / x0,
+                self.friction_coefficient,
+                self.asperity_density,
+                self.asperity_slope,
+            ),
         )
 
     def scales(self) -> Scales:

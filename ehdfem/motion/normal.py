@@ -57,7 +57,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import checks
-from ..film.asperities import GreenwoodTripp
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
 from .forces import LAYER_SURFACE, SphereForce, SphereState
@@ -192,39 +191,37 @@ def solve_normal(
     params: CollisionParameters,
     compliance: Compliance,
     options: IntegratorOptions | None = None,
-    asperities: str = "impact",
     forces: tuple[SphereForce, ...] = (),
 ) -> NormalResult:
     """Integrate the normal collision from first touch of the layer to exit or sticking.
 
     ``params``: dimensionless inputs (St, the applied forces, e_dry, layer, the cavitation model,
-    the viscosity law and the roughness are used here; eps is already in the compliance).
+    the viscosity law and the asperity model of the surfaces with their roughness (module
+    docstring) are used here; eps is already in the compliance).
     ``compliance``: the elasticity, W = matrix @ P at the film nodes ``radii`` (by x0, P by
-    mu V0 a / x0^2, R by sqrt(a x0)). ``asperities``: the asperity model of rough surfaces,
-    "impact" or "greenwood-tripp" (module docstring; unused when params.roughness is 0).
+    mu V0 a / x0^2, R by sqrt(a x0)).
     ``forces``: forces on the sphere besides those of ``params`` (the external force, the
     buoyant weight), such as the history force of the liquid around the film
     (:class:`ehdfem.motion.forces.HistoryForce`), advanced at every accepted step.
     Returns a :class:`NormalResult`.
     """
     options = options or IntegratorOptions()
-    integration = _NormalIntegration(params, compliance, options, asperities, forces)
+    integration = _NormalIntegration(params, compliance, options, forces)
     return integration.run()
 
 
 class _NormalIntegration:
     """The time loop of :func:`solve_normal`: steps, events and the result."""
 
-    def __init__(self, params, compliance, options, asperities, forces=()):
+    def __init__(self, params, compliance, options, forces=()):
         if options.exit_gap > LAYER_SURFACE and params.layer != "immersed":
             raise checks.InputError(
                 f"exit_gap = {options.exit_gap!r} needs an immersed layer: a sphere leaves a "
                 f"{params.layer} layer at its surface (the allowed value is 1)"
             )
         self.params, self.options = params, options
-        rough = params.roughness > 0.0
-        law = GreenwoodTripp.of(params) if rough and asperities == "greenwood-tripp" else None
-        self.touch = params.roughness if rough and asperities == "impact" else None
+        law = params.asperities.pressure_law(params.eps, params.delta)
+        self.touch = params.asperities.touch()
         self.impact, self.restart = None, 0  # the solid impact; the history's first usable step
         self.unloaded_touch = False  # the film went below sigma where no impact acts
         self.radii = np.asarray(compliance.radii, dtype=float)

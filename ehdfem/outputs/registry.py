@@ -176,12 +176,13 @@ def _rough(compute):
 
 
 def _mixed(compute):
-    """``compute(normal, sigma)`` for rough surfaces with Greenwood & Tripp's asperity pressure
-    (run setting asperities = "greenwood-tripp"), else None."""
+    """``compute(normal, sigma)`` for rough surfaces whose asperity model puts a pressure on
+    the film (Greenwood & Tripp's: mixed lubrication), else None."""
 
     def value(r):
-        mixed = r.config is not None and r.config.asperities == "greenwood-tripp"
-        return compute(r.normal, r.params.roughness) if mixed and r.params.roughness else None
+        p = r.params
+        mixed = p.asperities.pressure_law(p.eps, p.delta) is not None
+        return compute(r.normal, p.roughness) if mixed and p.roughness else None
 
     return value
 

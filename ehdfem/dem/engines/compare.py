@@ -107,7 +107,7 @@ def compare(
         "eps": params.eps,
         "delta": params.delta,
         "roughness": params.roughness,
-        "asperities": config.asperities,
+        "asperities": params.asperities.name,
         "e_n": result.normal.e_n,
         "e_t": None if tangential is None else tangential.e_t,
         "spin_change": None if tangential is None else tangential.spin_change,

@@ -145,7 +145,9 @@ def test_sliding_film_with_the_outer_flow_has_the_exact_force(rigid_immersed_app
 def immersed_collision():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ResultRangeWarning)
-        return collide(CollisionParameters(**IMMERSED), RunConfig.from_settings(nodes=80))
+        return collide(
+            CollisionParameters.from_settings(**IMMERSED), RunConfig.from_settings(nodes=80)
+        )
 
 
 @pytest.mark.parametrize(
@@ -186,7 +188,7 @@ def test_left_out_flow_is_noted_with_what_to_do():
     """A default immersed oblique collision warns of the left-out flow, naming its size and the
     option that adds it, and keeps the note and the estimate in its summary; with the option
     there is neither; a thin layer has none."""
-    params = CollisionParameters(**IMMERSED)
+    params = CollisionParameters.from_settings(**IMMERSED)
     with pytest.warns(ResultRangeWarning, match="--outer-flow exact"):
         result = collide(params, RunConfig.from_settings(nodes=60))
     summary = result.summary()
@@ -231,7 +233,7 @@ def test_outer_flow_is_refused_where_it_cannot_act(changes, settings):
     the flat model and a lower sphere (the resistances are a sphere's near a wall)."""
     with pytest.raises(InputError, match="outer_flow") as error:
         config = RunConfig.from_settings(outer_flow="exact", **settings)
-        collide(CollisionParameters(**{**IMMERSED, **changes}), config)
+        collide(CollisionParameters.from_settings(**{**IMMERSED, **changes}), config)
     assert error.value.name == "outer_flow"
 
 

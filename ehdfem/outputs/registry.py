@@ -89,7 +89,7 @@ class Output:
 def _without_suction_limit(result: Collision) -> bool:
     """No cavitation limit: the model without one, or P_cav = -inf."""
     p = result.params
-    return p.cavitation_model().p_cav == cavitation.NO_LIMIT
+    return p.p_cav == cavitation.NO_LIMIT
 
 
 def _tangential(name):

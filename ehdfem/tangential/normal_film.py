@@ -22,7 +22,7 @@ def cavitated_nodes(normal: NormalResult, step: int) -> np.ndarray:
     """Where the normal solution's film is cavitated at ``step`` (boolean, per node): P0 at the
     cavitation limit, or a liquid fraction below 1."""
     hist = normal.history
-    p_cav = normal.params.cavitation_model().p_cav
+    p_cav = normal.params.p_cav
     at_limit = p_cav + 1e-12 * abs(p_cav) if np.isfinite(p_cav) else -np.inf
     return (hist.fill[step] < 1.0) | (hist.pressure[step] <= at_limit)
 

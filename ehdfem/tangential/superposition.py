@@ -116,7 +116,7 @@ def superposition_validity(normal, tangential: TangentialResult, resolve) -> Sup
     mode_one = s * np.abs(tangential.mode_one_pressure)
     mass = Film(normal.radii).full_mass
     size = (2 / np.pi) * mode_one @ mass
-    p_cav = params.cavitation_model().p_cav
+    p_cav = params.p_cav
     wet = hist.film_thickness < 1.0 if params.layer == "thin" else np.ones(mode_one.shape, bool)
     overlap = np.zeros(len(hist.time))
     overlapping = np.zeros(mode_one.shape, bool)
@@ -203,7 +203,7 @@ def check_superposition(
         raise checks.InputError("check_superposition needs an oblique tangential='lubrication'")
     if params.layer != "thin":
         raise checks.InputError("check_superposition needs layer = 'thin' (P = 0 at the edge)")
-    if params.cavitation_model().tracks_liquid:
+    if params.cavitation.tracks_liquid:
         raise checks.InputError(
             f"check_superposition needs a cavitation model that does not track the liquid, not "
             f"{params.cavitation.name!r} (the disk film's limit is not mass-conserving)"
@@ -261,7 +261,7 @@ def _check_step(result, validity, step, element_size, comm) -> SuperpositionChec
     edge = float(hist.edge_radius[step])
     disk = {
         "edge_radius": edge,
-        "p_cav": params.cavitation_model().p_cav,
+        "p_cav": params.p_cav,
         "fluidity": _fluidity(film.viscosity),
         "surface_sum": surface_sum,
         "element_size": edge / 200 if element_size is None else element_size,

@@ -194,7 +194,8 @@ def _warn_of_physical_options_without_effect(values: dict, dependent: bool) -> N
     if "pressure_viscosity" in values and not dependent:
         laws = [n for n in viscosity_laws.LAWS if viscosity_laws.LAWS[n].pressure_dependent]
         warnings.warn(
-            f"--pressure-viscosity has no effect with --viscosity {values['viscosity']} "
+            "--pressure-viscosity has no effect with --viscosity "
+            f"{values.get('viscosity', viscosity_laws.ConstantViscosity.name)} "
             f"(give --viscosity {' or '.join(laws)})",
             stacklevel=3,
         )

@@ -46,7 +46,7 @@ UNEQUAL = dict(lower="sphere", radius_ratio=0.8, density_ratio=0.7, lower_inerti
 @pytest.fixture(scope="module")
 def unequal():
     """An oblique thin-layer collision of the unequal pair on half-spaces (60 film nodes)."""
-    params = CollisionParameters(St=10.0, eps=1e-3, angle=30.0, spin=0.1, **THIN)
+    params = CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0, spin=0.1, **THIN)
     return collide(params, nodes=60, lower_spin=-0.25, **UNEQUAL)
 
 
@@ -112,7 +112,7 @@ def test_rough_pair_impact_follows_the_rigid_two_sphere_law(unequal, mu):
     normal = roughened(unequal.normal)
     runs = {}
     for coefficient in (0.0, mu):
-        params = replace(normal.params, friction_coefficient=coefficient)
+        params = normal.params.with_settings(friction_coefficient=coefficient)
         rough = replace(unequal, params=params, normal=replace(normal, params=params))
         runs[coefficient] = with_tangential(rough, "couette").tangential
     tangential, film = runs[mu], runs[0.0]
@@ -202,7 +202,7 @@ def test_energy_closes_over_both_spheres(unequal, model, rough):
     if rough is not None:
         share, mu = ROUGH_CASES[rough]
         normal = roughened(normal, asperity_share=share)
-    params = replace(normal.params, friction_coefficient=mu)
+    params = normal.params.with_settings(friction_coefficient=mu)
     collision = replace(unequal, params=params, normal=replace(normal, params=params))
     tangential = with_tangential(collision, model).tangential
     motion = tangential.pair
@@ -219,7 +219,7 @@ def test_energy_closes_over_both_spheres(unequal, model, rough):
 def equal():
     """Equal spheres (the defaults of lower = 'sphere') and the sphere on a wall, at the same
     groups (40 film nodes)."""
-    params = CollisionParameters(St=20.0, eps=1e-2, angle=40.0, **THIN)
+    params = CollisionParameters.from_settings(St=20.0, eps=1e-2, angle=40.0, **THIN)
     return collide(params, nodes=40, lower="sphere"), collide(params, nodes=40)
 
 
@@ -255,7 +255,7 @@ def pair_groups(ratio: float):
     density: St ~ m/a^2, eps ~ a^(3/2), delta ~ 1/a, P_cav ~ a with the reduced radius
     a = a1 N/(N + 1) and mass m = m1 N^3/(N^3 + 1)."""
     radius, mass = reduced_radius(1.0, ratio), reduced_mass(1.0, ratio**3)
-    return CollisionParameters(
+    return CollisionParameters.from_settings(
         St=10.0 * mass / radius**2,
         eps=1e-3 * radius**1.5,
         delta=0.01 / radius,
@@ -326,7 +326,7 @@ def test_fe_and_halfspace_pairs_agree_as_the_wall_does():
     1 - e_t, in the upper sphere's spin change and in e_n by no more than the sphere on a wall
     does (measured: 1 - e_t by -0.21 % for the wall, -0.19 % for both pairs; e_n by 1.3e-3 and
     1.2e-3), the finite solids' own difference."""
-    params = CollisionParameters(
+    params = CollisionParameters.from_settings(
         St=10.0, eps=1e-3, delta=1e-3, p_cav=-2.0, angle=30.0, gap="paraboloid",
         shear_traction=False,
     )  # fmt: skip

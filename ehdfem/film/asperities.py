@@ -212,6 +212,14 @@ FRICTION = {
     "normal load (0: none)",
     "lower": 0.0,
 }
+TANGENTIAL_COMPLIANCE = {
+    "help": "tangential over normal stiffness k_t/k_n = 4 G*/E* of the solid impact's Hertz "
+    "contact (Mindlin; 2 (1-nu)/(2-nu) for identical solids, 0.824 at nu = 0.3), in "
+    "[2/3, 4/3]: stick, partial slip and the slip's reversal (Maw, Barber & Fawcett); "
+    "0: the rigid-body Coulomb impact",
+    "lower": 0.0,
+    "upper": 4 / 3,
+}
 
 
 def _check_solid_contact(model) -> None:
@@ -234,10 +242,34 @@ class ImpactAsperities:
     name: ClassVar[str] = "impact"
     roughness: float = setting(0.0, **ROUGHNESS)
     friction_coefficient: float = setting(0.0, **FRICTION)
+    tangential_compliance: float = setting(0.0, **TANGENTIAL_COMPLIANCE)
 
     def __post_init__(self):
         validate(self)
         _check_solid_contact(self)
+        self._check_tangential_compliance()
+
+    def _check_tangential_compliance(self) -> None:
+        """Refuse a tangential compliance that cannot act: outside Mindlin's range [2/3, 4/3]
+        (2 (1 - nu)/(2 - nu) over nu in (-1, 1/2], and the weighted means of two solids'),
+        without friction (mu = 0) or on smooth surfaces (no solid contact); the impact's
+        obliquity is checked by :class:`ehdfem.inputs.scales.CollisionParameters`."""
+        compliance = self.tangential_compliance
+        if compliance == 0.0:
+            return
+        if compliance < 2.0 / 3.0:
+            raise checks.InputError(
+                f"tangential_compliance = {compliance!r} must be 0 (rigid) or in [2/3, 4/3]: "
+                "k_t/k_n = 4 G*/E* of a Hertz contact lies there for Poisson ratios in (-1, 1/2]",
+                "tangential_compliance",
+            )
+        if self.friction_coefficient == 0.0 or self.roughness == 0.0:
+            raise checks.InputError(
+                f"tangential_compliance = {compliance!r} needs a solid contact with friction "
+                "(roughness > 0, friction_coefficient > 0): without them no tangential load "
+                "acts on the contact",
+                "tangential_compliance",
+            )
 
     def pressure_law(self, eps: float, delta: float) -> None:
         """None: the impact model puts no pressure on the film."""
@@ -248,7 +280,14 @@ class ImpactAsperities:
         return self.roughness if self.roughness > 0.0 else None
 
     @classmethod
-    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope):
+    def of_surfaces(
+        cls,
+        roughness,
+        friction_coefficient,
+        asperity_density,
+        asperity_slope,
+        tangential_compliance=0.0,
+    ):
         """The model of the surfaces; refuses asperity constants other than the defaults, which
         only Greenwood & Tripp's pressure takes."""
         for name, value, default in (
@@ -262,7 +301,7 @@ class ImpactAsperities:
                     "pressure)",
                     name,
                 )
-        return cls(roughness=roughness, friction_coefficient=friction_coefficient)
+        return cls(roughness, friction_coefficient, tangential_compliance)
 
 
 @MODELS.register
@@ -308,6 +347,23 @@ class GreenwoodTrippAsperities:
         return None
 
     @classmethod
-    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope):
-        """The model of the surfaces with their asperity constants."""
+    def of_surfaces(
+        cls,
+        roughness,
+        friction_coefficient,
+        asperity_density,
+        asperity_slope,
+        tangential_compliance=0.0,
+    ):
+        """The model of the surfaces with their asperity constants; refuses a tangential
+        compliance, which belongs to one Hertz contact (the impact model's), not to the many
+        small contacts whose load this model carries over the film's steps."""
+        if tangential_compliance != 0.0:
+            raise checks.InputError(
+                f"tangential_compliance = {tangential_compliance!r} acts only with asperities = "
+                f"{ImpactAsperities.name!r}: Greenwood & Tripp's asperities carry their load "
+                "through many small contacts, not one Hertz contact of the sphere "
+                "(docs/tangential.md)",
+                "tangential_compliance",
+            )
         return cls(roughness, friction_coefficient, asperity_density, asperity_slope)

@@ -163,6 +163,12 @@ class CollisionParameters:
                 "motion of a head-on impact is not solved, so its spin would be ignored",
                 "spin",
             )
+        if self.tangential_compliance != 0.0 and self.tangential_speed == 0.0:
+            raise checks.InputError(
+                f"tangential_compliance = {self.tangential_compliance!r} needs an oblique impact "
+                "(angle > 0): a head-on impact puts no tangential load on the contact",
+                "tangential_compliance",
+            )
         if self.gap == "exact" and self.layer == "immersed":
             raise checks.InputError(
                 "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
@@ -198,6 +204,12 @@ class CollisionParameters:
     def friction_coefficient(self) -> float:
         """Coulomb's friction coefficient of the surfaces' solid contact."""
         return self.asperities.friction_coefficient
+
+    @property
+    def tangential_compliance(self) -> float:
+        """k_t/k_n of the solid impact's Hertz contact (0: the rigid-body Coulomb impact, and
+        for asperity models without a single impact; :mod:`ehdfem.tangential.compliant_contact`)."""
+        return getattr(self.asperities, "tangential_compliance", 0.0)
 
     @property
     def p_cav(self) -> float:
@@ -251,8 +263,9 @@ class PhysicalCollision:
     ``asperities`` that uses them (:class:`CollisionParameters`). The cavitation model, the
     viscosity law and the asperity model are named here; their scaled constants come from the
     physical inputs through their classes (``with_limit``, ``of_liquid``, ``of_surfaces``).
-    The friction coefficient of the solid contact is dimensionless (as in
-    :class:`CollisionParameters`).
+    The friction coefficient of the solid contact and its tangential compliance k_t/k_n are
+    dimensionless (as in :class:`CollisionParameters`; k_t/k_n of two materials from
+    :func:`ehdfem.tangential.compliant_contact.mindlin_stiffness_ratio`).
     Roelands takes Z = alpha 1.96e8 Pa / (ln(mu0 / Pa s) + 9.67)."""
 
     radius: float = setting(
@@ -326,6 +339,7 @@ class PhysicalCollision:
         checked=False,
     )
     friction_coefficient: float = 0.0
+    tangential_compliance: float = 0.0
     asperities: str = setting(
         ImpactAsperities.name,
         help="asperity contact of rough surfaces",
@@ -468,6 +482,7 @@ class PhysicalCollision:
                 self.friction_coefficient,
                 self.asperity_density,
                 self.asperity_slope,
+                self.tangential_compliance,
             ),
         )
 

@@ -325,7 +325,8 @@ OUTPUTS: tuple[Output, ...] = (
            "-", None, _oblique(lambda r, tangent: tangent * float(r.tangential.slip[0]))),
     Output("psi_out", "contact point's slip at exit or stop over the normal speed at first touch",
            "-", None, _oblique(_psi_out)),
-    Output("contact_stuck", "the solid contact's friction stopped the slip (Coulomb stick)",
+    Output("contact_stuck", "the solid contact's friction stopped the slip (stick; compliant: "
+           "some of the contact stuck)",
            "-", None, _friction(lambda f: f.any_stuck), optional=True),
     Output("friction_dissipated", "Coulomb friction's dissipation in the solid contact",
            TANGENTIAL_ENERGY, "J", _friction(lambda f: float(f.dissipated[-1])), optional=True),

@@ -46,6 +46,11 @@ them (:mod:`ehdfem.tangential.motion`):
   step's solution is linear in F_f, so the complementarity is one scalar projection), and the
   impact as a jump after its step, followed by a BDF1 step. Its friction dissipation is then
   the trapezoid of -F_f u_s plus the impact's D.
+
+With a tangential compliance (``tangential_compliance`` > 0, the impact model only) the solid
+impact's jump is the compliant contact's (:mod:`ehdfem.tangential.compliant_contact`: the
+impulse that takes psi_in to its psi_out, with the same dissipation D) in place of the
+projection; an asperity load keeps Coulomb's law.
 """
 
 from __future__ import annotations
@@ -56,6 +61,7 @@ import numpy as np
 import scipy.integrate
 
 from ..motion.normal import NormalResult
+from .compliant_contact import compliant_rebound
 
 
 def coulomb_impulse(slip: float, bound: float, St: float, k: float) -> tuple[float, bool]:
@@ -108,6 +114,7 @@ class CoulombContact:
         self.load_bounds[1:] *= np.diff(self.time)
         self.impact = normal.solid_impact
         self.impact_bound = 0.0 if self.impact is None else per_load * self.impact.normal_impulse
+        self.friction, self.compliance = params.friction_coefficient, params.tangential_compliance
         self.impulse, self.loss, self.rate = np.zeros(steps), np.zeros(steps), np.zeros(steps)
         self.stuck = np.zeros(steps, bool)
         self.impact_psi = None
@@ -131,21 +138,44 @@ class CoulombContact:
         """(U, a Omega) after the contact's impulse at ``step`` on the state (U, a Omega) the
         film left there (by U0): the impact's, and with ``load`` the asperities' over the step
         ending there; records the impulse, its dissipation and whether it stuck."""
-        bound = self.impact_bound if self.is_impact(step) else 0.0
+        compliant = self.compliance > 0.0 and self.is_impact(step)
+        if compliant:  # the impact by the compliant law, then the load's Coulomb impulse
+            velocity, spin = self._compliant_impact(step, velocity, spin)
+        bound = self.impact_bound if self.is_impact(step) and not compliant else 0.0
         if load:
             bound += self.load_bounds[step]
         slip = velocity - spin
         impulse, stuck = coulomb_impulse(slip, bound, self.St, self.k)
         after = 0.0 if stuck else slip + (1.0 + 1.0 / self.k) * impulse / self.St
         self.impulse[step] += impulse
-        self.loss[step] = -0.5 * impulse * (slip + after)
+        self.loss[step] += -0.5 * impulse * (slip + after)
         self.stuck[step] |= stuck and bound > 0.0
-        if self.is_impact(step):  # psi per unit slip: U0 / (V0 |V|) = tan(angle) / |V|
+        if self.is_impact(step) and not compliant:  # psi per unit slip: tan(angle) / |V|
             ratio = self.tangent / abs(self.impact.approach_velocity)
             self.impact_psi = (float(slip * ratio), float(after * ratio))
         if stuck:  # rolling: U = a Omega exactly, U + k a Omega conserved
             rolling = (velocity + self.k * spin) / (1.0 + self.k)
             return rolling, rolling
+        return velocity + impulse / self.St, spin - impulse / (self.k * self.St)
+
+    def _compliant_impact(self, step: int, velocity: float, spin: float) -> tuple[float, float]:
+        """(U, a Omega) after the solid impact at ``step`` with tangential compliance
+        (:func:`ehdfem.tangential.compliant_contact.compliant_rebound`, restitution
+        e = N / (St |V|) - 1 of the impact's normal impulse N); records its impulse
+        J = St (u_s' - u_s) / (1 + 1/k), its dissipation -J (u_s + u_s') / 2, psi and the stop
+        of the slip."""
+        slip, approach = velocity - spin, abs(self.impact.approach_velocity)
+        e_n = self.impact.normal_impulse / (self.St * approach) - 1.0
+        ratio = self.tangent / approach  # psi per unit slip
+        psi_out, stopped = compliant_rebound(
+            slip * ratio, self.friction, e_n, self.compliance, self.k
+        )
+        after = psi_out / ratio
+        impulse = self.St * (after - slip) / (1.0 + 1.0 / self.k)
+        self.impulse[step] += impulse
+        self.loss[step] += -0.5 * impulse * (slip + after)
+        self.stuck[step] |= stopped
+        self.impact_psi = (float(slip * ratio), float(psi_out))
         return velocity + impulse / self.St, spin - impulse / (self.k * self.St)
 
     def resist(self, step: int, slip: float, response: float) -> float:

@@ -38,12 +38,11 @@ def _stack() -> dict:
     """The versions of the libraries this run computes with."""
     import gmsh
 
-    from ehdfem.solids.fe import dolfinx_compat
+    from ehdfem.fenicsx import libraries
 
-    petsc = dolfinx_compat.petsc().Sys.getVersion()
     return {
-        "dolfinx": dolfinx_compat.version(),
-        "petsc": ".".join(map(str, petsc)),
+        "dolfinx": libraries.dolfinx_version(),
+        "petsc": libraries.petsc_version(),
         "gmsh": gmsh.__version__,
         "numpy": np.__version__,
         "python": sys.version.split()[0],

@@ -1,6 +1,6 @@
 """The package's structure (docs/architecture.md): packages in layers whose imports point down,
-no import cycle between modules, no function over 80 lines, and every DOLFINx call in the
-compatibility seam. These read the source, not run it."""
+no import cycle between modules, no function over 80 lines, and every use of DOLFINx, basix and
+PETSc objects in the seam ehdfem.fenicsx. These read the source, not run it."""
 
 import ast
 import re
@@ -14,6 +14,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
 LAYERS = (
     ("checks", "version", "console", "threads"),
     ("settings",),
+    ("fenicsx",),
     ("exact",),
     ("film",),
     ("inputs",),
@@ -29,26 +30,72 @@ LAYERS = (
     ("__init__", "__main__"),
 )
 LONGEST_FUNCTION = 80  # lines, decorators excluded
-DOLFINX_SEAM = "ehdfem.solids.fe.dolfinx_compat"
-# Attributes of DOLFINx objects whose name or form differs between Debian's 0.5.2 and 0.11
-# (the seam's docstrings): used on a DOLFINx object, only in the seam; the seam's own functions
-# of these names are called as dolfinx_compat.NAME.
-DIFFERING = {
-    "vector": "Function.vector / .x.petsc_vec",
-    "petsc_vec": "Function.vector / .x.petsc_vec",
-    "interpolation_points": "a method in 0.5, a property in 0.10",
-    "FunctionSpace": "fem.FunctionSpace / fem.functionspace",
-    "VectorFunctionSpace": "fem.VectorFunctionSpace / fem.functionspace",
-    "functionspace": "fem.FunctionSpace / fem.functionspace",
-    "create_vtk_mesh": "plot.create_vtk_mesh / plot.vtk_mesh",
-    "vtk_mesh": "plot.create_vtk_mesh / plot.vtk_mesh",
-    "BoundingBoxTree": "geometry.BoundingBoxTree / geometry.bb_tree",
-    "bb_tree": "geometry.BoundingBoxTree / geometry.bb_tree",
-    "gmshio": "io.gmshio / io.gmsh",
-    "VectorElement": "UFL's elements / basix.ufl",
-    "MixedElement": "UFL's elements / basix.ufl",
-    "list": "dofmap.list: an AdjacencyList / a 2-D array",
-    "dofmap": "geometry.dofmap: an AdjacencyList / geometry.dofmaps[0]",
+SEAM = "ehdfem.fenicsx"  # the package that holds every use of DOLFINx (docs/architecture.md)
+SEAM_LIBRARIES = ("dolfinx", "basix", "petsc4py")  # imported, or loaded by name, only there
+SEAM_MODULES = {path.stem for path in (PACKAGE / "fenicsx").glob("*.py")}
+# UFL is the physics modules' form language and the same on both DOLFINx releases; its element
+# constructors are not (basix.ufl's from 0.7): used only in the seam.
+UFL_ELEMENTS = {"FiniteElement", "VectorElement", "TensorElement", "MixedElement"}
+# Attributes that only DOLFINx's and PETSc's objects have in this package: used on an object,
+# only in the seam. Elsewhere a name of this set may only be a seam function (spaces.vtk_mesh).
+DOLFINX_ATTRIBUTES = {
+    "petsc_vec": "Function.x.petsc_vec",
+    "vector": "Function.vector",
+    "scatter_forward": "Function.x.scatter_forward",
+    "scatter_reverse": "Function.x.scatter_reverse",
+    "interpolate": "Function.interpolate",
+    "eval": "Function.eval",
+    "function_space": "Function.function_space",
+    "function_spaces": "Form.function_spaces",
+    "dofmap": "FunctionSpace.dofmap, Geometry.dofmap",
+    "dofmaps": "Geometry.dofmaps",
+    "index_map": "DofMap.index_map, Topology.index_map",
+    "index_map_bs": "DofMap.index_map_bs",
+    "size_local": "IndexMap.size_local",
+    "size_global": "IndexMap.size_global",
+    "num_ghosts": "IndexMap.num_ghosts",
+    "tabulate_dof_coordinates": "FunctionSpace.tabulate_dof_coordinates",
+    "collapse": "FunctionSpace.collapse",
+    "interpolation_points": "FiniteElement.interpolation_points",
+    "geometry": "Mesh.geometry",
+    "topology": "Mesh.topology",
+    "create_connectivity": "Topology.create_connectivity",
+    "ufl_cell": "Mesh.ufl_cell",
+    "basix_cell": "Mesh.basix_cell",
+    "find": "MeshTags.find",
+    "FunctionSpace": "fem.FunctionSpace",
+    "VectorFunctionSpace": "fem.VectorFunctionSpace",
+    "functionspace": "fem.functionspace",
+    "gmshio": "io.gmshio",
+    "create_vtk_mesh": "plot.create_vtk_mesh",
+    "vtk_mesh": "plot.vtk_mesh",
+    "BoundingBoxTree": "geometry.BoundingBoxTree",
+    "bb_tree": "geometry.bb_tree",
+    "getArray": "PETSc Vec",
+    "getDenseArray": "PETSc Mat",
+    "getValuesCSR": "PETSc Mat",
+    "ghostUpdate": "PETSc Vec",
+    "localForm": "PETSc Vec",
+    "duplicate": "PETSc Vec, Mat",
+    "destroy": "PETSc objects",
+    "matMult": "PETSc Mat",
+    "transposeMatMult": "PETSc Mat",
+    "setOption": "PETSc Mat",
+    "setUp": "PETSc KSP, Mat",
+    "getPC": "PETSc KSP",
+    "getKSP": "PETSc SNES",
+    "setType": "PETSc KSP, PC, SNES",
+    "setTolerances": "PETSc KSP, SNES",
+    "setFactorSolverType": "PETSc PC",
+    "getConvergedReason": "PETSc KSP, SNES",
+}
+# The same attribute names on the package's own objects are fine: these only on such bases, or
+# only when not called (a lower body's geometry(...) is its gmsh generator).
+NOT_CALLED = {"geometry"}
+ON_BASES = {
+    "value": ("assigned", "Constant.value (functions.set_constant)"),
+    "mesh": ("space", "FunctionSpace.mesh (spaces.mesh_of)"),
+    "comm": ("mesh", "Mesh.comm (domain.communicator)"),
 }
 
 
@@ -140,42 +187,84 @@ def test_no_function_over_80_lines():
     assert not long, "functions over 80 lines:\n" + "\n".join(long)
 
 
-def test_every_dolfinx_call_in_the_seam():
-    outside = [
-        f"{name}:{node.lineno}"
-        for name, _, tree in _modules()
-        if name != DOLFINX_SEAM
-        for node in ast.walk(tree)
-        if isinstance(node, ast.Import | ast.ImportFrom)
-        and any(
-            (getattr(node, "module", None) or alias.name).split(".")[0] == "dolfinx"
-            for alias in node.names
-        )
-    ]
-    assert not outside, "DOLFINx imported outside the seam:\n" + "\n".join(outside)
-
-
-def test_what_differs_between_dolfinx_versions_is_in_the_seam():
-    """The attributes that differ between DOLFINx 0.5.2 and 0.11 (DIFFERING) are used only in
-    the seam, which handles both forms; elsewhere only as calls of the seam's own functions
-    (``dolfinx_compat.vtk_mesh``) or, for ``list`` and ``dofmap``, on other objects than a
-    dofmap or a geometry (``space.dofmap.index_map`` is the same in both)."""
-    outside = []
+def _outside_the_seam():
+    """(module name, syntax tree) of every module outside the seam."""
     for name, _, tree in _modules():
-        if name == DOLFINX_SEAM:
-            continue
+        if name != SEAM and not name.startswith(SEAM + "."):
+            yield name, tree
+
+
+def test_dolfinx_basix_and_petsc4py_are_imported_in_the_seam_only():
+    """Imported, or loaded by name (``importlib.import_module("dolfinx.fem")``), and UFL's
+    element constructors, which differ between the DOLFINx releases."""
+    outside = []
+    for name, tree in _outside_the_seam():
         for node in ast.walk(tree):
-            if not isinstance(node, ast.Attribute) or node.attr not in DIFFERING:
+            if isinstance(node, ast.Import | ast.ImportFrom):
+                modules = [alias.name for alias in node.names]
+                if isinstance(node, ast.ImportFrom):
+                    modules = [node.module or ""] if node.level == 0 else []
+                    if node.module == "ufl":
+                        modules += [f"ufl.{a.name}" for a in node.names if a.name in UFL_ELEMENTS]
+            elif isinstance(node, ast.Call):
+                modules = [
+                    argument.value
+                    for argument in node.args
+                    if isinstance(argument, ast.Constant) and isinstance(argument.value, str)
+                ]
+            elif isinstance(node, ast.Attribute) and node.attr in UFL_ELEMENTS:
+                modules = [f"ufl.{node.attr}"]
+            else:
                 continue
-            base = ast.unparse(node.value)
-            if base in ("dolfinx_compat", "compat"):
-                continue
-            if node.attr == "list" and not base.endswith("dofmap"):
-                continue
-            if node.attr == "dofmap" and not base.endswith("geometry"):
-                continue
-            outside.append(f"{name}:{node.lineno} {base}.{node.attr} ({DIFFERING[node.attr]})")
-    assert not outside, "version-dependent DOLFINx uses outside the seam:\n" + "\n".join(outside)
+            outside += [
+                f"{name}:{node.lineno} {module}"
+                for module in modules
+                if module.split(".")[0] in SEAM_LIBRARIES or module.startswith("ufl.")
+            ]
+    assert not outside, "FEniCSx libraries used outside the seam:\n" + "\n".join(outside)
+
+
+def _dolfinx_use(node: ast.Attribute, assigned: bool, called: bool) -> str | None:
+    """What ``node`` uses of a DOLFINx or PETSc object (None: nothing): an attribute of
+    DOLFINX_ATTRIBUTES (of NOT_CALLED: unless ``called``), ``x.array`` (a function's values),
+    or an attribute of ON_BASES on its base (an assignment to ``.value``, the ``.mesh`` of a
+    space, the ``.comm`` of a mesh)."""
+    base = ast.unparse(node.value)
+    if base in SEAM_MODULES or (called and node.attr in NOT_CALLED):
+        return None
+    if node.attr in DOLFINX_ATTRIBUTES:
+        return DOLFINX_ATTRIBUTES[node.attr]
+    if node.attr == "array" and base.endswith(".x"):
+        return "Function.x.array (functions.local_values)"
+    if node.attr in ON_BASES:
+        where, what = ON_BASES[node.attr]
+        last = base.split(".")[-1].lower()
+        if (assigned and where == "assigned") or (where != "assigned" and last.endswith(where)):
+            return what
+    return None
+
+
+def test_no_dolfinx_object_is_used_outside_the_seam():
+    """Outside ehdfem.fenicsx, DOLFINx's and PETSc's objects are handles passed back to the
+    seam's functions (and to UFL): no attribute of theirs is read, called or set there, and the
+    name PETSc does not occur. A change of DOLFINx release then changes the seam alone."""
+    outside = []
+    for name, tree in _outside_the_seam():
+        assigned = {
+            id(target)
+            for node in ast.walk(tree)
+            if isinstance(node, ast.Assign | ast.AugAssign | ast.AnnAssign)
+            for target in (node.targets if isinstance(node, ast.Assign) else [node.target])
+        }
+        called = {id(node.func) for node in ast.walk(tree) if isinstance(node, ast.Call)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Name) and node.id == "PETSc":
+                outside.append(f"{name}:{node.lineno} PETSc")
+            if isinstance(node, ast.Attribute):
+                use = _dolfinx_use(node, id(node) in assigned, id(node) in called)
+                if use is not None:
+                    outside.append(f"{name}:{node.lineno} {ast.unparse(node)} ({use})")
+    assert not outside, "DOLFINx or PETSc objects used outside the seam:\n" + "\n".join(outside)
 
 
 def test_viscosity_and_cavitation_names_only_in_the_film():

@@ -7,8 +7,9 @@ import pytest
 import scipy.sparse
 from mpi4py import MPI
 
+from ehdfem.fenicsx.schur import condensed
 from ehdfem.film.grid import radial_grid
-from ehdfem.solids.fe.condensation import RigidMotions, balanced_condensation, condensed
+from ehdfem.solids.fe.condensation import RigidMotions, balanced_condensation
 from ehdfem.solids.fe.linear_algebra import interpolation_matrix
 from ehdfem.solids.fe.solids import FESolids
 

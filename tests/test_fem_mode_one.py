@@ -10,10 +10,10 @@ from hat_averages import averaged, hat_average
 from mpi4py import MPI
 
 from ehdfem.checks import InputError
+from ehdfem.fenicsx import assembly, functions, solvers, spaces
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.solids.compliance import MODE_ONE_LOADS
-from ehdfem.solids.fe import dolfinx_compat as compat
 from ehdfem.solids.fe.mode_one import (
     FEModeOne,
     amplitudes,
@@ -83,7 +83,7 @@ def test_rigid_motions_are_exactly_in_the_kernel():
     ~ 1e-17 (bound 1e-13); a stretch S = r (a non-rigid motion) has |K R| / (|K| |R|) ~ 1e-3."""
     msh, axis = unit_square(6)
     space = mode_one_space(msh)
-    matrix = compat.assemble_matrix(
+    matrix = assembly.assemble_matrix(
         fem.form(stiffness_form(space, LAME)), [bc for bc, _ in axis_conditions(space, axis)]
     )
     cells = np.arange(
@@ -94,8 +94,8 @@ def test_rigid_motions_are_exactly_in_the_kernel():
     ratios = []
     for motion in (*rigid_motions(space, cells, 0.3), stretch):
         product = matrix.createVecLeft()
-        matrix.mult(compat.petsc_vector(motion), product)
-        ratios.append(product.norm() / (matrix.norm() * compat.petsc_vector(motion).norm()))
+        matrix.mult(functions.petsc_vector(motion), product)
+        ratios.append(product.norm() / (matrix.norm() * functions.petsc_vector(motion).norm()))
     assert max(ratios[:2]) < 1e-13 and ratios[2] > 1e-5, ratios
 
 
@@ -133,11 +133,13 @@ def manufactured_error(n):
     load = ufl.dot(body, v) * r * ufl.dx + ufl.dot(traction, v) * r * ds(1)
     bottom = mesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[1], 0.0))
     boundary = fem.Function(space)
-    boundary.interpolate(fem.Expression(exact, compat.interpolation_points(space)))
+    boundary.interpolate(fem.Expression(exact, spaces.interpolation_points(space)))
     conditions = [bc for bc, _ in axis_conditions(space, axis)]
     conditions.append(fem.dirichletbc(boundary, fem.locate_dofs_topological(space, 1, bottom)))
     solution = fem.Function(space)
-    compat.solve_linear(fem.form(stiffness_form(space, LAME)), fem.form(load), conditions, solution)
+    solvers.solve_linear(
+        fem.form(stiffness_form(space, LAME)), fem.form(load), conditions, solution
+    )
     error = amplitudes(solution) - amplitudes(exact)
     squared = fem.assemble_scalar(fem.form(ufl.dot(error, error) * r * ufl.dx))
     return np.sqrt(msh.comm.allreduce(squared))
@@ -160,7 +162,7 @@ def sphere_residual(compliance, loads):
     msh, delta = solids.mesh, solids.delta
     space = mode_one_space(msh)
     axis = mesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[0], 0.0))
-    matrix = compat.assemble_matrix(
+    matrix = assembly.assemble_matrix(
         fem.form(stiffness_form(space, solids.meshed.lame)),
         [bc for bc, _ in axis_conditions(space, axis)],
     )
@@ -170,12 +172,12 @@ def sphere_residual(compliance, loads):
         [(field[:, 0] + field[:, 1]) / 2, (field[:, 0] - field[:, 1]) / 2, field[:, 2]]
     ).ravel()
     residual = matrix.createVecLeft()
-    matrix.mult(compat.petsc_vector(unknowns), residual)
+    matrix.mult(functions.petsc_vector(unknowns), residual)
     sphere = mesh.locate_entities(msh, 2, lambda x: x[1] > delta / 2)
     r = ufl.SpatialCoordinate(msh)[0]
     v = amplitudes(ufl.TestFunction(space))
     inertia = [
-        compat.assemble_vector(fem.form(ufl.dot(amplitudes(m), v) * r * ufl.dx), []).getArray()
+        assembly.assembled_values(fem.form(ufl.dot(amplitudes(m), v) * r * ufl.dx))
         for m in rigid_motions(space, sphere, 1 + delta)
     ]
     owned = len(inertia[0]) // 3

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..solids.fe import dolfinx_compat
+from ..fenicsx import assembly, functions, solvers, spaces
 
 
 def strain_rate(r, w):
@@ -42,15 +42,15 @@ def sphere_probe(space, sphere_facets):
     of the liquid on the sphere along -z over 2 pi (:func:`sphere_force`)."""
     import ufl
 
-    probe = dolfinx_compat.function(space)
-    probe.x.array[dolfinx_compat.velocity_component_dofs(space, 1, sphere_facets)] = 1.0
+    probe = functions.function(space)
+    functions.local_values(probe)[spaces.velocity_component_dofs(space, 1, sphere_facets)] = 1.0
     return ufl.split(probe)[0]
 
 
 def sphere_force(reaction, comm) -> float:
     """F_z = -2 pi int R r dr dz, the liquid's force on the sphere along +z from the residual
     ``reaction`` tested with :func:`sphere_probe` (in the units of the caller's forms)."""
-    return -2.0 * math.pi * dolfinx_compat.integral(reaction, comm)
+    return -2.0 * math.pi * assembly.integral(reaction, comm)
 
 
 def momentum_residual(r, viscosity, u, p, v, q, rate_of_u, convecting):
@@ -73,9 +73,9 @@ class Bdf2Steps:
     def __init__(self, space):
         import ufl
 
-        mesh = space.mesh
-        self.now, self.last, self.before = (dolfinx_compat.function(space) for _ in range(3))
-        constants = [dolfinx_compat.constant(mesh, 0.0) for _ in range(6)]
+        mesh = spaces.mesh_of(space)
+        self.now, self.last, self.before = (functions.function(space) for _ in range(3))
+        constants = [functions.constant(mesh, 0.0) for _ in range(6)]
         self.rate, self.c_now, self.c_last, self.c_before, self.e_last, self.e_before = constants
         last, before = ufl.split(self.last)[0], ufl.split(self.before)[0]
         self.history = self.c_last * last + self.c_before * before  # UFL
@@ -99,20 +99,22 @@ class Bdf2Steps:
             (*coefficients, *extrapolation),
             strict=True,
         ):
-            constant.value = value
-        self.rate.value = 1.0 / dt
+            functions.set_constant(constant, value)
+        functions.set_constant(self.rate, 1.0 / dt)
         return coefficients, extrapolation
 
     def accept(self, dt: float) -> None:
         """Make ``now`` the last step (of size ``dt``) and the last the one before."""
-        self.before.x.array[:] = self.last.x.array
-        self.last.x.array[:] = self.now.x.array
+        values = functions.local_values
+        values(self.before)[:] = values(self.last)
+        values(self.last)[:] = values(self.now)
         self.step_size = dt
 
     def restart(self) -> None:
         """Make ``now`` the whole past (a steady flow): the next step is BDF1."""
-        self.last.x.array[:] = self.now.x.array
-        self.before.x.array[:] = self.now.x.array
+        values = functions.local_values
+        values(self.last)[:] = values(self.now)
+        values(self.before)[:] = values(self.now)
         self.step_size = None
 
 
@@ -138,8 +140,8 @@ def navier_stokes_forms(steps, viscosity, probe_velocity, convecting, frame_velo
     ``frame_velocity`` (UFL: the velocity of the frame in which it is steady)."""
     import ufl
 
-    space = steps.now.function_space
-    r = ufl.SpatialCoordinate(space.mesh)[0]
+    space = functions.space_of(steps.now)
+    r = ufl.SpatialCoordinate(spaces.mesh_of(space))[0]
 
     def residual(u, p, v, q, rate_of_u, a):
         return momentum_residual(r, viscosity, u, p, v, q, rate_of_u, a)
@@ -149,10 +151,8 @@ def navier_stokes_forms(steps, viscosity, probe_velocity, convecting, frame_velo
     rate_h = steps.rate * (steps.c_now * u_h + steps.history)
     relative, still = u_h - frame_velocity, 0 * u_h
     return FlowForms(
-        bilinear=dolfinx_compat.form(
-            residual(u, p, v, q, steps.rate * steps.c_now * u, convecting)
-        ),
-        linear=dolfinx_compat.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx),
+        bilinear=assembly.form(residual(u, p, v, q, steps.rate * steps.c_now * u, convecting)),
+        linear=assembly.form(-steps.rate * ufl.inner(steps.history, v) * r * ufl.dx),
         reaction=residual(u_h, p_h, probe_velocity, 0.0, rate_h, convecting),
         steady_residual=residual(u_h, p_h, v, q, still, relative),
         steady_reaction=residual(u_h, p_h, probe_velocity, 0.0, still, relative),
@@ -161,20 +161,13 @@ def navier_stokes_forms(steps, viscosity, probe_velocity, convecting, frame_velo
 
 def solve_steady(residual, solution, bcs) -> None:
     """Solve the UFL ``residual`` (of ``solution``) = 0 with the Dirichlet ``bcs`` by Newton's
-    method (MUMPS LU, relative tolerance 1e-10) from the values of ``solution``; raises if it
-    does not converge."""
+    method (MUMPS LU, relative tolerance 1e-10, absolute 1e-12, at most 40 iterations) from
+    the values of ``solution``; raises if it does not converge."""
     import ufl
 
-    def configure(snes, _):
-        snes.setType("newtonls")
-        snes.setTolerances(rtol=1e-10, atol=1e-12, max_it=40)
-        snes.getKSP().setType("preonly")
-        snes.getKSP().getPC().setType("lu")
-        snes.getKSP().getPC().setFactorSolverType("mumps")
-
-    jacobian = dolfinx_compat.form(ufl.derivative(residual, solution))
-    reason, _ = dolfinx_compat.solve_nonlinear(
-        dolfinx_compat.form(residual), jacobian, bcs, solution, configure
+    jacobian = assembly.form(ufl.derivative(residual, solution))
+    reason, _ = solvers.solve_nonlinear(
+        assembly.form(residual), jacobian, bcs, solution, rtol=1e-10, atol=1e-12, max_iterations=40
     )
     if reason <= 0:
         raise RuntimeError(f"the steady flow did not converge (SNES reason {reason})")

@@ -40,7 +40,7 @@ import numpy as np
 from meshes import liquid
 
 from .. import checks
-from ..solids.fe import dolfinx_compat
+from ..fenicsx import assembly, domain, functions, solvers, spaces
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import Bdf2Steps, navier_stokes_forms, solve_steady, sphere_force, sphere_probe
 from .sphere_flow import FINE, GROWTH, OUTER  # the same liquid and elements around the sphere
@@ -94,26 +94,29 @@ class NearWallFlow:
             checks.positive(name, value)
         self.comm, self.reynolds, self.reference_gap = comm, reynolds, reference_gap
         mesh, _, facets = contact_mesh(comm, liquid.build, (reference_gap, outer, fine, growth))
-        self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
-        self.nodes = mesh.geometry.x
+        self.cells = domain.cell_count(mesh)
+        self.nodes = domain.vertex_coordinates(mesh)
         self.reference = self.nodes[:, :2].copy()
-        self.triangles = dolfinx_compat.cell_nodes(mesh)
+        self.triangles = domain.cell_nodes(mesh)
         self.orientation = np.sign(signed_areas(self.reference[self.triangles]))
-        self.mesh_rate = dolfinx_compat.function(dolfinx_compat.lagrange_space(mesh, 1))
-        self.rate_points = self.mesh_rate.function_space.tabulate_dof_coordinates()[:, :2].copy()
-        space = dolfinx_compat.taylor_hood_space(mesh)
+        rate_space = spaces.lagrange_space(mesh, 1)
+        self.mesh_rate = functions.function(rate_space)
+        self.rate_points = spaces.dof_coordinates(rate_space)[:, :2].copy()
+        space = spaces.taylor_hood_space(mesh)
         self.steps = steps = Bdf2Steps(space)
         self.now = steps.now
         self.gaps = [reference_gap] * 2  # the mesh's gap at the last two steps (before, last)
         self.velocities = [0.0, 0.0]  # the sphere's velocity at the last two steps
-        self.sphere_velocity = dolfinx_compat.constant(mesh, 0.0)
-        sphere, wall = facets.find(liquid.SPHERE), facets.find(liquid.WALL)
+        self.sphere_velocity = functions.constant(mesh, 0.0)
+        sphere, wall = domain.tagged(facets, liquid.SPHERE), domain.tagged(facets, liquid.WALL)
         self.bcs = [
-            dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
-            dolfinx_compat.velocity_component_condition(space, 0, sphere, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 1, sphere, self.sphere_velocity),
-            dolfinx_compat.velocity_component_condition(space, 0, wall, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 1, wall, 0.0),
+            assembly.velocity_component_condition(
+                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
+            ),
+            assembly.velocity_component_condition(space, 0, sphere, 0.0),
+            assembly.velocity_component_condition(space, 1, sphere, self.sphere_velocity),
+            assembly.velocity_component_condition(space, 0, wall, 0.0),
+            assembly.velocity_component_condition(space, 1, wall, 0.0),
         ]
         # a step is convected relative to the mesh; the steady start is steady with the sphere
         self.forms = navier_stokes_forms(
@@ -142,8 +145,8 @@ class NearWallFlow:
         previous steps), and return its force (by rho V0^2 a^2, on the sphere, along +z)."""
         self.move(gap)
         self.gaps, self.velocities = [gap, gap], [velocity, velocity]
-        self.sphere_velocity.value = velocity
-        self.now.x.array[:] = 0.0
+        functions.set_constant(self.sphere_velocity, velocity)
+        functions.local_values(self.now)[:] = 0.0
         solve_steady(self.forms.steady_residual, self.now, self.bcs)
         self.steps.restart()
         return sphere_force(self.forms.steady_reaction, self.comm)
@@ -171,11 +174,12 @@ class NearWallFlow:
         guess = np.dot(extrapolation, list(reversed(self.velocities)))
         gap = (dt * guess - last * self.gaps[1] - before * self.gaps[0]) / now
         at_rest = self._solve(dt, coefficients, gap, 0.0)
-        flow_at_rest = self.now.x.array.copy()
+        flow_at_rest = functions.local_values(self.now).copy()
         response = self._solve(dt, coefficients, gap, 1.0) - at_rest
         past = mass * (last * self.velocities[1] + before * self.velocities[0]) / dt
         velocity = (at_rest - weight - past) / (mass * now / dt - response)
-        self.now.x.array[:] = flow_at_rest + velocity * (self.now.x.array - flow_at_rest)
+        flow = functions.local_values(self.now)
+        flow[:] = flow_at_rest + velocity * (flow - flow_at_rest)
         self._accept(dt, gap, velocity)
         return gap, velocity, at_rest + velocity * response
 
@@ -184,11 +188,11 @@ class NearWallFlow:
         into ``now`` and return its force; the past is left as it is."""
         r, z = self.rate_points.T
         heights = [mesh_heights(r, z, self.reference_gap, h) for h in (gap, *reversed(self.gaps))]
-        self.mesh_rate.x.array[:] = np.dot(coefficients, heights) / dt
-        self.sphere_velocity.value = velocity
+        functions.local_values(self.mesh_rate)[:] = np.dot(coefficients, heights) / dt
+        functions.set_constant(self.sphere_velocity, velocity)
         self.move(gap)
         forms = self.forms
-        dolfinx_compat.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
+        solvers.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
         return sphere_force(forms.reaction, self.comm)
 
     def _accept(self, dt: float, gap: float, velocity: float) -> None:

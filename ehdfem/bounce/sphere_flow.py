@@ -28,7 +28,7 @@ import numpy as np
 from meshes import liquid
 
 from .. import checks
-from ..solids.fe import dolfinx_compat
+from ..fenicsx import assembly, domain, functions, solvers, spaces
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import (
     Bdf2Steps,
@@ -62,23 +62,28 @@ class SphereFlow:
         checks.positive("reynolds", reynolds)
         self.comm, self.reynolds = comm, reynolds
         mesh, _, facets = contact_mesh(comm, liquid.build, (None, outer, fine, growth))
-        self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
-        space = dolfinx_compat.taylor_hood_space(mesh)
+        self.cells = domain.cell_count(mesh)
+        space = spaces.taylor_hood_space(mesh)
         self.steps = Bdf2Steps(space)
         self.now = self.steps.now
-        self.far = dolfinx_compat.constant(mesh, 0.0)
-        sphere, outer_facets = facets.find(liquid.SPHERE), facets.find(liquid.OUTER)
+        self.far = functions.constant(mesh, 0.0)
+        sphere, outer_facets = (
+            domain.tagged(facets, liquid.SPHERE),
+            domain.tagged(facets, liquid.OUTER),
+        )
         # the velocity is given on the whole boundary but the axis: P is fixed at one point
-        top = dolfinx_compat.point_dofs(
+        top = spaces.point_dofs(
             space, lambda x: np.isclose(x[0], 0.0) & np.isclose(x[1], outer), component=1
         )
         self.bcs = [
-            dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
-            dolfinx_compat.velocity_component_condition(space, 0, sphere, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 1, sphere, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 0, outer_facets, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 1, outer_facets, self.far),
-            dolfinx_compat.zero_condition(space, top, component=1),
+            assembly.velocity_component_condition(
+                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
+            ),
+            assembly.velocity_component_condition(space, 0, sphere, 0.0),
+            assembly.velocity_component_condition(space, 1, sphere, 0.0),
+            assembly.velocity_component_condition(space, 0, outer_facets, 0.0),
+            assembly.velocity_component_condition(space, 1, outer_facets, self.far),
+            assembly.zero_condition(space, top, component=1),
         ]
         # in the sphere's frame: the steady flow is convected by itself
         self.forms = navier_stokes_forms(
@@ -93,8 +98,8 @@ class SphereFlow:
         """Solve the steady flow of a sphere moving at ``velocity`` (by V0) by Newton's method
         (MUMPS), make it the flow's past (both previous steps), and return its force (by
         rho V0^2 a^2, on the sphere, along +z)."""
-        self.far.value = -velocity
-        self.now.x.array[:] = 0.0
+        functions.set_constant(self.far, -velocity)
+        functions.local_values(self.now)[:] = 0.0
         solve_steady(self.forms.steady_residual, self.now, self.bcs)
         self.steps.restart()
         return sphere_force(self.forms.steady_reaction, self.comm)
@@ -106,9 +111,9 @@ class SphereFlow:
         w^2/(1 + w) u_before, convecting velocity (1 + w) u_last - w u_before; BDF1 first
         (:class:`ehdfem.bounce.liquid_forms.Bdf2Steps`)."""
         self.steps.prepare(dt)
-        self.far.value = -velocity
+        functions.set_constant(self.far, -velocity)
         forms = self.forms
-        dolfinx_compat.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
+        solvers.solve_linear(forms.bilinear, forms.linear, self.bcs, self.now)
         force = sphere_force(forms.reaction, self.comm)
         self.steps.accept(dt)
         return force

@@ -29,7 +29,7 @@ import math
 
 from meshes import liquid
 
-from ..solids.fe import dolfinx_compat
+from ..fenicsx import assembly, domain, functions, solvers, spaces
 from ..solids.fe.mesh import contact_mesh
 from .liquid_forms import divergence, sphere_force, sphere_probe, strain_rate
 
@@ -51,38 +51,38 @@ class WallFlow:
         if outer is None:
             outer = max(OUTER, 8.0 * (1.0 + (gap or 0.0)))
         mesh, _, facets = contact_mesh(comm, liquid.build, (gap, outer, fine))
-        self.cells = comm.allreduce(mesh.topology.index_map(2).size_local)
-        space = dolfinx_compat.taylor_hood_space(mesh)
-        self.solution = dolfinx_compat.function(space)
+        self.cells = domain.cell_count(mesh)
+        space = spaces.taylor_hood_space(mesh)
+        self.solution = functions.function(space)
         (u, p), (v, q) = ufl.TrialFunctions(space), ufl.TestFunctions(space)
         r = ufl.SpatialCoordinate(mesh)[0]
-        self.k2 = dolfinx_compat.constant(mesh, 0.0)
+        self.k2 = functions.constant(mesh, 0.0)
 
         def residual(u, p, v, q):
             viscous = 2 * ufl.inner(strain_rate(r, u), strain_rate(r, v))
             incompressible = p * divergence(r, v) + q * divergence(r, u)
             return (self.k2 * ufl.inner(u, v) + viscous - incompressible) * r * ufl.dx
 
-        self.bilinear = dolfinx_compat.form(residual(u, p, v, q))
-        zero = dolfinx_compat.constant(mesh, 0.0)
-        self.linear = dolfinx_compat.form(zero * v[1] * r * ufl.dx)
-        sphere = facets.find(liquid.SPHERE)
+        self.bilinear = assembly.form(residual(u, p, v, q))
+        zero = functions.constant(mesh, 0.0)
+        self.linear = assembly.form(zero * v[1] * r * ufl.dx)
+        sphere = domain.tagged(facets, liquid.SPHERE)
         self.bcs = [
-            dolfinx_compat.velocity_component_condition(space, 0, facets.find(liquid.AXIS), 0.0),
-            dolfinx_compat.velocity_component_condition(space, 0, sphere, 0.0),
-            dolfinx_compat.velocity_component_condition(space, 1, sphere, 1.0),
+            assembly.velocity_component_condition(
+                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
+            ),
+            assembly.velocity_component_condition(space, 0, sphere, 0.0),
+            assembly.velocity_component_condition(space, 1, sphere, 1.0),
         ]
         if gap is not None:
-            wall = facets.find(liquid.WALL)
-            self.bcs += [
-                dolfinx_compat.velocity_component_condition(space, i, wall, 0.0) for i in (0, 1)
-            ]
+            wall = domain.tagged(facets, liquid.WALL)
+            self.bcs += [assembly.velocity_component_condition(space, i, wall, 0.0) for i in (0, 1)]
         u_h, p_h = ufl.split(self.solution)
         self.reaction = residual(u_h, p_h, sphere_probe(space, sphere), 0.0)
 
     def impedance(self, k: float) -> float:
         """Z(k) = -F_z / (6 pi mu a U) at k = a sqrt(p / nu) (module docstring); Z(0) is
         Brenner's lambda(h) (1 without a wall needs an unbounded liquid: use k > 0 there)."""
-        self.k2.value = k * k
-        dolfinx_compat.solve_linear(self.bilinear, self.linear, self.bcs, self.solution)
+        functions.set_constant(self.k2, k * k)
+        solvers.solve_linear(self.bilinear, self.linear, self.bcs, self.solution)
         return -sphere_force(self.reaction, self.comm) / (6.0 * math.pi)

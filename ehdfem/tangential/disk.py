@@ -56,11 +56,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
-from ..solids.fe import dolfinx_compat
+from ..fenicsx import assembly, domain, functions, solvers, spaces
 
 DEGREE = 1  # of the Lagrange elements of the pressure and of the interpolated data
 TOLERANCE = 1e-11  # relative residual of the nonlinear solves (SNES rtol)
-OPTIONS_PREFIX = "ehdfem_disk_film_"  # of the PETSc options of the constrained solve
 CAVITATION_TOLERANCE = 1e-10  # a node is cavitated within this (times max(1, |P_cav|))
 
 
@@ -121,7 +120,7 @@ def disk_mesh(edge_radius: float, element_size: float, grading: float = 4.0, com
             for option in ("ExtendFromBoundary", "FromPoints", "FromCurvature"):
                 gmsh.option.setNumber(f"Mesh.MeshSize{option}", 0)
             gmsh.model.mesh.generate(2)
-        mesh, _, _ = dolfinx_compat.mesh_from_gmsh(gmsh.model, comm, 0, gdim=2)
+        mesh, _, _ = domain.mesh_from_gmsh(gmsh.model, comm, 0, gdim=2)
     finally:
         gmsh.finalize()
     return mesh
@@ -189,7 +188,7 @@ def solve_disk_film(
     mesh = disk_mesh(edge_radius, element_size, grading, comm)
     film = _DiskFilm(mesh, fluidity)
     film.set_data(radii, thickness, thickness_mode_one, squeeze_rate, squeeze_rate_mode_one)
-    film.sliding.value = sliding
+    functions.set_constant(film.sliding, sliding)
     iterations = film.solve(p_cav)
     p0, p1 = film.fourier_amplitudes(radii, angles)
     return DiskFilmSolution(
@@ -244,17 +243,16 @@ class _DiskFilm:
         import ufl
 
         self.mesh = mesh
-        self.space = space = dolfinx_compat.lagrange_space(mesh, DEGREE)
+        self.comm = domain.communicator(mesh)
+        self.space = space = spaces.lagrange_space(mesh, DEGREE)
         self.coordinates = ufl.SpatialCoordinate(mesh)
-        self.pressure = dolfinx_compat.function(space, name="pressure")
-        self.thickness = dolfinx_compat.function(space, name="film_thickness")
-        self.squeeze_rate = dolfinx_compat.function(space, name="squeeze_rate")
-        self.sliding = dolfinx_compat.constant(mesh, 0.0)
+        self.pressure = functions.function(space, name="pressure")
+        self.thickness = functions.function(space, name="film_thickness")
+        self.squeeze_rate = functions.function(space, name="squeeze_rate")
+        self.sliding = functions.constant(mesh, 0.0)
         self.fluidity = fluidity
-        self.edge_facets = dolfinx_compat.exterior_facets(mesh)
-        self.edge = dolfinx_compat.zero_condition(
-            space, dolfinx_compat.entity_dofs(space, 1, self.edge_facets)
-        )
+        self.edge_facets = domain.exterior_facets(mesh)
+        self.edge = assembly.zero_condition(space, spaces.entity_dofs(space, 1, self.edge_facets))
         test = ufl.TestFunction(space)
         mobility = self.thickness**3 / 12
         if fluidity is not None:
@@ -262,47 +260,34 @@ class _DiskFilm:
         source = self.squeeze_rate - self.sliding / 2 * self.thickness.dx(0)
         residual = mobility * ufl.inner(ufl.grad(self.pressure), ufl.grad(test)) + source * test
         residual = residual * ufl.dx
-        self.residual = dolfinx_compat.form(residual)
-        self.jacobian = dolfinx_compat.form(
+        self.residual = assembly.form(residual)
+        self.jacobian = assembly.form(
             ufl.derivative(residual, self.pressure, ufl.TrialFunction(space))
         )
 
     def set_data(self, radii, thickness, thickness_mode_one, squeeze_rate, squeeze_rate_mode_one):
         """Interpolate H and dH/dT (nodal on radii, or dH/dT a callable of (X, Y))."""
-        self.thickness.interpolate(_radial_field(radii, thickness, thickness_mode_one))
+        functions.interpolate(self.thickness, _radial_field(radii, thickness, thickness_mode_one))
         if callable(squeeze_rate):
-            self.squeeze_rate.interpolate(lambda x: squeeze_rate(x[0], x[1]))
+            functions.interpolate(self.squeeze_rate, lambda x: squeeze_rate(x[0], x[1]))
         else:
-            self.squeeze_rate.interpolate(_radial_field(radii, squeeze_rate, squeeze_rate_mode_one))
+            rate = _radial_field(radii, squeeze_rate, squeeze_rate_mode_one)
+            functions.interpolate(self.squeeze_rate, rate)
 
     def solve(self, p_cav: float) -> int:
         """Solve for the pressure (module docstring); return the SNES iterations."""
-        from petsc4py import PETSc
-
-        def configure(snes, vector):
-            if p_cav != -math.inf:
-                snes.setType("vinewtonrsls")
-                lower, upper = vector.duplicate(), vector.duplicate()
-                lower.set(p_cav)
-                upper.set(PETSc.INFINITY)
-                snes.setVariableBounds(lower, upper)
-                snes.setOptionsPrefix(OPTIONS_PREFIX)
-                PETSc.Options()[f"{OPTIONS_PREFIX}snes_linesearch_type"] = "basic"
-                snes.setFromOptions()
-            elif self.fluidity is not None:
-                snes.setType("newtonls")
-            else:
-                snes.setType("ksponly")
+        functions.local_values(self.pressure)[:] = 0.0
+        reason, iterations = solvers.solve_nonlinear(
+            self.residual,
+            self.jacobian,
+            [self.edge],
+            self.pressure,
             # a zero residual (no drive at all) is converged; otherwise relative to the first one
-            snes.setTolerances(rtol=TOLERANCE, atol=np.finfo(float).tiny, max_it=50)
-            ksp = snes.getKSP()
-            ksp.setType("preonly")
-            ksp.getPC().setType("lu")
-            ksp.getPC().setFactorSolverType("mumps")
-
-        self.pressure.x.array[:] = 0.0
-        reason, iterations = dolfinx_compat.solve_nonlinear(
-            self.residual, self.jacobian, [self.edge], self.pressure, configure
+            rtol=TOLERANCE,
+            atol=np.finfo(float).tiny,
+            max_iterations=50,
+            method="linear" if self.fluidity is None else "newton",
+            lower_bound=None if p_cav == -math.inf else p_cav,
         )
         if reason <= 0:
             raise RuntimeError(f"the disk film did not converge (SNES reason {reason})")
@@ -312,22 +297,21 @@ class _DiskFilm:
         """int ``integrand`` dA over the disk, summed over the ranks."""
         import ufl
 
-        return dolfinx_compat.integral(integrand * ufl.dx, self.mesh.comm)
+        return assembly.integral(integrand * ufl.dx, self.comm)
 
     def slope_force(self, radii, surface_sum) -> float:
         """int P dSigma/dX dA with the surface sum Sigma(R) interpolated at the vertices."""
-        sigma = dolfinx_compat.function(self.space)
-        sigma.interpolate(_radial_field(radii, surface_sum, np.zeros_like(surface_sum)))
+        sigma = functions.function(self.space)
+        functions.interpolate(sigma, _radial_field(radii, surface_sum, np.zeros_like(surface_sum)))
         return self.integral(self.pressure * sigma.dx(0))
 
     def cavitated_nodes(self, p_cav: float) -> int:
         """The number of owned vertices with P within CAVITATION_TOLERANCE of P_cav, summed."""
         from mpi4py import MPI
 
-        owned = self.space.dofmap.index_map.size_local
         limit = p_cav + CAVITATION_TOLERANCE * max(1.0, abs(p_cav))
-        local = int(np.count_nonzero(self.pressure.x.array[:owned] <= limit))
-        return self.mesh.comm.allreduce(local, op=MPI.SUM)
+        local = int(np.count_nonzero(functions.owned_values(self.pressure) <= limit))
+        return self.comm.allreduce(local, op=MPI.SUM)
 
     def fourier_amplitudes(self, radii, angles):
         """(p0, p1) at ``radii`` from the pressure on ``angles`` equally spaced angles."""
@@ -345,9 +329,9 @@ class _DiskFilm:
         the discrete domain, P = 0 there)."""
         from mpi4py import MPI
 
-        values, found = dolfinx_compat.point_values(self.pressure, points)
+        values, found = functions.point_values(self.pressure, points)
         counts = found.astype(float)
-        comm = self.mesh.comm
+        comm = self.comm
         comm.Allreduce(MPI.IN_PLACE, values, op=MPI.SUM)
         comm.Allreduce(MPI.IN_PLACE, counts, op=MPI.SUM)
         missing = counts == 0
@@ -359,6 +343,6 @@ class _DiskFilm:
         """The radius of the largest circle inside the polygonal boundary (all ranks)."""
         from mpi4py import MPI
 
-        midpoints = dolfinx_compat.facet_midpoints(self.mesh, self.edge_facets)
+        midpoints = domain.facet_midpoints(self.mesh, self.edge_facets)
         local = np.hypot(midpoints[:, 0], midpoints[:, 1]).min(initial=np.inf)
-        return self.mesh.comm.allreduce(local, op=MPI.MIN)
+        return self.comm.allreduce(local, op=MPI.MIN)

@@ -19,7 +19,7 @@ import numpy as np
 
 from meshes import contact
 
-from . import dolfinx_compat
+from ...fenicsx import domain, functions, spaces
 from .meshed import FACES
 
 BODIES = {contact.SPHERE: 0, contact.LOWER: 1, contact.COATING: 2}
@@ -88,8 +88,8 @@ class SolidsFields:
         solids = self.solids
         displacement = solids.displacement(nodal_pressure)
         vertices = self._vertex_mesh
-        vertices.function.interpolate(displacement)
-        values = vertices.function.x.array.reshape(-1, 2).copy()
+        functions.interpolate(vertices.function, displacement)
+        values = functions.local_values(vertices.function).reshape(-1, 2).copy()
         for body_vertices, centre in zip(vertices.body_vertices, solids.centres(), strict=True):
             values[body_vertices, 1] -= centre
         film = np.zeros(len(vertices.points))
@@ -109,26 +109,26 @@ class SolidsFields:
     def _vertex_mesh(self) -> _VertexMesh:
         """This rank's P1 mesh (built once); see :class:`_VertexMesh`."""
         bodies = self.solids.meshed
-        space = dolfinx_compat.lagrange_space(bodies.mesh, 1, vector=True)
-        cells, _, coordinates = dolfinx_compat.vtk_mesh(space)
-        owned = bodies.mesh.topology.index_map(2).size_local
+        space = spaces.lagrange_space(bodies.mesh, 1, vector=True)
+        cells, _, coordinates = spaces.vtk_mesh(space)
+        owned = domain.owned_cell_count(bodies.mesh)
         body_vertices = [
-            dolfinx_compat.entity_dofs(space, 2, bodies.cell_tags.find(body.cell_tag))
+            spaces.entity_dofs(space, 2, domain.tagged(bodies.cell_tags, body.cell_tag))
             for body in bodies.free_bodies
         ]
         upper = np.zeros(len(coordinates), dtype=bool)
         upper[body_vertices[0]] = True
         body = np.full(owned, -1, dtype=np.int32)
         for tag, region in BODIES.items():
-            cells_of_body = bodies.cell_tags.find(tag)
+            cells_of_body = domain.tagged(bodies.cell_tags, tag)
             body[cells_of_body[cells_of_body < owned]] = region
         return _VertexMesh(
-            function=dolfinx_compat.function(space),
+            function=functions.function(space),
             points=_read_only(coordinates[:, :2]),
             triangles=_read_only(cells.reshape(-1, 4)[:owned, 1:]),
             body_vertices=body_vertices,
             upper=_read_only(upper),
-            face_vertices=_read_only(dolfinx_compat.entity_dofs(space, 1, bodies.facets(*FACES))),
+            face_vertices=_read_only(spaces.entity_dofs(space, 1, bodies.facets(*FACES))),
             body=_read_only(body),
         )
 
@@ -140,23 +140,21 @@ class SolidsFields:
         import ufl
 
         mesh = self.solids.mesh
-        space = dolfinx_compat.cell_space(mesh)
+        space = spaces.cell_space(mesh)
         sigma = self.solids.stress(self.solids.displacement_function)
         deviator = sigma - ufl.tr(sigma) / 3 * ufl.Identity(3)
         expressions = {
-            "von_mises": dolfinx_compat.expression(
-                ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), space
-            ),
-            "hydrostatic": dolfinx_compat.expression(ufl.tr(sigma) / 3, space),
+            "von_mises": functions.expression(ufl.sqrt(1.5 * ufl.inner(deviator, deviator)), space),
+            "hydrostatic": functions.expression(ufl.tr(sigma) / 3, space),
         }
-        owned = mesh.topology.index_map(2).size_local
-        return dolfinx_compat.function(space), expressions, dolfinx_compat.cell_dofs(space, owned)
+        owned = domain.owned_cell_count(mesh)
+        return functions.function(space), expressions, spaces.cell_dofs(space, owned)
 
     def _cell_stresses(self) -> dict:
         """{"von_mises": ..., "hydrostatic": ...} per owned cell for the current displacement."""
         field, expressions, dofs = self._stress_measures
         stresses = {}
         for name, expression in expressions.items():
-            field.interpolate(expression)
-            stresses[name] = _read_only(field.x.array[dofs])
+            functions.interpolate(field, expression)
+            stresses[name] = _read_only(functions.local_values(field)[dofs])
         return stresses

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import dolfinx_compat
+from ...fenicsx import domain, libraries
 
 _CACHES = Path.home() / ".cache" / "ehdfem"
 MESH_CACHE = Path(os.environ.get("EHDFEM_MESH_CACHE", _CACHES / "meshes"))
@@ -51,8 +51,8 @@ def library_versions(meshing_only: bool = False) -> tuple:
 
     if meshing_only:
         return (f"gmsh {gmsh.__version__}",)
-    petsc = ".".join(map(str, dolfinx_compat.petsc().Sys.getVersion()))
-    return (f"gmsh {gmsh.__version__}", f"dolfinx {dolfinx_compat.version()}", f"petsc {petsc}")
+    dolfinx, petsc = libraries.dolfinx_version(), libraries.petsc_version()
+    return (f"gmsh {gmsh.__version__}", f"dolfinx {dolfinx}", f"petsc {petsc}")
 
 
 def load_or_build(gmsh, build, arguments) -> None:
@@ -104,6 +104,6 @@ def contact_mesh(comm, build, arguments):
     try:
         if comm.rank == 0:
             load_or_build(gmsh, build, arguments)
-        return dolfinx_compat.mesh_from_gmsh(gmsh.model, comm, 0, gdim=2)
+        return domain.mesh_from_gmsh(gmsh.model, comm, 0, gdim=2)
     finally:
         gmsh.finalize()

@@ -29,11 +29,12 @@ import numpy as np
 from meshes import contact
 
 from ... import checks
+from ...fenicsx import assembly, domain, functions, spaces
+from ...fenicsx.matrices import matrix_product
 from ...film.reynolds import Film
 from ..compliance import FILM_REACH_LIMIT
-from . import dolfinx_compat
 from .bodies import FreeBody, LowerBody, checked_material
-from .linear_algebra import interpolation_matrix, matrix_product
+from .linear_algebra import interpolation_matrix
 from .mesh import contact_mesh
 
 FACES = (contact.SPHERE_CONTACT, contact.LOWER_CONTACT)
@@ -109,7 +110,8 @@ class MeshedBodies:
 
     def facets(self, *tags) -> np.ndarray:
         """The local facets of the gmsh facet groups ``tags`` (e.g. FACES, the axis)."""
-        return np.concatenate([self.facet_tags.find(t) for t in tags] or [np.empty(0, np.int32)])
+        tagged = [domain.tagged(self.facet_tags, tag) for tag in tags]
+        return np.concatenate(tagged or [np.empty(0, np.int32)])
 
     @property
     def axis_facets(self) -> np.ndarray:
@@ -124,30 +126,32 @@ class MeshedBodies:
     @cached_property
     def lame(self):
         """(lambda, mu) per cell as UFL expressions, by E_ref, from E and nu of each body."""
-        cells = dolfinx_compat.cell_space(self.mesh)
-        young, poisson = dolfinx_compat.function(cells), dolfinx_compat.function(cells)
+        cells = spaces.cell_space(self.mesh)
+        young, poisson = functions.function(cells), functions.function(cells)
         for tag, (e, nu) in self.scaled_moduli.items():
-            tagged = self.cell_tags.find(tag)
-            young.x.array[tagged], poisson.x.array[tagged] = e, nu
+            tagged = domain.tagged(self.cell_tags, tag)
+            functions.local_values(young)[tagged] = e
+            functions.local_values(poisson)[tagged] = nu
         lmbda = young * poisson / ((1 + poisson) * (1 - 2 * poisson))
         return lmbda, young / (2 * (1 + poisson))
 
     def body_integral(self, integrand, cell_tag: int) -> float:
         """int ``integrand`` r dr dz over the body of ``cell_tag`` (UFL integrand), all ranks."""
-        return dolfinx_compat.integral(integrand * self.r * self.dx(cell_tag), self.comm)
+        return assembly.integral(integrand * self.r * self.dx(cell_tag), self.comm)
 
     def face_dofs(self, space, component: int, tag: int):
         """(rows, r): the owned rows of ``component`` of the vector ``space`` in its solution
         vector on the contact face ``tag``, and their radii r (by a)."""
-        parent, child = dolfinx_compat.entity_dofs(space, 1, self.facet_tags.find(tag), component)
-        _, collapsed = dolfinx_compat.sub_space(space, component)
-        keep = parent < space.dofmap.index_map.size_local * space.dofmap.index_map_bs
-        return parent[keep], collapsed.tabulate_dof_coordinates()[child[keep], 0]
+        facets = domain.tagged(self.facet_tags, tag)
+        parent, child = spaces.entity_dofs(space, 1, facets, component)
+        _, collapsed = spaces.sub_space(space, component)
+        keep = parent < spaces.owned_dof_count(space)
+        return parent[keep], spaces.dof_coordinates(collapsed)[child[keep], 0]
 
     @cached_property
     def profile_space(self):
         """The scalar P2 space of the traction profiles on the contact faces."""
-        return dolfinx_compat.lagrange_space(self.mesh, 2)
+        return spaces.lagrange_space(self.mesh, 2)
 
     def traction_matrix(self, work):
         """The PETSc matrix (unknowns x profile dofs) of int q ``work`` r ds over both contact
@@ -157,7 +161,7 @@ class MeshedBodies:
 
         q = ufl.TrialFunction(self.profile_space)
         faces = self.ds(FACES[0]) + self.ds(FACES[1])
-        return dolfinx_compat.assemble_matrix(dolfinx_compat.form(q * work * self.r * faces), [])
+        return assembly.assemble_matrix(assembly.form(q * work * self.r * faces), [])
 
     def face_tangent(self):
         """The unit tangent of the contact faces pointing away from the axis, sign(n_z) (n_z,
@@ -175,11 +179,11 @@ class MeshedBodies:
         import scipy.sparse
 
         space = self.profile_space
-        owned = space.dofmap.index_map.size_local
-        r = space.tabulate_dof_coordinates()[:owned, 0]
+        owned = spaces.owned_dof_count(space)
+        r = spaces.dof_coordinates(space)[:owned, 0]
         hats = []
         for tag in FACES:
-            dofs = dolfinx_compat.entity_dofs(space, 1, self.facet_tags.find(tag))
+            dofs = spaces.entity_dofs(space, 1, domain.tagged(self.facet_tags, tag))
             on_face = scipy.sparse.diags(np.isin(np.arange(owned), dofs).astype(float))
             hats.append(on_face @ interpolation_matrix(self.radii_a, r))
         return hats

@@ -71,10 +71,10 @@ from functools import cached_property
 import numpy as np
 
 from ... import checks
+from ...fenicsx import assembly, domain, functions, matrices, spaces
+from ...fenicsx.matrices import CholeskySolver, scipy_matrix
 from ..compliance import MODE_ONE_LOADS, ModeOneCompliance
-from . import dolfinx_compat
 from .condensation import RigidMotions, balanced_condensation
-from .linear_algebra import CholeskySolver, scipy_matrix
 from .mesh import cached_matrices
 from .solids import FESolids
 
@@ -90,7 +90,7 @@ TRACTIONS = ("pressure", "radial", "hoop")
 
 def mode_one_space(mesh):
     """The P2 space of the unknowns (S, D, U_z) (module docstring) on the (r, z) ``mesh``."""
-    return dolfinx_compat.lagrange_space(mesh, DEGREE, vector=True, components=3)
+    return spaces.lagrange_space(mesh, DEGREE, vector=True, components=3)
 
 
 def amplitudes(unknowns):
@@ -128,7 +128,7 @@ def stiffness_form(space, lame):
     QUADRATURE_DEGREE."""
     import ufl
 
-    r = ufl.SpatialCoordinate(space.mesh)[0]
+    r = ufl.SpatialCoordinate(spaces.mesh_of(space))[0]
     u, v = ufl.TrialFunction(space), ufl.TestFunction(space)
     dx = ufl.dx(metadata={"quadrature_degree": QUADRATURE_DEGREE})
     return ufl.inner(stress(strain(u, r), lame), strain(v, r)) * r * dx
@@ -137,29 +137,28 @@ def stiffness_form(space, lame):
 def zero_condition(space, component: int, dofs):
     """A homogeneous Dirichlet condition on unknown ``component`` (0: S, 1: D, 2: U_z) of
     ``space`` at ``dofs``, the pair (parent, collapsed) of a
-    :func:`ehdfem.solids.fe.dolfinx_compat.entity_dofs` or ``point_dofs`` call with that
+    :func:`ehdfem.fenicsx.spaces.entity_dofs` or ``point_dofs`` call with that
     component; returns (condition, owned rows of the solution vector)."""
     parent = dofs[0]
-    owned = space.dofmap.index_map.size_local * space.dofmap.index_map_bs
-    return dolfinx_compat.zero_condition(space, dofs, component), parent[parent < owned]
+    owned = spaces.owned_dof_count(space)
+    return assembly.zero_condition(space, dofs, component), parent[parent < owned]
 
 
 def axis_conditions(space, axis_facets):
     """The axis regularity conditions D = 0 and U_z = 0 on the facets ``axis_facets`` (r = 0):
     a list of (condition, owned rows), as :func:`zero_condition`."""
-    return [
-        zero_condition(space, k, dolfinx_compat.entity_dofs(space, 1, axis_facets, k))
-        for k in (1, 2)
-    ]
+    return [zero_condition(space, k, spaces.entity_dofs(space, 1, axis_facets, k)) for k in (1, 2)]
 
 
 def rigid_motions(space, cells, centre_z: float):
     """The x translation and the rotation about y through z = ``centre_z`` (by a) as functions
     of the unknowns (S, D, U_z) on ``space``, zero outside ``cells``: (1, 0, 0) and
     (z - z_c, 0, -r), per unit displacement and per unit angle."""
-    translation, rotation = dolfinx_compat.function(space), dolfinx_compat.function(space)
-    translation.interpolate(lambda x: np.vstack([np.ones_like(x[0]), 0 * x[0], 0 * x[0]]), cells)
-    rotation.interpolate(lambda x: np.vstack([x[1] - centre_z, 0 * x[0], -x[0]]), cells)
+    translation, rotation = functions.function(space), functions.function(space)
+    functions.interpolate(
+        translation, lambda x: np.vstack([np.ones_like(x[0]), 0 * x[0], 0 * x[0]]), cells
+    )
+    functions.interpolate(rotation, lambda x: np.vstack([x[1] - centre_z, 0 * x[0], -x[0]]), cells)
     return translation, rotation
 
 
@@ -219,8 +218,7 @@ class FEModeOne(ModeOneCompliance):
         afterwards."""
         if "_assembly" in self.__dict__:
             self._assembly.solver.close()
-            for petsc_object in self._assembly.tractions.values():
-                petsc_object.destroy()
+            matrices.free(*self._assembly.tractions.values())
 
     @cached_property
     def _assembly(self) -> _Assembly:
@@ -228,8 +226,8 @@ class FEModeOne(ModeOneCompliance):
         first solve: it is symmetric positive definite once pinned); set up the traction
         matrices and the free bodies. Collective."""
         conditions = self._constraints()
-        stiffness = dolfinx_compat.assemble_matrix(
-            dolfinx_compat.form(stiffness_form(self.space, self.solids.meshed.lame)),
+        stiffness = assembly.assemble_matrix(
+            assembly.form(stiffness_form(self.space, self.solids.meshed.lame)),
             [bc for bc, _ in conditions],
         )
         return _Assembly(
@@ -248,12 +246,11 @@ class FEModeOne(ModeOneCompliance):
         if bodies.lower.clamped:
             clamped = bodies.clamped_facets
             conditions += [
-                zero_condition(space, k, dolfinx_compat.entity_dofs(space, 1, clamped, k))
-                for k in range(3)
+                zero_condition(space, k, spaces.entity_dofs(space, 1, clamped, k)) for k in range(3)
             ]
         for body in bodies.free_bodies:
             for k, (r, z) in ((0, (0.0, body.pole_z)), (2, (body.radius, body.centre_z))):
-                dofs = dolfinx_compat.point_dofs(
+                dofs = spaces.point_dofs(
                     space, lambda x, r=r, z=z: np.isclose(x[0], r) & np.isclose(x[1], z), k
                 )
                 pin = zero_condition(space, k, dofs)
@@ -281,16 +278,15 @@ class FEModeOne(ModeOneCompliance):
         bodies, space = self.solids.meshed, self.space
         r, z = ufl.SpatialCoordinate(bodies.mesh)
         centre = bodies.body_integral(z, cell_tag) / bodies.body_integral(1.0, cell_tag)
-        motions = rigid_motions(space, bodies.cell_tags.find(cell_tag), centre)
+        motions = rigid_motions(space, domain.tagged(bodies.cell_tags, cell_tag), centre)
         v = amplitudes(ufl.TestFunction(space))
         inertia = [
-            dolfinx_compat.assemble_vector(
-                dolfinx_compat.form(ufl.dot(amplitudes(motion), v) * r * bodies.dx(cell_tag)), []
-            ).getArray()
+            assembly.assembled_values(
+                assembly.form(ufl.dot(amplitudes(motion), v) * r * bodies.dx(cell_tag))
+            )
             for motion in motions
         ]
-        owned = len(inertia[0])
-        motions = np.column_stack([motion.x.array[:owned] for motion in motions])
+        motions = np.column_stack([functions.owned_values(motion) for motion in motions])
         inertia = np.column_stack(inertia)
         return RigidMotions(motions, inertia, bodies.comm.allreduce(inertia.T @ motions))
 
@@ -404,9 +400,8 @@ class FEModeOne(ModeOneCompliance):
         for kind in TRACTIONS[1:]:
             profiles[kind] = (shear * by_name[f"sphere_{kind}"], shear * by_name[f"wall_{kind}"])
         s, d, u_z = self._solve(self._loads(profiles))[:, 0].reshape(-1, 3).T
-        field = dolfinx_compat.function(self.space)
-        field.x.array[: 3 * len(s)] = (
-            self.factor(self.eps) * np.column_stack([s + d, s - d, u_z]).ravel()
+        field = functions.function(self.space)
+        functions.set_owned_values(
+            field, self.factor(self.eps) * np.column_stack([s + d, s - d, u_z]).ravel()
         )
-        field.x.scatter_forward()
         return field

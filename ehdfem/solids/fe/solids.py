@@ -37,7 +37,7 @@ their mesh and the film loads on it :mod:`ehdfem.solids.fe.meshed` (shared with 
 solids); this module solves and condenses. Besides the compliance, :meth:`FESolids.deformation`
 gives the whole solids under one film pressure (:mod:`ehdfem.solids.fe.fields`) for the field
 exports (:mod:`ehdfem.outputs.fields`) and the pictures (:mod:`ehdfem.outputs.render`). Every
-DOLFINx call goes through :mod:`ehdfem.solids.fe.dolfinx_compat`.
+DOLFINx call goes through :mod:`ehdfem.fenicsx`.
 """
 
 from __future__ import annotations
@@ -50,12 +50,14 @@ from functools import cached_property
 import numpy as np
 
 from ... import checks
+from ...fenicsx import assembly, domain, functions, libraries, matrices, schur, spaces
+from ...fenicsx.matrices import CholeskySolver, scipy_matrix
 from ..compliance import LinearCompliance
-from . import dolfinx_compat, linear_algebra, meshed
+from . import condensation, linear_algebra, meshed
 from .bodies import LowerBody, lower_body
 from .condensation import RigidMotions, balanced_condensation
 from .fields import Deformation, SolidsFields
-from .linear_algebra import CholeskySolver, interpolation_matrix, scipy_matrix
+from .linear_algebra import interpolation_matrix
 from .mesh import cached_matrices
 from .meshed import MeshedBodies
 
@@ -173,13 +175,14 @@ class FESolids:
         """The code whose source keys the cached matrices of these solids (with
         ``cache_arguments``: the mesh generator's arguments, the scaled moduli per cell tag and
         the degree; :func:`ehdfem.solids.fe.mesh.cached_matrices`)."""
-        modules = [sys.modules[__name__], meshed, linear_algebra, dolfinx_compat]
+        modules = [sys.modules[__name__], meshed, linear_algebra, condensation]
+        modules += [assembly, domain, functions, libraries, matrices, schur, spaces]
         return [*modules, type(self.meshed.lower), inspect.getmodule(self.meshed.build)]
 
     @property
     def dofs(self) -> int:
         """Number of displacement unknowns (both components, all ranks)."""
-        return 2 * self.space.dofmap.index_map.size_global
+        return spaces.dof_count(self.space)
 
     def strain(self, v):
         """The strain of the displacement ``v`` (r-weighted axisymmetric form), as a 3x3 (r,
@@ -204,12 +207,12 @@ class FESolids:
         import ufl
 
         bodies = self.meshed
-        V = self.space = dolfinx_compat.lagrange_space(bodies.mesh, degree, vector=True)
+        V = self.space = spaces.lagrange_space(bodies.mesh, degree, vector=True)
         u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
         self._test = v
         self._bcs = self._constraints()
-        stiffness = dolfinx_compat.assemble_matrix(
-            dolfinx_compat.form(ufl.inner(self.stress(u), self.strain(v)) * bodies.r * ufl.dx),
+        stiffness = assembly.assemble_matrix(
+            assembly.form(ufl.inner(self.stress(u), self.strain(v)) * bodies.r * ufl.dx),
             self._bcs,
         )
         # symmetric positive definite once the constraints remove the rigid motions: Cholesky
@@ -219,25 +222,25 @@ class FESolids:
             "pressure": bodies.traction_matrix(-ufl.dot(n, v)),
             "shear": bodies.traction_matrix(ufl.dot(bodies.face_tangent(), v)),
         }
-        self._u = dolfinx_compat.function(V)
-        self._constrained = dolfinx_compat.constrained_rows(
-            dolfinx_compat.form(v[0] * bodies.r * ufl.dx), self._bcs
+        self._u = functions.function(V)
+        self._constrained = assembly.constrained_rows(
+            assembly.form(v[0] * bodies.r * ufl.dx), self._bcs
         )
 
     def _constraints(self):
         """Dirichlet conditions: u_r = 0 on the axis, the lower body's clamped facets (a wall's
         base) and u_z = 0 at the far pole of each free body."""
         V, bodies = self.space, self.meshed
-        axis = dolfinx_compat.entity_dofs(V, 1, bodies.axis_facets, 0)
-        bcs = [dolfinx_compat.zero_condition(V, axis, 0)]
+        axis = spaces.entity_dofs(V, 1, bodies.axis_facets, 0)
+        bcs = [assembly.zero_condition(V, axis, 0)]
         if bodies.lower.clamped:
-            clamped = dolfinx_compat.entity_dofs(V, 1, bodies.clamped_facets)
-            bcs.append(dolfinx_compat.zero_condition(V, clamped))
+            clamped = spaces.entity_dofs(V, 1, bodies.clamped_facets)
+            bcs.append(assembly.zero_condition(V, clamped))
         for body in self.free_bodies:
-            pole = dolfinx_compat.point_dofs(
+            pole = spaces.point_dofs(
                 V, lambda p, z=body.pole_z: np.isclose(p[0], 0) & np.isclose(p[1], z), 1
             )
-            bcs.append(dolfinx_compat.zero_condition(V, pole, 1))
+            bcs.append(assembly.zero_condition(V, pole, 1))
         return bcs
 
     def _film_loads(self, pressure: np.ndarray, shear: np.ndarray | None = None) -> np.ndarray:
@@ -275,8 +278,7 @@ class FESolids:
             for x in (nodal_pressure, nodal_shear)
         ]
         values = self._solver.solve(self._film_loads(*columns))
-        self._u.x.array[: len(values)] = values[:, 0]
-        self._u.x.scatter_forward()
+        functions.set_owned_values(self._u, values[:, 0])
         return self._u
 
     @property
@@ -288,7 +290,7 @@ class FESolids:
         """Centre-of-mass u_z (by a p/E_ref) of each free body for the current displacement,
         in the order of ``free_bodies``."""
         return [
-            self.comm.allreduce(body.inertia[:, 0] @ self._u.x.array[: len(body.inertia)])
+            self.comm.allreduce(body.inertia[:, 0] @ functions.owned_values(self._u))
             for body in self._free_motions
         ]
 
@@ -296,8 +298,7 @@ class FESolids:
         """W (in units of a p/E_ref) at the film nodes for the current displacement: the
         pressure loads' read-outs G_i . u' / m_i of both faces, u' relative to the free
         bodies' centres (module docstring)."""
-        owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
-        values = self._u.x.array[:owned, None]
+        values = functions.owned_values(self._u)[:, None]
         for body in self._free_motions:
             values = body.relative(values, self.comm)
         upper, lower = self.meshed.face_read_outs(self._tractions["pressure"], values)
@@ -421,15 +422,13 @@ class FESolids:
         dofs, 0 elsewhere), with the vector w_b of its centre-of-mass u_z (w_b . u: the mean
         u_z over the body, w_b . Z_b = 1), as :class:`RigidMotions` (module docstring)."""
         motions, bodies = [], self.meshed
-        owned = self.space.dofmap.index_map.size_local * self.space.dofmap.index_map_bs
         for body in self.free_bodies:
-            translation = dolfinx_compat.function(self.space)
-            cells = bodies.cell_tags.find(body.cell_tag)
-            translation.interpolate(lambda x: np.vstack([0 * x[0], 1 + 0 * x[0]]), cells)
-            form = dolfinx_compat.form(self._test[1] * bodies.r * bodies.dx(body.cell_tag))
-            vector = dolfinx_compat.assemble_vector(form, [])
-            weights = vector.getArray() / bodies.body_integral(1, body.cell_tag)
-            motion = translation.x.array[:owned, None].copy()
+            translation = functions.function(self.space)
+            cells = domain.tagged(bodies.cell_tags, body.cell_tag)
+            functions.interpolate(translation, lambda x: np.vstack([0 * x[0], 1 + 0 * x[0]]), cells)
+            form = assembly.form(self._test[1] * bodies.r * bodies.dx(body.cell_tag))
+            weights = assembly.assembled_values(form) / bodies.body_integral(1, body.cell_tag)
+            motion = functions.owned_values(translation)[:, None].copy()
             motions.append(RigidMotions(motion, weights[:, None], np.eye(1)))
         return motions
 

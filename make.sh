@@ -107,10 +107,11 @@ run_example() {
 WHEEL_VENV=.venv-wheel
 WHEEL_PY=$WHEEL_VENV/bin/python
 # The test files of the FE stack: those that import DOLFINx, UFL, gmsh, meshio, pyvista or
-# mpi4py, or build the FE model, its outputs or the bounce's resolved flows; and the stored
-# table of 23 collisions (FE and half-space: Debian's results, at its 1e-8 on numpy 2 too).
+# mpi4py, or the seam ehdfem.fenicsx, or build the FE model, its outputs or the bounce's resolved
+# flows; and the stored table of 23 collisions (FE and half-space: Debian's results, at its 1e-8
+# on numpy 2 too).
 WHEEL_TABLE=tests/test_regression.py::test_outputs_equal_the_stored_table
-WHEEL_TESTS='^\s*(import|from) (dolfinx|ufl|gmsh|meshio|pyvista|mpi4py)\b|solids\.fe|"fem"|ehdfem\.bounce|ehdfem\.outputs\.(render|fields)|tangential\.disk'
+WHEEL_TESTS='^\s*(import|from) (dolfinx|ufl|gmsh|meshio|pyvista|mpi4py)\b|solids\.fe|"fem"|ehdfem\.bounce|ehdfem\.outputs\.(render|fields)|tangential\.disk|from ehdfem\.fenicsx'
 
 wheel_python() {
     # The first Python >= 3.12: python3.12, 3.13 or 3.14 on PATH, else one of pyenv's.

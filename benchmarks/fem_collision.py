@@ -29,6 +29,7 @@ import numpy as np
 from mpi4py import MPI
 
 from ehdfem.collision import DEFAULT_NODES, film_radii
+from ehdfem.fenicsx import domain
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import from_presets
 from ehdfem.motion.normal import solve_normal
@@ -81,7 +82,7 @@ def main():
                 times[name] = (elapsed, result.e_n)
     out = {
         "film_nodes": len(radii),
-        "cells": solids.mesh.topology.index_map(2).size_global,
+        "cells": domain.cell_count(solids.mesh),
         "dofs": solids.dofs,
         "ranks": MPI.COMM_WORLD.size,
         "mesh_seconds": mesh_time,

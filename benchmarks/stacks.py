@@ -69,6 +69,7 @@ def run(out: Path, mesh_file: str | None) -> None:
     from mpi4py import MPI
 
     from ehdfem.collision import DEFAULT_NODES, collide, film_radii
+    from ehdfem.fenicsx import domain
     from ehdfem.inputs.presets import EXAMPLE
     from ehdfem.inputs.scales import from_presets
     from ehdfem.solids.fe import mesh as fem_mesh
@@ -106,7 +107,7 @@ def run(out: Path, mesh_file: str | None) -> None:
     record = {
         "stack": _stack(),
         "mesh": mesh_file or "own",
-        "cells": solids.mesh.topology.index_map(2).size_global,
+        "cells": domain.cell_count(solids.mesh),
         "dofs": solids.dofs,
         "outputs": {name: result[name] for name in OUTPUTS},
         "fields": fields,

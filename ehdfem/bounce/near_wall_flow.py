@@ -108,11 +108,10 @@ class NearWallFlow:
         self.gaps = [reference_gap] * 2  # the mesh's gap at the last two steps (before, last)
         self.velocities = [0.0, 0.0]  # the sphere's velocity at the last two steps
         self.sphere_velocity = functions.constant(mesh, 0.0)
-        sphere, wall = domain.tagged(facets, liquid.SPHERE), domain.tagged(facets, liquid.WALL)
+        axis, sphere = domain.tagged(facets, liquid.AXIS), domain.tagged(facets, liquid.SPHERE)
+        wall = domain.tagged(facets, liquid.WALL)
         self.bcs = [
-            assembly.velocity_component_condition(
-                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
-            ),
+            assembly.velocity_component_condition(space, 0, axis, 0.0),
             assembly.velocity_component_condition(space, 0, sphere, 0.0),
             assembly.velocity_component_condition(space, 1, sphere, self.sphere_velocity),
             assembly.velocity_component_condition(space, 0, wall, 0.0),

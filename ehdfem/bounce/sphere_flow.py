@@ -67,18 +67,14 @@ class SphereFlow:
         self.steps = Bdf2Steps(space)
         self.now = self.steps.now
         self.far = functions.constant(mesh, 0.0)
-        sphere, outer_facets = (
-            domain.tagged(facets, liquid.SPHERE),
-            domain.tagged(facets, liquid.OUTER),
-        )
+        axis, sphere = domain.tagged(facets, liquid.AXIS), domain.tagged(facets, liquid.SPHERE)
+        outer_facets = domain.tagged(facets, liquid.OUTER)
         # the velocity is given on the whole boundary but the axis: P is fixed at one point
         top = spaces.point_dofs(
             space, lambda x: np.isclose(x[0], 0.0) & np.isclose(x[1], outer), component=1
         )
         self.bcs = [
-            assembly.velocity_component_condition(
-                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
-            ),
+            assembly.velocity_component_condition(space, 0, axis, 0.0),
             assembly.velocity_component_condition(space, 0, sphere, 0.0),
             assembly.velocity_component_condition(space, 1, sphere, 0.0),
             assembly.velocity_component_condition(space, 0, outer_facets, 0.0),

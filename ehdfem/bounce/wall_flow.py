@@ -66,11 +66,9 @@ class WallFlow:
         self.bilinear = assembly.form(residual(u, p, v, q))
         zero = functions.constant(mesh, 0.0)
         self.linear = assembly.form(zero * v[1] * r * ufl.dx)
-        sphere = domain.tagged(facets, liquid.SPHERE)
+        axis, sphere = domain.tagged(facets, liquid.AXIS), domain.tagged(facets, liquid.SPHERE)
         self.bcs = [
-            assembly.velocity_component_condition(
-                space, 0, domain.tagged(facets, liquid.AXIS), 0.0
-            ),
+            assembly.velocity_component_condition(space, 0, axis, 0.0),
             assembly.velocity_component_condition(space, 0, sphere, 0.0),
             assembly.velocity_component_condition(space, 1, sphere, 1.0),
         ]

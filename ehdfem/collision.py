@@ -15,7 +15,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from . import checks
-from .config import DEFAULT_NODES, LOWER_SPHERE_SLIDING, MODELS, RunConfig
+from .config import DEFAULT_NODES, MODELS, RunConfig, curved_lower_sliding
 from .exact import hertz
 from .film import cavitation, viscosity
 from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
@@ -132,16 +132,7 @@ def elasticity(
             )
         from .solids.fe.solids import FESolids
 
-        lower = config.lower
-        fe = FESolids(
-            params.delta,
-            radii,
-            sphere=sphere,
-            wall=wall,
-            lower=lower.kind,
-            comm=comm,
-            **lower.solids(wall[0]),
-        )
+        fe = FESolids(params.delta, radii, sphere=sphere, wall=wall, lower=config.lower, comm=comm)
         return fe.compliance(params.eps, shear=shear)
 
 
@@ -164,8 +155,9 @@ def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, phy
     if compliance.model == "fem":
         from .solids.fe.mode_one import FEModeOne
 
-        if compliance.solids.lower == "sphere":
-            raise checks.InputError(LOWER_SPHERE_SLIDING)
+        lower = compliance.solids.lower
+        if lower.radius is not None:
+            raise checks.InputError(curved_lower_sliding(lower.kind))
         return FEModeOne(compliance.solids, params.eps)
     from .solids.halfspace_mode_one import HalfSpaceModeOne
 

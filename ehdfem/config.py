@@ -1,13 +1,13 @@
 """The run configuration: how a collision is computed, beside what collides
 (:class:`ehdfem.inputs.scales.CollisionParameters` or ``PhysicalCollision``).
 
-:class:`RunConfig` holds the elasticity model, the lower body (:class:`Wall`;
-:class:`CoatedWall` for the FE model; :class:`LowerSphere`, a second free sphere, in both),
-the tangential film model and its mode-1 deformation, and the numerics (:class:`Numerics`:
-film nodes, refinements and the time integration's
-:class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its help, unit or
-scale and allowed values (:mod:`ehdfem.settings`); lengths of the lower body are scaled
-by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
+:class:`RunConfig` holds the elasticity model, the lower body (a registered
+:class:`ehdfem.solids.fe.bodies.LowerBody`: :class:`Wall`; :class:`CoatedWall` for the FE model;
+:class:`LowerSphere`, a second free sphere, in both), the tangential film model and its mode-1
+deformation, and the numerics (:class:`Numerics`: film nodes, refinements and the time
+integration's :class:`ehdfem.motion.timestepping.IntegratorOptions`). Every field carries its
+help, unit or scale and allowed values (:mod:`ehdfem.settings`); lengths of the lower
+body are scaled by the (reduced) sphere radius a, moduli by the wall's Young's modulus.
 
 Its flat form (:meth:`RunConfig.settings`, :meth:`RunConfig.from_settings`) names every
 setting once (model, lower, coating_thickness, ..., nodes, rtol, order, ...): the keys of
@@ -17,14 +17,15 @@ rebuilds the inputs and the configuration of a collision from its JSON ``inputs`
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
-from typing import ClassVar
 
 from . import checks
 from .inputs.presets import Liquid, Material
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.timestepping import IntegratorOptions
 from .settings import described, setting, validate, without_other_components
+from .solids.fe.bodies import LOWER_BODIES, LowerBody, Wall
 from .tangential.motion import DEFORMATIONS
 from .tangential.motion import MODELS as TANGENTIAL_MODELS
 from .tangential.outer_film import OUTER_FLOWS, check_outer_flow
@@ -32,86 +33,6 @@ from .tangential.pair import PAIR_MODELS
 
 MODELS = ("halfspace", "fem")
 DEFAULT_NODES = 240
-
-
-@dataclass(frozen=True)
-class Wall:
-    """The FE model's default lower body: an elastic wall block of the wall's material."""
-
-    kind: ClassVar[str] = "wall"
-
-    def __post_init__(self):
-        validate(self)
-
-    def solids(self, wall_modulus: float) -> dict:
-        """Arguments of :class:`ehdfem.solids.fe.solids.FESolids` for this body."""
-        return {}
-
-
-@dataclass(frozen=True)
-class CoatedWall:
-    """A wall block under a coating of thickness t (by a) and Young's modulus E_c (by the
-    wall's, the substrate's) with its Poisson ratio."""
-
-    kind: ClassVar[str] = "coated"
-    coating_thickness: float = setting(
-        help="coating thickness t", unit="by a", lower=0.0, lower_open=True
-    )
-    coating_stiffness: float = setting(
-        1.0, help="coating Young's modulus E_c", unit="by the wall's", lower=0.0, lower_open=True
-    )
-    coating_poisson: float = setting(
-        0.3, help="coating Poisson ratio", lower=-1.0, upper=0.5, lower_open=True, upper_open=True
-    )
-
-    def __post_init__(self):
-        validate(self)
-
-    def solids(self, wall_modulus: float) -> dict:
-        """Arguments of FESolids: the coating as (E_c, nu_c), E_c in the wall's unit."""
-        coating = (self.coating_stiffness * wall_modulus, self.coating_poisson)
-        return {"coating": coating, "coating_thickness": self.coating_thickness}
-
-
-@dataclass(frozen=True)
-class LowerSphere:
-    """A second, free sphere below: a is the reduced radius a1 a2 / (a1 + a2) and m the
-    reduced mass m1 m2 / (m1 + m2), in both elasticity models. For its tangential motion
-    (:mod:`ehdfem.tangential.pair`): its density over the upper sphere's, its inertia factor
-    k2 = I2 / (m2 a2^2) and its initial spin a2 Omega2 / V0, counted about the same axis as the
-    upper sphere's (its surface at the contact then moves at U2 + a2 Omega2 along x)."""
-
-    kind: ClassVar[str] = "sphere"
-    radius_ratio: float = setting(
-        1.0, help="upper sphere radius / lower sphere radius a1/a2", lower=0.0, lower_open=True
-    )
-    density_ratio: float = setting(
-        1.0, help="lower sphere density / upper sphere density rho2/rho1 (mean densities)",
-        lower=0.0, lower_open=True,
-    )  # fmt: skip
-    lower_inertia_factor: float = setting(
-        0.4, help="lower sphere inertia I2 / (m2 a2^2) (2/5 solid, 2/3 thin shell)", lower=0.0,
-        upper=2 / 3, lower_open=True,
-    )  # fmt: skip
-    lower_spin: float = setting(
-        0.0, help="lower sphere's initial spin about the upper sphere's spin axis (its surface "
-        "at the contact moves at a2 Omega2 along the tangential velocity)", unit="a2 Omega2 / V0",
-    )  # fmt: skip
-
-    def __post_init__(self):
-        validate(self)
-
-    @property
-    def mass_ratio(self) -> float:
-        """m1 / m2 = (a1/a2)^3 / (rho2/rho1)."""
-        return self.radius_ratio**3 / self.density_ratio
-
-    def solids(self, wall_modulus: float) -> dict:
-        """Arguments of FESolids: the radius ratio."""
-        return {"radius_ratio": self.radius_ratio}
-
-
-LOWER_BODIES = {body.kind: body for body in (Wall, CoatedWall, LowerSphere)}
 
 
 @dataclass(frozen=True)
@@ -132,13 +53,16 @@ class Numerics:
             )
 
 
-LOWER_SPHERE_SLIDING = (
-    "tangential = 'lubrication' or 'gcb' needs a wall or coated wall below the sphere (lower "
-    "= 'sphere' is not supported: their film pressure is driven by each surface's velocity "
-    "relative to the gap, not by the slip alone, and the two spheres' share of its force and "
-    "torque is not derived, docs/tangential.md 'Two spheres'); use tangential = 'couette' or "
-    "'flat'"
-)
+def curved_lower_sliding(kind: str) -> str:
+    """The refusal of the tangential films derived for a flat lower body only, over a curved
+    lower body of ``kind``."""
+    return (
+        "tangential = 'lubrication' or 'gcb' needs a wall or coated wall below the sphere (lower "
+        f"= {kind!r} is not supported: their film pressure is driven by each surface's velocity "
+        "relative to the gap, not by the slip alone, and the two spheres' share of its force and "
+        "torque is not derived, docs/tangential.md 'Two spheres'); use tangential = 'couette' or "
+        "'flat'"
+    )
 
 
 @dataclass(frozen=True)
@@ -153,7 +77,7 @@ class RunConfig:
         help="elasticity of the solids: half-space kernel or FE solids",
         choices=MODELS,
     )
-    lower: Wall | CoatedWall | LowerSphere = field(default_factory=Wall)
+    lower: LowerBody = field(default_factory=Wall)
     tangential: str = setting(
         "couette",
         help="film model of the tangential motion: 'couette' (the source's shear only), "
@@ -180,22 +104,27 @@ class RunConfig:
 
     def __post_init__(self):
         validate(self)
-        if type(self.lower) not in LOWER_BODIES.values():
+        if LOWER_BODIES.get(getattr(self.lower, "kind", None)) is not type(self.lower):
             raise checks.InputError(
-                f"lower must be Wall, CoatedWall or LowerSphere, got {self.lower!r}", "lower"
+                f"lower must be a registered lower body ({', '.join(LOWER_BODIES)}), got "
+                f"{self.lower!r}",
+                "lower",
             )
         if not isinstance(self.numerics, Numerics):
             raise checks.InputError(f"numerics must be Numerics, got {self.numerics!r}")
-        if self.lower.kind == "coated" and self.model != "fem":
+        if self.model not in self.lower.models:
             raise checks.InputError(
-                "lower = 'coated' needs model = 'fem' (the half-space is uniform)", "lower"
+                f"lower = {self.lower.kind!r} needs model = "
+                f"{' or '.join(map(repr, self.lower.models))} (the half-space model stands for "
+                "a uniform wall or a second sphere)",
+                "lower",
             )
-        if self.tangential not in PAIR_MODELS and self.lower.kind == "sphere":
-            raise checks.InputError(LOWER_SPHERE_SLIDING, "tangential")
-        if self.outer_flow == "exact" and self.lower.kind == "sphere":
+        if self.tangential not in PAIR_MODELS and self.lower.radius is not None:
+            raise checks.InputError(curved_lower_sliding(self.lower.kind), "tangential")
+        if self.outer_flow == "exact" and self.lower.radius is not None:
             raise checks.InputError(
-                "outer_flow = 'exact' needs a wall below: its resistances are a sphere's near a "
-                "wall",
+                "outer_flow = 'exact' needs a flat lower body, a wall below: its resistances are "
+                f"a sphere's near a wall (lower = {self.lower.kind!r} is curved)",
                 "outer_flow",
             )
 
@@ -237,7 +166,7 @@ class RunConfig:
                 f"{', '.join(setting_names())}",
                 unknown[0],
             )
-        kind = checks.choice("lower", values.pop("lower", "wall"), tuple(LOWER_BODIES))
+        kind = checks.choice("lower", values.pop("lower", Wall.kind), tuple(LOWER_BODIES))
         for other, body in LOWER_BODIES.items():
             for f in described(body):
                 if f.name in values and other != kind:
@@ -251,9 +180,11 @@ class RunConfig:
         numerics = Numerics(
             **parts[Numerics], integrator=IntegratorOptions(**parts[IntegratorOptions])
         )
-        return cls(
-            **values, lower=LOWER_BODIES[kind](**parts[LOWER_BODIES[kind]]), numerics=numerics
-        )
+        body = LOWER_BODIES[kind]
+        for f in dataclasses.fields(body):
+            if f.name not in parts[body] and f.default is f.default_factory is dataclasses.MISSING:
+                raise checks.InputError(f"lower = {kind!r} needs {f.name}", f.name)
+        return cls(**values, lower=body(**parts[body]), numerics=numerics)
 
 
 def setting_classes() -> tuple:

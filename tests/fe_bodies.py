@@ -2,8 +2,10 @@
 coated wall (coating E ratio 0.2, nu 0.45, 0.02 a thick) and a lower sphere of twice the
 radius."""
 
+from ehdfem.solids.fe.bodies import CoatedWall, LowerSphere
+
 LOWER_BODIES = [
     {},
-    {"lower": "coated", "coating": (0.2, 0.45), "coating_thickness": 0.02},
-    {"lower": "sphere", "radius_ratio": 2.0},
+    {"lower": CoatedWall(0.02, 0.2, 0.45)},
+    {"lower": LowerSphere(2.0)},
 ]

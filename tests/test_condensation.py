@@ -9,6 +9,7 @@ from mpi4py import MPI
 
 from ehdfem.fenicsx.schur import condensed
 from ehdfem.film.grid import radial_grid
+from ehdfem.solids.fe.bodies import CoatedWall, LowerSphere
 from ehdfem.solids.fe.condensation import RigidMotions, balanced_condensation
 from ehdfem.solids.fe.linear_algebra import interpolation_matrix
 from ehdfem.solids.fe.solids import FESolids
@@ -57,7 +58,7 @@ def test_interpolation_matrix_is_linear_interpolation():
 
 @pytest.mark.parametrize(
     "options",
-    [{"lower": "coated", "coating": (0.2, 0.45), "coating_thickness": 0.02}, {"lower": "sphere"}],
+    [{"lower": CoatedWall(0.02, 0.2, 0.45)}, {"lower": LowerSphere()}],
 )
 def test_condensed_compliance_equals_a_solve_of_the_whole_solids(options):
     """Runs on 2 ranks too (a distributed solve against rank 0's condensation): the gap the

@@ -10,9 +10,11 @@ from ehdfem import RunConfig, collide, elasticity, film_radii
 from ehdfem.checks import InputError
 from ehdfem.cli.main import main, parsers
 from ehdfem.collision import with_tangential
-from ehdfem.config import CoatedWall, read_inputs, setting_names
+from ehdfem.config import read_inputs, setting_names
 from ehdfem.film.asperities import GreenwoodTrippAsperities
 from ehdfem.inputs.scales import CollisionParameters, PhysicalCollision, from_presets
+from ehdfem.outputs import registry
+from ehdfem.solids.fe.bodies import CoatedWall
 from ehdfem.study.sweep import PHYSICAL_FIELDS, Study, parameter_names, run_study
 
 pytestmark = pytest.mark.serial
@@ -51,6 +53,55 @@ def test_a_lower_body_round_trips_through_its_settings():
     config = RunConfig.from_settings(model="fem", lower="coated", coating_thickness=0.05)
     assert config.lower == CoatedWall(coating_thickness=0.05)
     assert RunConfig.from_settings(**config.settings()) == config
+
+
+TODAYS_FORMAT = {  # a result's "inputs" as written before the inputs' components (0.1.0)
+    "parameters": {
+        "St": 10.0, "eps": 0.001, "delta": 0.01, "p_cav": -2.0, "e_dry": 1.0, "layer": "thin",
+        "angle": 0.0, "spin": 0.0, "inertia_factor": 0.4, "cavitation": "truncate",
+        "viscosity": "constant", "alpha": 0.0, "roelands_pressure": None,
+        "roelands_index": 0.6, "gap": None, "shear_traction": None, "external_force": 0.0,
+        "buoyant_weight": 0.0, "friction_coefficient": 0.0, "roughness": 0.0,
+        "asperity_density": 0.04, "asperity_slope": 0.001,
+    },
+    "physical": None,
+    "run": {
+        "model": "halfspace", "tangential": "couette", "deformation": "gap",
+        "asperities": "impact", "lower": "wall", "nodes": 40, "refinements": 2, "rtol": 0.0002,
+        "film_control": True, "order": 4, "max_growth": 1.5, "newton_tol": 1e-07,
+        "max_newton": 30, "first_step": 0.001, "max_steps": 50000, "max_time": 10000.0,
+        "exit_gap": 1.0,
+    },
+}  # fmt: skip
+
+
+def test_todays_json_format_replays_with_collide_from(tmp_path, capsys):
+    """A result file in today's format (written out above, not by the code under test) is
+    read back to its inputs and run settings, collide --from reruns it to the outputs of the
+    same collision computed directly, and a lower body's flat settings in that format
+    become that body."""
+    params, config = read_inputs(TODAYS_FORMAT)
+    assert params == CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0)
+    assert config == RunConfig.from_settings(nodes=40)
+    source, again = tmp_path / "today.json", tmp_path / "again.json"
+    source.write_text(json.dumps({"inputs": TODAYS_FORMAT}))
+    assert main(["collide", "--from", str(source), "--json", str(again)]) == 0
+    replayed = json.loads(again.read_text())
+    direct = collide(params, config).summary()
+    names = [name for name in registry.names() if name in direct]
+    assert {k: replayed[k] for k in names} == {k: direct[k] for k in names}
+    assert RunConfig.from_settings(**replayed["inputs"]["run"]) == config
+    coated = {**TODAYS_FORMAT["run"], "model": "fem", "lower": "coated"}
+    coated.update(coating_thickness=0.05, coating_stiffness=2.0, coating_poisson=0.25)
+    _, config = read_inputs({**TODAYS_FORMAT, "run": coated})
+    assert config.lower == CoatedWall(0.05, 2.0, 0.25) and config.model == "fem"
+    capsys.readouterr()
+
+
+def test_a_lower_body_without_its_required_setting_is_refused_by_name():
+    with pytest.raises(InputError, match="lower = 'coated' needs coating_thickness") as caught:
+        RunConfig.from_settings(model="fem", lower="coated")
+    assert caught.value.name == "coating_thickness"
 
 
 def test_the_earlier_json_format_is_read():

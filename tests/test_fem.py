@@ -14,6 +14,7 @@ from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.fe import mesh as fem_mesh
+from ehdfem.solids.fe.bodies import CoatedWall, LowerSphere, Wall
 from ehdfem.solids.fe.mode_one import FEModeOne
 from ehdfem.solids.fe.solids import FESolids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
@@ -136,12 +137,12 @@ def test_film_reaching_round_the_sphere_is_refused():
     ("options", "expected", "tolerance"),
     [
         # a coating of the wall's own material changes nothing
-        ({"lower": "coated", "coating": (1.0, 0.3), "coating_thickness": 0.02}, "wall", 1e-5),
+        ({"lower": CoatedWall(0.02, 1.0, 0.3)}, "wall", 1e-5),
         # a thick coating 10x softer: theta_eff / theta = (1 + 10) / 2 against the bare wall
-        ({"lower": "coated", "coating": (0.1, 0.3), "coating_thickness": 1.0}, 5.5, 0.01),
+        ({"lower": CoatedWall(1.0, 0.1, 0.3)}, 5.5, 0.01),
         # two spheres (radii 2a and 2a, or 4a and 4a/3) behave like half-spaces near the axis
-        ({"lower": "sphere", "radius_ratio": 1.0}, "halfspace", 0.01),
-        ({"lower": "sphere", "radius_ratio": 3.0}, "halfspace", 0.01),
+        ({"lower": LowerSphere(1.0)}, "halfspace", 0.01),
+        ({"lower": LowerSphere(3.0)}, "halfspace", 0.01),
     ],
 )
 def test_coated_wall_and_two_spheres(small_delta, options, expected, tolerance):
@@ -176,7 +177,7 @@ def vertex_opening(solids, shape):
     return np.array(opening)
 
 
-@pytest.mark.parametrize("lower", ["wall", "sphere"])
+@pytest.mark.parametrize("lower", [Wall(), LowerSphere()])
 def test_deformation_matches_the_compliance_at_the_film_nodes(lower):
     """Runs on 2 ranks too: the solids under a film pressure open the gap, read out as the
     compliance reads it (``gap_opening``, the hat-weighted vertical motion of the faces), by
@@ -189,10 +190,10 @@ def test_deformation_matches_the_compliance_at_the_film_nodes(lower):
     comm = MPI.COMM_WORLD
     radii = radial_grid(20, 0.5, 2.0)
     solids = FESolids(1e-3, radii, lower=lower, comm=comm)
-    assert len(solids.free_bodies) == (2 if lower == "sphere" else 1)
+    assert len(solids.free_bodies) == (2 if lower.kind == "sphere" else 1)
     assert solids.free_bodies[0].direction == -1.0
     compliance = solids.compliance(1e-3)
-    assert compliance.surface_radii == ((2.0, 2.0) if lower == "sphere" else (1.0, np.inf))
+    assert compliance.surface_radii == ((2.0, 2.0) if lower.kind == "sphere" else (1.0, np.inf))
     pressure = hertz_like(radii)
     half = solids.deformation(0.5 * pressure, compliance.eps)
     shape = solids.deformation(pressure, compliance.eps)

@@ -14,6 +14,7 @@ from ehdfem.fenicsx import assembly, functions, solvers, spaces
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.solids.compliance import MODE_ONE_LOADS
+from ehdfem.solids.fe.bodies import LowerSphere
 from ehdfem.solids.fe.mode_one import (
     FEModeOne,
     amplitudes,
@@ -250,7 +251,7 @@ def test_mode_one_pressure_opens_the_gap_like_the_half_space(small_delta, lower)
     compliance = (
         small_delta
         if lower == "wall"
-        else FEModeOne(FESolids(1e-3, RADII, lower="sphere", comm=MPI.COMM_SELF), 1.0)
+        else FEModeOne(FESolids(1e-3, RADII, lower=LowerSphere(), comm=MPI.COMM_SELF), 1.0)
     )
     pressure, _ = mode_one_hertz(RADII)
     exact = hat_average(RADII, mode_one_opening)

@@ -15,6 +15,7 @@ from ehdfem.checks import InputError
 from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import Scales
 from ehdfem.outputs.fields import write_fields
+from ehdfem.solids.fe.bodies import CoatedWall
 from ehdfem.solids.fe.solids import FESolids
 from ehdfem.solids.halfspace import HalfSpaceCompliance
 
@@ -195,9 +196,7 @@ def test_regions_are_tagged_by_body(written):
 def test_a_coating_is_its_own_region(tmp_path):
     """Coated wall (thickness 0.03 a): cells in -0.03 < z < 0 are region 2, the substrate
     below 1, the sphere 0."""
-    compliance = FESolids(
-        DELTA, RADII, lower="coated", coating_thickness=0.03, comm=MPI.COMM_SELF
-    ).compliance(1e-3)
+    compliance = FESolids(DELTA, RADII, lower=CoatedWall(0.03), comm=MPI.COMM_SELF).compliance(1e-3)
     write_fields(compliance, tmp_path / "coated.xdmf", SNAPSHOTS[:1])
     points, triangles, steps = read(tmp_path / "coated.xdmf")
     z = points[triangles, 1].mean(axis=1)

@@ -10,7 +10,7 @@ import argparse
 import warnings
 
 from .. import CollisionParameters, PhysicalCollision, RunConfig, checks, from_presets
-from ..config import LOWER_BODIES, Numerics, setting_classes
+from ..config import Numerics, setting_classes
 from ..film import cavitation
 from ..film import viscosity as viscosity_laws
 from ..inputs.presets import (
@@ -24,6 +24,7 @@ from ..inputs.presets import (
 )
 from ..motion.timestepping import IntegratorOptions
 from ..settings import components, described, flat_names
+from ..solids.fe.bodies import LOWER_BODIES, Wall
 from .arguments import add_fields, destination, given
 
 BODIES = ("sphere", "wall", "liquid")
@@ -76,15 +77,13 @@ def add_run_arguments(parser, exclude=()) -> None:
     """The run configuration's settings, by group (``exclude``: names left out)."""
     run = parser.add_argument_group("run configuration")
     add_fields(run, RunConfig, exclude=exclude)
-    fe = parser.add_argument_group(
-        "lower body: a second sphere (both models) or a coated wall (--model fem)"
-    )
+    fe = parser.add_argument_group("lower body (--lower and its settings)")
+    kinds = ", ".join(f"{kind} ({body.description})" for kind, body in LOWER_BODIES.items())
     fe.add_argument(
         "--lower",
         choices=tuple(LOWER_BODIES),
         default=argparse.SUPPRESS,
-        help="body below the sphere: wall block, coated wall block (FE solids), or a second "
-        "free sphere (St, eps, delta by the reduced radius and mass); default: wall",
+        help=f"body below the sphere: {kinds}; default: {Wall.kind}",
     )
     for body in LOWER_BODIES.values():
         add_fields(fe, body, exclude=exclude)

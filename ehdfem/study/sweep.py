@@ -76,7 +76,6 @@ from ..settings import described, flat_names
 from ..version import __version__
 from .threshold import threshold
 
-RUN_SETTINGS = setting_names()
 PHYSICAL_FIELDS = tuple(f.name for f in fields(PhysicalCollision))
 PHYSICAL_REQUIRED = ("sphere", "wall", "liquid", "radius", "speed", "layer_thickness")
 SCALED_GROUPS = ("St", "eps", "delta", "p_cav")  # given in the rows of a physical study
@@ -104,7 +103,7 @@ class Study:
         self.name = spec.get("name", self.path.stem)
         numerics = spec.get("numerics", {})
         _known_keys("[numerics]", numerics, NUMERICS)
-        _known_keys("[run]", spec.get("run", {}), RUN_SETTINGS)
+        _known_keys("[run]", spec.get("run", {}), setting_names())
         self.run = {**spec.get("run", {}), **numerics}
         output = spec.get("output", {})
         _known_keys("[output]", output, ("table",))
@@ -151,12 +150,12 @@ class Study:
         (SI) with the point's."""
         if self.physical is None:
             return _parameters(point)
-        values = {k: v for k, v in {**self.physical, **point}.items() if k not in RUN_SETTINGS}
+        values = {k: v for k, v in {**self.physical, **point}.items() if k not in setting_names()}
         return from_presets(**values)
 
     def config(self, point: dict) -> RunConfig:
         """The run configuration of ``point``: the fixed run settings with the point's."""
-        swept = {k: v for k, v in point.items() if k in RUN_SETTINGS}
+        swept = {k: v for k, v in point.items() if k in setting_names()}
         return RunConfig.from_settings(**{**self.run, **swept})
 
     def key(self, point: dict) -> str:
@@ -180,7 +179,7 @@ def _check_grid(grid: dict, physical: dict | None) -> None:
     if not isinstance(physical, dict):
         raise checks.InputError("[physical] must be a table of PhysicalCollision fields")
     _known_keys("[physical]", physical, PHYSICAL_FIELDS)
-    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, *RUN_SETTINGS))
+    _known_keys("[grid] (with [physical])", grid, (*PHYSICAL_FIELDS, *setting_names()))
     missing = [name for name in PHYSICAL_REQUIRED if name not in physical and name not in grid]
     if missing:
         raise checks.InputError(f"[physical] (or [grid]) needs {', '.join(missing)}")
@@ -217,7 +216,7 @@ def parameter_names() -> tuple[str, ...]:
 
 def grid_keys() -> tuple[str, ...]:
     """The keys a dimensionless [grid] takes: the inputs' and the run settings."""
-    return (*parameter_names(), *RUN_SETTINGS)
+    return (*parameter_names(), *setting_names())
 
 
 def _parameters(point) -> CollisionParameters:

@@ -43,16 +43,18 @@ FACES = (contact.SPHERE_CONTACT, contact.LOWER_CONTACT)
 
 class MeshedBodies:
     """The upper sphere (``sphere``: (E, nu)) at the gap ``delta`` = x0/a above the body
-    ``lower`` (a :class:`ehdfem.solids.fe.bodies.LowerBody`), meshed on ``comm`` for the film
+    ``lower`` (a :class:`ehdfem.solids.fe.bodies.LowerBody` of the wall's (E, nu) ``wall``:
+    a coated wall's substrate, a lower sphere's own), meshed on ``comm`` for the film
     nodes ``radii`` (by sqrt(a x0)) with the far parts ``size`` away (by a); see the module
     docstring. ``mesh``, ``cell_tags``, ``facet_tags``: the DOLFINx mesh and its gmsh groups
     (meshes/contact.py); ``free_bodies``: the free spheres, the upper one first."""
 
-    def __init__(self, delta: float, radii, sphere, lower: LowerBody, size: float, comm):
+    def __init__(self, delta: float, radii, sphere, wall, lower: LowerBody, size: float, comm):
         self.delta = checks.number(
             "delta", delta, lower=0.0, upper=1.0, lower_open=True, upper_open=True
         )
         self.sphere, self.lower, self.comm = checked_material("sphere", sphere), lower, comm
+        self.wall = checked_material("wall", wall)
         self.radii = np.asarray(radii, dtype=float)
         limit = FILM_REACH_LIMIT * min(lower.sphere_radius, lower.radius or math.inf)
         if self.radii[-1] * math.sqrt(self.delta) >= limit:
@@ -72,7 +74,7 @@ class MeshedBodies:
         self.free_bodies = (upper,) + tuple(b for b in (lower.free_body(),) if b is not None)
         self.scaled_moduli = {
             tag: (e / self.sphere[0], nu)
-            for tag, (e, nu) in {contact.SPHERE: self.sphere, **lower.materials()}.items()
+            for tag, (e, nu) in {contact.SPHERE: self.sphere, **lower.materials(self.wall)}.items()
         }
 
     @property

@@ -54,12 +54,15 @@ from ...fenicsx import assembly, domain, functions, libraries, matrices, schur, 
 from ...fenicsx.matrices import CholeskySolver, scipy_matrix
 from ..compliance import LinearCompliance
 from . import condensation, linear_algebra, meshed
-from .bodies import LowerBody, lower_body
+from .bodies import LowerBody, Wall
 from .condensation import RigidMotions, balanced_condensation
 from .fields import Deformation, SolidsFields
 from .linear_algebra import interpolation_matrix
 from .mesh import cached_matrices
 from .meshed import MeshedBodies
+
+DEFAULT_BODY = Wall()
+"""The lower body of the FE solids unless another is given: a wall block."""
 
 
 def solids_of(compliance, purpose: str) -> FESolids:
@@ -77,14 +80,14 @@ def solids_of(compliance, purpose: str) -> FESolids:
 class FESolids:
     """FE solids meshed for the film nodes ``radii`` (by sqrt(a x0)); see the module docstring.
 
-    ``delta`` = x0/a. ``sphere``, ``wall`` (the lower body: wall, substrate or lower sphere) and
-    ``coating`` are (Young's modulus, Poisson ratio) pairs; only ratios of moduli matter.
-    ``lower``: "wall", "coated" (``coating_thickness`` by a) or "sphere" (``radius_ratio`` =
-    a1/a2, a the reduced radius): :func:`ehdfem.solids.fe.bodies.lower_body` makes the body of
-    these numbers; :meth:`with_lower_body` takes any body instead. ``size``: the wall block's
-    width and depth (by a); ``degree``: of the Lagrange elements. ``comm``: MPI communicator
-    (default COMM_WORLD). ``meshed``: the :class:`ehdfem.solids.fe.meshed.MeshedBodies`.
-    ``compliance(eps)`` gives the film compliance, ``deformation`` the whole solids.
+    ``delta`` = x0/a. ``sphere`` and ``wall`` (the lower body's: a wall, a coated wall's
+    substrate or a lower sphere) are (Young's modulus, Poisson ratio) pairs; only ratios of
+    moduli matter. ``lower``: the body below the film, any
+    :class:`ehdfem.solids.fe.bodies.LowerBody` (default a wall block; e.g. ``CoatedWall(0.1)``,
+    ``LowerSphere(2.0)``). ``size``: the wall block's width and depth (by a); ``degree``: of
+    the Lagrange elements. ``comm``: MPI communicator (default COMM_WORLD). ``meshed``: the
+    :class:`ehdfem.solids.fe.meshed.MeshedBodies`. ``compliance(eps)`` gives the film
+    compliance, ``deformation`` the whole solids.
     """
 
     def __init__(
@@ -93,38 +96,26 @@ class FESolids:
         radii,
         sphere=(1.0, 0.3),
         wall=(1.0, 0.3),
-        lower="wall",
-        coating=(1.0, 0.3),
-        coating_thickness=None,
-        radius_ratio=1.0,
+        lower: LowerBody = DEFAULT_BODY,
         size=40.0,
         degree=2,
         comm=None,
     ):
-        body = lower_body(lower, wall, coating, coating_thickness, radius_ratio)
-        self._build(delta, radii, body, sphere, size, degree, comm)
-
-    @classmethod
-    def with_lower_body(
-        cls, delta: float, radii, body: LowerBody, sphere=(1.0, 0.3), size=40.0, degree=2, comm=None
-    ) -> FESolids:
-        """The FE solids of the sphere ``sphere`` over ``body`` (any
-        :class:`ehdfem.solids.fe.bodies.LowerBody`); the other arguments as the constructor's."""
-        solids = cls.__new__(cls)
-        solids._build(delta, radii, body, sphere, size, degree, comm)
-        return solids
-
-    def _build(self, delta, radii, body, sphere, size, degree, comm):
-        """Mesh the bodies, then assemble and factorise (the constructor's work)."""
+        if not isinstance(lower, LowerBody):
+            raise checks.InputError(
+                f"lower must be a lower body (a LowerBody such as Wall()), got {lower!r}", "lower"
+            )
         from mpi4py import MPI
 
         self.comm = comm or MPI.COMM_WORLD
-        self._inputs = dict(delta=delta, radii=radii, body=body, sphere=sphere, size=size)
+        self._inputs = dict(
+            delta=delta, radii=radii, sphere=sphere, wall=wall, lower=lower, size=size
+        )
         self.degree = degree
-        self.meshed = MeshedBodies(delta, radii, sphere, body, size, self.comm)
+        self.meshed = MeshedBodies(delta, radii, sphere, wall, lower, size, self.comm)
         e_ref = self.meshed.sphere[0]
         self._theta_e_ref = sum(
-            (1 - nu**2) * e_ref / (math.pi * e) for e, nu in (self.meshed.sphere, body.material)
+            (1 - nu**2) * e_ref / (math.pi * e) for e, nu in (self.meshed.sphere, self.meshed.wall)
         )
         moduli = sorted(self.meshed.scaled_moduli.items())
         self.cache_arguments = (self.meshed.mesh_arguments, moduli, degree)
@@ -151,9 +142,9 @@ class FESolids:
         return self.meshed.mesh
 
     @property
-    def lower(self) -> str:
-        """The name of the lower body ("wall", "coated", "sphere", or a new body's)."""
-        return self.meshed.lower.name
+    def lower(self) -> LowerBody:
+        """The lower body (:class:`ehdfem.solids.fe.bodies.LowerBody`)."""
+        return self.meshed.lower
 
     @property
     def radius_upper(self) -> float:
@@ -360,7 +351,7 @@ class FESolids:
         if self.comm.rank == 0:
             from mpi4py import MPI
 
-            alone = FESolids.with_lower_body(**self._inputs, degree=self.degree, comm=MPI.COMM_SELF)
+            alone = FESolids(**self._inputs, degree=self.degree, comm=MPI.COMM_SELF)
             try:
                 result = compute(alone)
             except Exception as err:  # noqa: BLE001 -- re-raised on every rank below

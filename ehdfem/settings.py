@@ -118,7 +118,8 @@ def allowed_text(f: dataclasses.Field) -> str:
 
 
 def default_text(f: dataclasses.Field) -> str:
-    """The default of field ``f`` as text ("required" when there is none)."""
+    """The default of field ``f`` as text ("required" when there is none, on or off for a
+    switch)."""
     if f.metadata.get("default_text") is not None:
         return f.metadata["default_text"]
     if "registry" in f.metadata:
@@ -127,6 +128,8 @@ def default_text(f: dataclasses.Field) -> str:
         return "required"
     if f.default is None:
         return "none"
+    if isinstance(f.default, bool):
+        return "on" if f.default else "off"
     return f"{f.default:g}" if isinstance(f.default, float) else str(f.default)
 
 

@@ -3,12 +3,15 @@ wall correction and its limits, the quasi-steady Stokes approach), the energy bo
 bounce (`bounce_sphere`), a rigid sphere that sticks where the rigid theory stops it, and
 refused inputs."""
 
+import ast
+import inspect
 import json
 import math
 from dataclasses import replace
 
 import numpy as np
 import pytest
+from ehdfem.inputs.settings import described
 from scipy.integrate import quad
 
 from ehdfem.bounce.flight import (
@@ -22,7 +25,10 @@ from ehdfem.bounce.flight import (
 from ehdfem.bounce.inputs import BounceInputs
 from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.checks import InputError
-from ehdfem.cli.main import main
+from ehdfem.cli import bounce as cli_bounce
+from ehdfem.cli.arguments import destination, help_text, option
+from ehdfem.cli.inputs import BODIES
+from ehdfem.cli.main import main, parsers
 from ehdfem.motion.timestepping import IntegratorOptions
 
 # steel on glass in a 10 cSt silicone oil: St ~ 50 at the first impact from 3 mm
@@ -478,3 +484,50 @@ def test_command_names_a_missing_or_bad_input(capsys):
     assert main(bad) == 2
     err = capsys.readouterr().err
     assert "--added-mass-coefficient: 3.0 is outside the allowed range [0, 1]" in err
+
+
+BOUNCE_FLAGS = (  # the options ehdfem bounce had before they were generated from BounceInputs
+    "--radius", "--release-height", "--start-gap", "--start-speed", "--e-dry", "--drag",
+    "--added-mass-coefficient", "--gravity", "--cavitation", "--ambient-pressure", "--history",
+    "--history-memory", "--wall-added-mass", "--no-wall-added-mass", "--contact-gravity",
+    "--no-contact-gravity", "--clear-exit", "--no-clear-exit", "--contact-history",
+    "--no-contact-history", "--contact-drag", "--no-contact-drag", "--sphere-roughness",
+    "--wall-roughness", "--asperities",
+)  # fmt: skip
+
+
+def test_the_bounce_options_are_generated_from_its_inputs():
+    """Every field of BounceInputs but the sphere, wall and liquid (given by presets and
+    values) is an option of ehdfem bounce whose help is the field's (its meaning, unit, range
+    and default), none is written by hand in cli/bounce.py, and every flag the command had
+    keeps its name."""
+    _, commands = parsers()
+    actions = {action.dest: action for action in commands["bounce"]._actions}
+    source = ast.parse(inspect.getsource(cli_bounce))
+    literals = {n.value for n in ast.walk(source) if isinstance(n, ast.Constant)}
+    for f in described(BounceInputs):
+        if f.name in BODIES:
+            continue
+        assert actions[destination(f)].help == help_text(BounceInputs, f), f.name
+        assert option(f) not in literals, f"{option(f)} is written by hand"
+    flags = {flag for action in actions.values() for flag in action.option_strings}
+    assert set(BOUNCE_FLAGS) <= flags
+    assert actions["gravity"].help.endswith("[m/s^2], (0, 100]; default: 9.81")
+    assert actions["contact_drag"].help.endswith("; default: off")
+
+
+def test_the_bounce_options_reach_its_inputs():
+    """Given options become the inputs' fields (--added-mass-coefficient is added_mass,
+    --no-clear-exit turns clear_exit off); the others keep the dataclass's defaults."""
+    _, commands = parsers()
+    argv = [
+        "--sphere", "steel", "--wall", "glass", "--liquid", "silicone_oil_10cst", "--radius",
+        "1.5e-3", "--release-height", "0.01", "--added-mass-coefficient", "0.25",
+        "--no-clear-exit", "--contact-drag", "--history", "basset",
+    ]  # fmt: skip
+    inputs = cli_bounce._bounce_inputs(commands["bounce"].parse_args(argv))
+    expected = BounceInputs(
+        **OIL_BOUNCE, release_height=0.01, added_mass=0.25, clear_exit=False,
+        contact_drag=True, history="basset",
+    )  # fmt: skip
+    assert inputs == expected

@@ -1,5 +1,7 @@
 """The physical inputs of a bounce (SI): the sphere, wall and liquid, the start, and the
-modelling choices of its flight and contacts (docs/bounce.md), each validated."""
+modelling choices of its flight and contacts (docs/bounce.md), each declared with its help,
+unit, allowed values and default (:func:`ehdfem.inputs.settings.setting`), validated, and
+turned into the options of ``ehdfem bounce`` (:mod:`ehdfem.cli.bounce`)."""
 
 from __future__ import annotations
 
@@ -12,18 +14,12 @@ from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..film.asperities import ImpactAsperities
 from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import ATMOSPHERE, elastic_theta, stokes_number
+from ..settings import setting, validate
 from .unsteady import HISTORY_KERNELS
 
 GRAVITY = 9.81  # m/s^2
 DRAG_LAWS = ("schiller-naumann", "abraham", "stokes")  # the steady drag laws of the flight
 HISTORY_MEMORIES = ("keep", "reset", "approach")  # the history force's memory across a contact
-SWITCHES = (  # the on/off modelling choices of BounceInputs
-    "wall_added_mass",
-    "contact_gravity",
-    "clear_exit",
-    "contact_history",
-    "contact_drag",
-)
 
 
 @dataclass(frozen=True)
@@ -56,34 +52,99 @@ class BounceInputs:
     adds the flight's remainder's impulse over the contact to the rebound's momentum at
     exit."""
 
-    radius: float
+    radius: float = setting(help="sphere radius a", unit="m", lower=0.0, upper=1.0, lower_open=True)
     sphere: Material | str | dict
     wall: Material | str | dict
     liquid: Liquid | str | dict
-    release_height: float | None = None
-    start_gap: float | None = None
-    start_speed: float | None = None
-    e_dry: float = 1.0
-    drag: str = "schiller-naumann"
-    added_mass: float = 0.5
-    gravity: float = GRAVITY
-    cavitation: str = cavitation.Truncation.name
-    ambient_pressure: float = ATMOSPHERE
-    history: str = "mei-adrian"
-    history_memory: str = "keep"
-    wall_added_mass: bool = True
-    contact_gravity: bool = True
-    clear_exit: bool = True
-    sphere_roughness: float = 0.0
-    wall_roughness: float = 0.0
-    asperities: str = ImpactAsperities.name
-    contact_history: bool = True
-    contact_drag: bool = False
+    release_height: float | None = setting(
+        None,
+        help="gap at which the sphere is released at rest",
+        unit="m",
+        lower=0.0,
+        upper=100.0,
+        lower_open=True,
+        default_text="none (give it, or the start gap with the start speed)",
+    )
+    start_gap: float | None = setting(
+        None, help="or: the start gap, with the start speed", unit="m", lower=0.0, upper=100.0,
+        lower_open=True,
+    )  # fmt: skip
+    start_speed: float | None = setting(
+        None, help="speed towards the wall at the start gap", unit="m/s", lower=0.0, upper=100.0
+    )
+    e_dry: float = setting(
+        1.0, help="dry restitution (1: pure EHD)", lower=0.0, upper=1.0, lower_open=True
+    )
+    drag: str = setting("schiller-naumann", help="steady drag law", choices=DRAG_LAWS)
+    added_mass: float = setting(
+        0.5,
+        help="added-mass coefficient C_M far from the wall (collide's --added-mass is a mass "
+        "in kg)",
+        lower=0.0,
+        upper=1.0,
+        flag="added-mass-coefficient",
+    )
+    gravity: float = setting(
+        GRAVITY, help="gravitational acceleration g", unit="m/s^2", lower=0.0, upper=100.0,
+        lower_open=True,
+    )  # fmt: skip
+    cavitation: str = setting(
+        cavitation.Truncation.name,
+        help="film cavitation model, at the liquid's vapour pressure",
+        choices=cavitation.MODELS,
+    )
+    ambient_pressure: float = setting(
+        ATMOSPHERE, help="ambient pressure", unit="Pa", lower=0.0, lower_open=True
+    )
+    history: str = setting(
+        "mei-adrian",
+        help="history (Basset) force in flight: Mei & Adrian's finite-Re kernel; the same with "
+        "the wall-bounded unsteady Stokes kernel in place of Basset's (mei-adrian-wall); "
+        "Basset's; none",
+        choices=HISTORY_KERNELS,
+    )
+    history_memory: str = setting(
+        "keep",
+        help="the history force's memory across a contact: keep the contact's velocity change, "
+        "reset it at each exit, or keep only the approach's memory (the contact's velocity "
+        "change forgotten at exit)",
+        choices=HISTORY_MEMORIES,
+    )
+    wall_added_mass: bool = setting(
+        True, help="the added mass rises near the wall (the sphere's image)"
+    )
+    contact_gravity: bool = setting(True, help="gravity and buoyancy act during the contacts")
+    clear_exit: bool = setting(
+        True, help="the film model hands back above the gap where a cavity can form"
+    )
+    sphere_roughness: float = setting(
+        0.0,
+        help="rms roughness of the sphere's surface (0: smooth; at most 0.01 a)",
+        unit="m",
+        checked=False,  # its upper bound is the radius's: checked in __post_init__
+    )
+    wall_roughness: float = setting(
+        0.0,
+        help="rms roughness of the wall's surface (0: smooth; at most 0.01 a)",
+        unit="m",
+        checked=False,
+    )
+    asperities: str = setting(
+        ImpactAsperities.name,
+        help="asperity contact of rough surfaces at each contact (docs/model.md)",
+        choices=ASPERITY_MODELS,
+    )
+    contact_history: bool = setting(
+        True, help="the history force acts in each contact's time stepping"
+    )
+    contact_drag: bool = setting(
+        False, help="the flight's remainder drag's impulse over each contact added at exit"
+    )
 
     def __post_init__(self):
         for role in ("sphere", "wall", "liquid"):
             object.__setattr__(self, role, body(role, getattr(self, role)))
-        checks.number("radius", self.radius, lower=0.0, upper=1.0, lower_open=True)
+        validate(self)
         if self.sphere.density <= self.liquid.density:
             raise checks.InputError(
                 f"the sphere's density {self.sphere.density!r} kg/m^3 must exceed the liquid's "
@@ -96,30 +157,11 @@ class BounceInputs:
             raise checks.InputError(
                 "give either release_height (released at rest) or start_gap with start_speed"
             )
-        if released:
-            checks.number(
-                "release_height", self.release_height, lower=0.0, upper=100.0, lower_open=True
-            )
-        else:
-            if self.start_gap is None or self.start_speed is None:
-                raise checks.InputError("start_gap and start_speed must be given together")
-            checks.number("start_gap", self.start_gap, lower=0.0, upper=100.0, lower_open=True)
-            checks.number("start_speed", self.start_speed, lower=0.0, upper=100.0)
-        checks.number("e_dry", self.e_dry, lower=0.0, upper=1.0, lower_open=True)
-        checks.choice("drag", self.drag, DRAG_LAWS)
-        checks.number("added_mass", self.added_mass, lower=0.0, upper=1.0)
-        checks.number("gravity", self.gravity, lower=0.0, upper=100.0, lower_open=True)
-        checks.choice("cavitation", self.cavitation, cavitation.MODELS)
-        checks.positive("ambient_pressure", self.ambient_pressure)
+        if not released and (self.start_gap is None or self.start_speed is None):
+            raise checks.InputError("start_gap and start_speed must be given together")
         check_vapour_pressure(self.liquid, self.ambient_pressure)
-        checks.choice("history", self.history, HISTORY_KERNELS)
-        checks.choice("history_memory", self.history_memory, HISTORY_MEMORIES)
         for surface in ("sphere_roughness", "wall_roughness"):
             checks.number(surface, getattr(self, surface), lower=0.0, upper=0.01 * self.radius)
-        checks.choice("asperities", self.asperities, ASPERITY_MODELS)
-        for switch in SWITCHES:
-            if not isinstance(getattr(self, switch), bool):
-                raise checks.InputError(f"{switch} must be True or False")
 
     @property
     def diameter(self) -> float:

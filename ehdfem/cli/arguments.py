@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import checks
 from ..console.progress import rank, settle_ranks
 from ..outputs import registry
 from ..settings import allowed_text, default_text, flat_fields, kind, meta
@@ -78,17 +79,20 @@ def _on_off(text: str) -> bool:
     return text == "on"
 
 
-def add_fields(group, cls, names=None, exclude=()) -> None:
+def add_fields(group, cls, names=None, exclude=(), switches=False) -> None:
     """An option per flat setting of the dataclass ``cls`` (those in ``names`` if given, none
     in ``exclude``): its scalar fields, its components by name (``--viscosity barus``) and the
     fields of every registered component (:func:`ehdfem.settings.flat_fields`); floats and
-    integers typed, strings with their choices, booleans as on/off; unset unless given."""
+    integers typed, strings with their choices, booleans as on/off (with ``switches``: as
+    --name and --no-name); unset unless given."""
     for owner, f in flat_fields(cls):
         if (names is not None and f.name not in names) or f.name in exclude:
             continue
         base = kind(owner, f)
         extra = {"choices": meta(f, "choices")} if meta(f, "choices") else {}
-        if base is bool:
+        if base is bool and switches:
+            extra = {"action": argparse.BooleanOptionalAction}
+        elif base is bool:
             extra = {"type": _on_off, "metavar": "{on,off}"}
         elif base in (int, float):
             extra = {"type": base, "metavar": f.name.upper() if len(f.name) < 4 else "X"}
@@ -99,6 +103,17 @@ def add_fields(group, cls, names=None, exclude=()) -> None:
             help=help_text(owner, f),
             **extra,
         )
+
+
+def named_by_option(err: checks.InputError, cls) -> checks.InputError:
+    """``err``, refusing a field of ``cls`` whose option is spelt otherwise than the field
+    (its ``flag``), named by that option's destination, so that the refusal names the option
+    as typed; else ``err`` itself."""
+    renamed = {f.name: destination(f) for _, f in flat_fields(cls)}
+    if renamed.get(err.name, err.name) == err.name:
+        return err
+    text = str(err).removeprefix(f"{err.name} = ").removeprefix(f"{err.name} ")
+    return checks.InputError(text, renamed[err.name])
 
 
 def given(args, cls, names=None) -> dict:

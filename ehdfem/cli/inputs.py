@@ -23,9 +23,9 @@ from ..inputs.presets import (
     material,
 )
 from ..motion.timestepping import IntegratorOptions
-from ..settings import components, described, flat_names
+from ..settings import components, flat_names
 from ..solids.fe.bodies import LOWER_BODIES, Wall
-from .arguments import add_fields, destination, given
+from .arguments import add_fields, given, named_by_option
 
 BODIES = ("sphere", "wall", "liquid")
 PHYSICAL_TRIGGERS = ("radius", "speed", "layer_thickness")  # with a body: physical inputs
@@ -179,10 +179,9 @@ def collision_inputs(args, sought: dict | None = None) -> CollisionParameters | 
     try:
         return _warn_of_settings_without_effect(args, from_presets(**values))
     except checks.InputError as err:  # a physical field whose option is spelt otherwise
-        renamed = {f.name: destination(f) for f in described(PhysicalCollision)}
-        if renamed.get(err.name, err.name) != err.name:
-            text = str(err).removeprefix(f"{err.name} = ").removeprefix(f"{err.name} ")
-            raise checks.InputError(text, renamed[err.name]) from None
+        renamed = named_by_option(err, PhysicalCollision)
+        if renamed is not err:
+            raise renamed from None
         raise
 
 

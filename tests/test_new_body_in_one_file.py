@@ -7,6 +7,7 @@ shape. At the size the FE solids give the built-in wall (40 a) it is that wall: 
 same forms, so its collision equals the wall's bit for bit; a smaller block, clamped nearer
 the contact, is stiffer."""
 
+import csv
 import json
 from dataclasses import dataclass
 from typing import ClassVar
@@ -20,7 +21,7 @@ from ehdfem.cli.main import main, parsers
 from ehdfem.outputs import registry
 from ehdfem.settings import setting
 from ehdfem.solids.fe.bodies import LowerBody, register
-from ehdfem.study.sweep import Study
+from ehdfem.study.sweep import Study, run_study
 from meshes import contact
 
 pytestmark = pytest.mark.serial
@@ -129,3 +130,21 @@ def test_the_block_is_a_study_key(tmp_path):
     bad.write_text("[grid]\nSt = [10.0]\neps = [1e-3]\nblock_size = [10.0]\n")
     with pytest.raises(InputError, match="block_size needs lower = 'block'"):
         Study(bad)
+
+
+@pytest.mark.slow
+def test_a_study_sweeps_the_block(tmp_path):
+    """A study over two block sizes (40 film nodes) runs; its rows and table carry the
+    block's kind and size, and the 40 a point's e_n is the wall's, bit for bit."""
+    study_file = tmp_path / "s.toml"
+    study_file.write_text(
+        "[grid]\nSt = [10.0]\neps = [1e-3]\ndelta = [1e-3]\np_cav = [-2.0]\n"
+        'block_size = [6.0, 40.0]\n[run]\nmodel = "fem"\nlower = "block"\n'
+        "[numerics]\nnodes = 40\n"
+    )
+    rows = run_study(Study(study_file), None, progress=None)
+    assert [(row["lower"], row["block_size"]) for row in rows] == [("block", 6.0), ("block", 40.0)]
+    wall = collide(PARAMS, RunConfig.from_settings(model="fem", nodes=40))
+    assert rows[1]["e_n"] == wall.normal.e_n
+    with open(Study(study_file).table) as table:
+        assert {"lower", "block_size"} <= set(next(csv.DictReader(table)))

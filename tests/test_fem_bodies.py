@@ -102,8 +102,8 @@ def test_the_solids_take_a_lower_body_only():
 
 def test_the_registry_refuses_what_it_could_not_name_once():
     """A kind taken by another class, a field of another body (the flat settings name each
-    field once), and a class that is not a frozen LowerBody dataclass are refused; the
-    registry is unchanged."""
+    field once), a class that is not a frozen LowerBody dataclass and one without a kind are
+    refused; the registry is unchanged. A body without its geometry cannot be made."""
     before = dict(LOWER_BODIES)
 
     @dataclass(frozen=True)
@@ -119,12 +119,19 @@ def test_the_registry_refuses_what_it_could_not_name_once():
     class Loose(LowerBody):
         kind: ClassVar[str] = "loose"
 
+    @dataclass(frozen=True)
+    class NoKind(LowerBody):
+        pass
+
     for body, text in (
         (SecondWall, "kind 'wall' is taken"),
         (Thin, r"\['coating_thickness'\] are CoatedWall's"),
         (Loose, "frozen dataclass"),
+        (NoKind, "with a kind"),
         (dict, "frozen dataclass"),
     ):
         with pytest.raises(TypeError, match=text):
             register(body)
     assert register(Wall) is Wall and LOWER_BODIES == before
+    with pytest.raises(TypeError, match="abstract"):
+        NoKind()

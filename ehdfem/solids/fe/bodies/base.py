@@ -21,6 +21,7 @@ ratios of the moduli (to the upper sphere's).
 
 from __future__ import annotations
 
+import abc
 import dataclasses
 from dataclasses import dataclass
 from typing import ClassVar
@@ -49,7 +50,7 @@ class FreeBody:
         return self.pole_z + self.direction * self.radius
 
 
-class LowerBody:
+class LowerBody(abc.ABC):
     """The body below the film (module docstring); subclasses are frozen dataclasses.
     ``kind``: its name in :data:`LOWER_BODIES` (the value of ``--lower``); ``description``:
     what it is, in a few words (for ``--lower``'s help); ``models``: the elasticity models
@@ -68,21 +69,21 @@ class LowerBody:
     def __post_init__(self):
         validate(self)
 
+    @abc.abstractmethod
     def materials(self, wall: tuple[float, float]) -> dict[int, tuple[float, float]]:
         """(E, nu) per gmsh cell tag of the body, from the wall's (E, nu) ``wall`` (the
         material of the half-space kernel's lower solid, which sets the compliance scale
         theta: a coated wall's substrate, a lower sphere's own)."""
-        raise NotImplementedError
 
     def free_body(self) -> FreeBody | None:
         """The body as a free solid, or None when it is clamped."""
         return None
 
+    @abc.abstractmethod
     def geometry(self, gap: float, contact_radii, size: float) -> tuple:
         """(generator, arguments): ``generator(*arguments)`` builds the gmsh model of the upper
         sphere at ``gap`` above this body, both contact faces through ``contact_radii`` (by a),
         the far parts ``size`` away (meshes/contact.py)."""
-        raise NotImplementedError
 
 
 LOWER_BODIES: dict[str, type[LowerBody]] = {}
@@ -92,15 +93,18 @@ LOWER_BODIES: dict[str, type[LowerBody]] = {}
 def register(body: type[LowerBody]) -> type[LowerBody]:
     """Enter the lower body class ``body`` into :data:`LOWER_BODIES` (a class decorator; again
     for the same class changes nothing). Refused: a class that is not a frozen dataclass
-    subclassing :class:`LowerBody`, a kind already taken by another class, and a field name of
-    another body (the flat settings name each field once)."""
+    subclassing :class:`LowerBody` with a ``kind``, a kind already taken by another class,
+    and a field name of another body (the flat settings name each field once)."""
     if not (
         isinstance(body, type)
         and issubclass(body, LowerBody)
         and dataclasses.is_dataclass(body)
         and body.__dataclass_params__.frozen
+        and isinstance(getattr(body, "kind", None), str)
     ):
-        raise TypeError(f"a lower body is a frozen dataclass subclassing LowerBody, not {body!r}")
+        raise TypeError(
+            f"a lower body is a frozen dataclass subclassing LowerBody with a kind, not {body!r}"
+        )
     if LOWER_BODIES.get(body.kind, body) is not body:
         raise TypeError(f"the lower body kind {body.kind!r} is taken by {LOWER_BODIES[body.kind]}")
     names = {f.name for f in described(body)}

@@ -11,7 +11,6 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from ehdfem.inputs.settings import described
 from scipy.integrate import quad
 
 from ehdfem.bounce.flight import (
@@ -30,6 +29,7 @@ from ehdfem.cli.arguments import destination, help_text, option
 from ehdfem.cli.inputs import BODIES
 from ehdfem.cli.main import main, parsers
 from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.settings import described
 
 # steel on glass in a 10 cSt silicone oil: St ~ 50 at the first impact from 3 mm
 OIL_BOUNCE = dict(radius=1.5e-3, sphere="steel", wall="glass", liquid="silicone_oil_10cst")

@@ -1,6 +1,6 @@
 """The physical inputs of a bounce (SI): the sphere, wall and liquid, the start, and the
 modelling choices of its flight and contacts (docs/bounce.md), each declared with its help,
-unit, allowed values and default (:func:`ehdfem.inputs.settings.setting`), validated, and
+unit, allowed values and default (:func:`ehdfem.settings.setting`), validated, and
 turned into the options of ``ehdfem bounce`` (:mod:`ehdfem.cli.bounce`)."""
 
 from __future__ import annotations

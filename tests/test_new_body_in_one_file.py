@@ -46,7 +46,7 @@ class Block(LowerBody):
         return contact.build, (gap, contact_radii, "wall", self.block_size, 1.0, 1.0, None)
 
 
-PARAMS = CollisionParameters(St=10.0, eps=1e-3, delta=1e-3, p_cav=-2.0)
+PARAMS = CollisionParameters.from_settings(St=10.0, eps=1e-3, delta=1e-3, p_cav=-2.0)
 SMALL = ["--St", "10", "--eps", "1e-3", "--delta", "1e-3", "--p-cav=-2", "--nodes", "40"]
 
 

@@ -123,9 +123,10 @@ class ImplicitStep:
     pressure); ``cavitation``: a model of :mod:`ehdfem.film.cavitation`; ``sphere``: the
     sphere's equation of motion (:class:`ehdfem.motion.sphere.Sphere`); ``shear_matrix``: C_T
     (by x0 per unit T) or None; ``surface_motion``: the surfaces' mean radial displacement
-    (:class:`SurfaceMotion`) or None (not carried in the flux); ``asperities``: Greenwood &
-    Tripp's asperity pressure (:class:`ehdfem.film.asperities.GreenwoodTripp`) or None (smooth
-    surfaces, or asperities that only act by a solid impact).
+    (:class:`SurfaceMotion`) or None (not carried in the flux); ``asperities``: an asperity
+    pressure law (Greenwood & Tripp's, :class:`ehdfem.film.asperities.GreenwoodTripp`; the
+    impact model's obstacle, :class:`ehdfem.film.asperity_obstacle.AsperityObstacle`, loaded
+    at its touch by :meth:`load_asperities`) or None (smooth surfaces, or no touch yet).
     """
 
     def __init__(
@@ -212,6 +213,12 @@ class ImplicitStep:
         if self._loaded is None:
             self._loaded = self.asperities.loaded(self._loaded_at, self.compliance)
         return self._loaded
+
+    def load_asperities(self, law) -> None:
+        """Let the asperity pressure ``law`` act from the next step on (the impact model's
+        obstacle, switched on at the asperities' touch; :mod:`ehdfem.film.asperity_obstacle`)."""
+        self.asperities = law
+        self._loaded_at = self._loaded = self._last_thickness = None
 
     def asperity_force(self, h) -> float:
         """The asperities' force on the sphere w.P_a(H) (by 6 pi mu V0 a^2 / x0; 0 without)."""

@@ -33,17 +33,21 @@ velocity, e_n = e_dry * V_exit (smooth surfaces, a roughness the film never reac
 model's elastic asperities; e_dry = 1 is pure EHD; docs/model.md, "Decisions").
 
 Rough surfaces (roughness sigma > 0, by x0; docs/model.md, "Rough surfaces"), two asperity
-models. "impact": when the thinnest film reaches sigma while the sphere approaches (V < 0), the
-asperities touch and the approach ends in a solid collision: the step is shortened until it
-ends at H_min = sigma (to TOUCH_TOL), the velocity jumps from V_c to -e_dry V_c (X, P and the
-film stay: the solids' elastic state is continuous), the kinetic energy lost,
-(1 - e_dry^2) St V_c^2 / 2, joins the dissipation, and the BDF history restarts at the
-touching state (order 1, a first step of first_step sigma; the dissipation rate before the
-impact is not used after it). The film then acts on the rebound (suction, cavitation) until
-exit, or stops the sphere (stick: the sphere then rests on its asperities, since a film that
-brings it back to V <= 0 ends the motion before a second touch). A film that goes below sigma
-where no impact acts (during the rebound, after the impact) is flagged (``unloaded_touch``),
-as the impact model puts no load on the asperities there. "greenwood-tripp": the asperities'
+models. "impact": the asperities are a rigid layer the surfaces touch where the film is sigma
+thick. The step is shortened until it ends at the first touch, H_min = sigma (to TOUCH_TOL).
+A touch while the sphere approaches (V < 0), before any rebound, is a solid collision: the
+velocity jumps from V_c to -e_dry V_c (X, P and the film stay: the solids' elastic state is
+continuous), the kinetic energy lost, (1 - e_dry^2) St V_c^2 / 2, joins the dissipation. From
+the first touch on (after the impact, or a first touch during the rebound, where the unloading
+solids close the exit constriction while the sphere recedes, which no impact of the sphere can
+reverse), the same layer is the contact constraint H >= sigma on elastic solids, the asperity
+obstacle (:mod:`ehdfem.film.asperity_obstacle`) in the implicit step: it carries a load
+wherever the film reaches it, stores its energy in the solids and gives it back. The BDF
+history restarts at the touching state (order 1, a first step of first_step sigma; the
+dissipation rate before the touch is not used after it). The film then acts on the rebound
+(suction, cavitation) until exit, or stops the sphere (stick). Rigid solids get no obstacle:
+their film thins only while the sphere approaches, and a film that brings the sphere back to
+V <= 0 ends the motion. "greenwood-tripp": the asperities'
 pressure shares the load with the film (:mod:`ehdfem.film.asperities`, in the implicit step);
 the motion stays continuous and the energy they store is in the elastic energy (they return
 it; e_dry stands for the plastic loss they leave out).
@@ -57,6 +61,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import checks
+from ..film.asperity_obstacle import AsperityObstacle
 from ..film.gap import Paraboloid, default_gap, gap_geometry
 from ..film.reynolds import Film, FilmError
 from .forces import LAYER_SURFACE, SphereForce, SphereState
@@ -124,9 +129,7 @@ class NormalResult:
 
     ``rebound``: the sphere left the layer (X back to 1 with V > 0). ``exit_velocity``: V there
     (the pure EHD restitution), ``e_n`` = exit_velocity after a solid impact, e_dry *
-    exit_velocity without one (0 if it sticks). ``unloaded_touch``: the film went below the
-    roughness where the impact model puts no load on the asperities (rebound, after the
-    impact): that contact is not in the result.
+    exit_velocity without one (0 if it sticks).
     ``max_rebound_velocity``: the largest V > 0 reached (DSH 1986's restitution for immersed
     spheres). ``min_film_thickness``: min over R and T of H (by x0). ``max_force``: by
     6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
@@ -144,7 +147,8 @@ class NormalResult:
     accuracy of the balance).
     ``gap``: the undeformed gap used (:mod:`ehdfem.film.gap`; ``gap.name`` says which).
     ``asperity_force``: the asperities' load on the sphere at each recorded step (by
-    6 pi mu V0 a^2 / x0; None for smooth surfaces). ``solid_impact``: the asperities' solid
+    6 pi mu V0 a^2 / x0: Greenwood & Tripp's pressure, or the impact model's obstacle after
+    its touch; None for smooth surfaces). ``solid_impact``: the asperities' solid
     collision, if the approach ended in one (:class:`SolidImpact`).
     """
 
@@ -170,7 +174,6 @@ class NormalResult:
     gap: Paraboloid
     asperity_force: np.ndarray | None = None
     solid_impact: SolidImpact | None = None
-    unloaded_touch: bool = False
 
     @property
     def compression_by_radius(self) -> float:
@@ -223,7 +226,9 @@ class _NormalIntegration:
         law = params.asperities.pressure_law(params.eps, params.delta)
         self.touch = params.asperities.touch()
         self.impact, self.restart = None, 0  # the solid impact; the history's first usable step
-        self.unloaded_touch = False  # the film went below sigma where no impact acts
+        # the asperity obstacle takes the touches no impact takes, on elastic solids only (a
+        # rigid sphere's film thins only while it approaches)
+        self.yielding = bool(np.diag(compliance.matrix).min() > 0.0)
         self.radii = np.asarray(compliance.radii, dtype=float)
         gap = params.gap or default_gap(compliance.model, params.layer)
         self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
@@ -414,11 +419,18 @@ class _NormalIntegration:
                 f"{failure} (residual {residual:.3g})"
             ) from failure
 
+    def _touch_pending(self, velocity) -> bool:
+        """Impact model: the asperities have not touched yet, and a touch now would act: as the
+        solid impact (approaching, before any rebound) or, on elastic solids, as the asperity
+        obstacle (:mod:`ehdfem.film.asperity_obstacle`; after a rebound of a rigid sphere V back
+        to 0 is the stop, which comes first)."""
+        if self.touch is None or self.impact is not None or self.step_solver.asperities is not None:
+            return False
+        return self.yielding or (not self.rebounding and velocity < 0)
+
     def _overshoots(self, thinnest, velocity) -> bool:
-        """Impact model: the step's thinnest film went below sigma while approaching, before
-        any rebound (once the sphere has rebounded, V back to 0 is the stop)."""
-        approaching = self.touch is not None and not self.rebounding and velocity < 0
-        return approaching and thinnest < self.touch * (1 - TOUCH_TOL)
+        """Impact model: the step's thinnest film went below sigma before the touch."""
+        return self._touch_pending(velocity) and thinnest < self.touch * (1 - TOUCH_TOL)
 
     def _step_to_touch(self, t_new, t_old, thinnest):
         """Retry the step shortened to where the thinnest film reaches sigma, on the dense output
@@ -461,23 +473,32 @@ class _NormalIntegration:
         thinnest = float(np.min(thickness[0]))
         self.thinnest = min(self.thinnest, thinnest)
         self._advance_sphere(t_new, thickness[0])
-        touches = self.touch is not None and not self.rebounding and self.velocity < 0
-        touches = touches and thinnest <= self.touch * (1 + TOUCH_TOL)  # (after a rebound, the
-        # film reaching sigma off the axis is no impact: V back to 0 is the stop, which comes first)
-        if touches:
+        touches = self._touch_pending(self.velocity) and thinnest <= self.touch * (1 + TOUCH_TOL)
+        impact = touches and not self.rebounding and self.velocity < 0
+        if impact:
             dissipated += self._solid_impact(t_new)
             self._advance_sphere(t_new, thickness[0])  # the velocity's jump, into any memory
         self._record(t_new, solution.fill, thickness, solution.state, dissipated)
-        below = self.touch is not None and thinnest < self.touch * (1 - TOUCH_TOL)
-        self.unloaded_touch = self.unloaded_touch or below
-        if touches:
+        if impact:
             stored = self.hist.elastic[-1] - self.hist.elastic[0]
             share = stored / self.sphere.kinetic_energy(IMPACT_VELOCITY)
             self.impact = replace(self.impact, stored_share=float(share))
-            self.restart = len(self.hist.time)
-            self.stepper.restart(self.options.first_step * self.touch)
+        if touches:
+            self._touched(min(thinnest, self.touch))
         self.rebounding = self.rebounding or self.velocity > 0
         return self._event(t_new)
+
+    def _touched(self, height):
+        """From the asperities' touch on, on elastic solids, the asperity obstacle at the
+        touching film ``height`` (sigma within TOUCH_TOL; it carries no load there) takes every
+        later touch; the BDF history restarts at the touching state (the velocity's jump of an
+        impact, the obstacle's kink in the load)."""
+        if self.yielding:
+            self.step_solver.load_asperities(
+                AsperityObstacle.on(height, self.step_solver.compliance)
+            )
+        self.restart = len(self.hist.time)
+        self.stepper.restart(self.options.first_step * self.touch)
 
     def _advance_sphere(self, time, film_thickness):
         """The sphere (its forces' memory) moved on to the accepted state, in the step solver
@@ -544,7 +565,6 @@ class _NormalIntegration:
             gap=self.shape,
             asperity_force=self._asperity_force(),
             solid_impact=self.impact,
-            unloaded_touch=self.unloaded_touch,
         )
 
     def _largest(self, values) -> float:
@@ -558,8 +578,8 @@ class _NormalIntegration:
 
     def _asperity_force(self) -> np.ndarray | None:
         """The asperities' load on the sphere at each recorded step, w.P_a(H) (by 6 pi mu V0
-        a^2 / x0): zero with the impact model (its load is the impact's impulse), None for
-        smooth surfaces."""
+        a^2 / x0): Greenwood & Tripp's, or the impact model's obstacle (zero before its touch,
+        and where it has none: the impact's load is its impulse), None for smooth surfaces."""
         law = self.step_solver.asperities
         if law is not None:
             return law.pressure(self.hist.film_thickness) @ self.step_solver.asperity_weights

@@ -7,9 +7,9 @@ JSON (``notes``), so that a result read later still says what was questionable a
 - for physical inputs, a smooth collision's thinnest film below :data:`SMOOTHEST_SURFACE` [m]
   (real surfaces are rougher: their asperities would touch first) and a liquid viscosity
   outside :data:`NEWTONIAN_VISCOSITY` [Pa s];
-- for rough surfaces with the impact model, a film below the roughness where the model puts no
-  load on the asperities, and an impact through solids that already hold more than
-  :data:`LOADED_IMPACT` of the impact energy;
+- for rough surfaces with the impact model, an impact through solids that already hold more
+  than :data:`LOADED_IMPACT` of the impact energy (every other touch the asperity obstacle
+  carries, :mod:`ehdfem.film.asperity_obstacle`);
 - for an immersed oblique impact, the flow beyond the tangential integrals (which end at the
   sphere's radius) when left out and estimated to change 1 - e_t by more than
   :data:`ehdfem.tangential.outer_film.OUTER_FILM_LIMIT` of it.
@@ -26,9 +26,9 @@ LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which 
 class ResultRangeWarning(UserWarning):
     """A result or input a user should look at twice: e_n above 1 (the discretisation's energy
     error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
-    Newtonian liquids, a rough contact the impact model does not hold for (a touch where it
-    puts no load, an impact through loaded solids), an immersed tangential motion that leaves
-    out a large flow beyond the sphere's radius."""
+    Newtonian liquids, an impact of the asperities through loaded solids (which the impact
+    model does not hold for), an immersed tangential motion that leaves out a large flow beyond
+    the sphere's radius."""
 
 
 def liquid_note(physical) -> str | None:
@@ -48,20 +48,13 @@ def liquid_note(physical) -> str | None:
 def result_notes(params, physical, normal) -> list[str]:
     """The notes on a normal motion ``normal`` (:class:`ehdfem.motion.normal.NormalResult`) of
     ``params`` (dimensionless), with the physical inputs ``physical`` (SI) or None: e_n above
-    1, a rough contact the impact model does not hold for, a smooth physical film thinner than
+    1, an impact of the asperities through loaded solids, a smooth physical film thinner than
     :data:`SMOOTHEST_SURFACE` (polished glass and steel have rms roughnesses of 1-100 nm)."""
     notes = []
     if normal.e_n > 1.0:
         notes.append(
             f"e_n = {normal.e_n:.6g} is above 1: the collision gained energy, a discretisation "
             f"error (energy error {normal.energy_error:.2g}); refine --nodes or --rtol"
-        )
-    if normal.unloaded_touch:
-        notes.append(
-            f"the film went below the roughness (thinnest {normal.min_film_thickness:.4g} x0, "
-            f"sigma {params.roughness:.4g} x0) where the impact model puts no load on the "
-            "asperities (during the rebound or after the impact): that contact, its dry loss "
-            "and friction are not in the result (docs/model.md, rough surfaces)"
         )
     impact = normal.solid_impact
     if impact is not None and impact.stored_share > LOADED_IMPACT:

@@ -176,13 +176,17 @@ def _rough(compute):
 
 
 def _mixed(compute):
-    """``compute(normal, sigma)`` for rough surfaces whose asperity model puts a pressure on
-    the film (Greenwood & Tripp's: mixed lubrication), else None."""
+    """``compute(normal, sigma)`` for rough surfaces whose asperities carry a load: an
+    asperity model that puts a pressure on the film (Greenwood & Tripp's: mixed lubrication),
+    or the impact model's asperity obstacle where it took a touch
+    (:mod:`ehdfem.film.asperity_obstacle`); else None."""
 
     def value(r):
         p = r.params
         mixed = p.asperities.pressure_law(p.eps, p.delta) is not None
-        return compute(r.normal, p.roughness) if mixed and p.roughness else None
+        force = r.normal.asperity_force
+        loaded = mixed or (force is not None and bool(np.max(force, initial=0.0) > 0.0))
+        return compute(r.normal, p.roughness) if loaded and p.roughness else None
 
     return value
 
@@ -236,13 +240,13 @@ def _solid_impulse_share(normal, sigma) -> float:
 
 def _contact_end(normal, sigma) -> float | None:
     """The time the thinnest film last rises back above sigma (the impact's time for a solid
-    impact; None if it never reached sigma), by linear interpolation between the steps."""
-    if normal.solid_impact is not None:
-        return normal.solid_impact.time
-    hist = normal.history
-    below = np.flatnonzero(hist.min_film <= sigma)
+    impact after which the film stays above sigma; None if it never reached sigma), by linear
+    interpolation between the steps."""
+    hist, impact = normal.history, normal.solid_impact
+    first = 0 if impact is None else impact.index + 1
+    below = first + np.flatnonzero(hist.min_film[first:] <= sigma)
     if below.size == 0:
-        return None
+        return None if impact is None else impact.time
     i = int(below[-1])
     if i == len(hist.time) - 1:
         return float(hist.time[i])
@@ -368,15 +372,13 @@ OUTPUTS: tuple[Output, ...] = (
            optional=True),
     Output("max_asperity_share", "the asperities' largest load over the largest total load",
            "-", None, _mixed(_largest_asperity_share), optional=True),
-    Output("max_asperity_force", "largest asperity load on the sphere (greenwood-tripp)", FORCE,
+    Output("max_asperity_force", "largest asperity load on the sphere (pressure, obstacle)", FORCE,
            "N", _mixed(lambda n, s: float(np.max(n.asperity_force))), "max_asperity_force_N",
            lambda p: p.scales().force, optional=True),
     Output("solid_impulse_share", "the solids' share (impact, asperity load) of the normal impulse",
            "-", None, _rough(_solid_impulse_share), optional=True),
     Output("asperity_contact_end", "time the thinnest film last rises above sigma (or impact)",
            "x0/V0", "s", _rough(_contact_end), optional=True),
-    Output("asperity_unloaded_touch", "the film went below sigma where no impact loads them",
-           "-", None, _rough(lambda n, s: n.unloaded_touch), optional=True),
     Output("impact_stored_share", "solids' elastic energy at the impact over St/2",
            "-", None, _impact("stored_share"), optional=True),
 )

@@ -225,7 +225,7 @@ def roughness_lines() -> list[str]:
         "thin-layer values at P_cav = -10 to the experiments' ~10. Without the suction limit "
         "the rigid closed form gives 11 thin and 14 immersed at sigma/x0 = 1e-3 (Gondret's "
         "1e-4 a with x0 ~ 0.1 a), and the immersed model, whose film has no suction limit, gives "
-        "9.6-16 for sigma/x0 = 0.01-0.001 at eps = 1e-6: the cap on suction, more than the "
+        "9.5-16 for sigma/x0 = 0.01-0.001 at eps = 1e-6: the cap on suction, more than the "
         "missing roughness, keeps the thin-layer St_c low (the smooth thin collision at "
         "eps = 1e-6 first rebounds between St = 9 and 14 without the cap, figures/roughness.png "
         "right, against 6.6 at P_cav = -10). The regime map "

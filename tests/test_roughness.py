@@ -39,7 +39,7 @@ from ehdfem.film.asperities import (
 from ehdfem.film.asperity_obstacle import AsperityObstacle
 from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters, from_presets
-from ehdfem.motion.normal import NormalSolverError, solve_normal
+from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.outputs import histories, registry
 from ehdfem.solids.compliance import RigidSolids
@@ -476,16 +476,3 @@ def test_the_critical_stokes_number_of_a_rigid_rough_sphere(layer):
     found = critical_stokes(params, bracket=(4.0, 20.0), rtol=2e-3, config=config)
     exact = rigid_film.rough_critical_stokes(0.01, 0.9, layer)
     assert found["bracket"][0] < exact * 1.005 and found["bracket"][1] > exact * 0.995
-
-
-@pytest.mark.slow
-def test_fe_touch_with_the_surfaces_radial_motion_is_refused_at_the_touch():
-    """On FE solids with the tangential surface effects (the faces' radial motion in the flux)
-    the asperity obstacle's steps collapse (docs/model.md, rough surfaces): the run stops at the
-    first touch with an error naming shear_traction, and runs with shear_traction = false."""
-    inputs = dict(St=50.0, eps=1e-2, delta=0.01, e_dry=0.9, roughness=0.06, layer="thin")
-    with pytest.raises(NormalSolverError, match="shear_traction = false"):
-        collide(CollisionParameters.from_settings(**inputs), model="fem", nodes=40)
-    params = CollisionParameters.from_settings(**inputs, shear_traction=False)
-    result = collide(params, model="fem", nodes=40)
-    assert result.normal.rebound and result.normal.min_film_thickness >= 0.06 * (1 - 1e-2)

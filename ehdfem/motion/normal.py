@@ -493,14 +493,6 @@ class _NormalIntegration:
         touching film ``height`` (sigma within TOUCH_TOL; it carries no load there) takes every
         later touch; the BDF history restarts at the touching state (the velocity's jump of an
         impact, the obstacle's kink in the load)."""
-        if self.yielding and self.step_solver.surface_motion is not None:
-            raise NormalSolverError(
-                f"the asperities touched at T = {self.hist.time[-1]:.6g}: their contact "
-                "(the impact model's obstacle) is not supported together with the faces' radial "
-                "motion of the tangential surface effects (shear_traction, on by default on FE "
-                "solids), whose steps collapse against the stiff contact (docs/model.md, rough "
-                "surfaces); rerun with shear_traction = false (--shear-traction off)"
-            )
         if self.yielding:
             self.step_solver.load_asperities(
                 AsperityObstacle.on(height, self.step_solver.compliance)

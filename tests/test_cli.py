@@ -717,7 +717,14 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(4.0)  # imports done, collisions under way
+    # the search is under way once the solver's imports have loaded scipy's LAPACK wrappers;
+    # waiting for them in the process's maps, not a fixed time, keeps a loaded machine's slow
+    # imports out of the test (an interrupt there is the imports' line, not the search's)
+    maps = Path(f"/proc/{process.pid}/maps")
+    deadline = time.monotonic() + 60.0
+    while "_flapack" not in maps.read_text() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(3.0)  # the rest of the imports and numba's cache load (the search: 100 s)
     process.send_signal(signal.SIGINT)
     _, err = process.communicate(timeout=60)
     assert process.returncode == 130, err

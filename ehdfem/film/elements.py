@@ -212,3 +212,42 @@ def tridiagonal_rows(bands, matrix, rows) -> np.ndarray:
             for k in range(m):
                 out[j, k] += upper[i] * matrix[i + 1, k]
     return out
+
+
+@njit(cache=True)
+def _add_bands(bands, out):
+    """out[i, i-1..i+1] += the bands' row i (at the ends, where lower[0] and upper[-1] are
+    unused, onto the diagonal)."""
+    lower, diagonal, upper = bands
+    n = len(diagonal)
+    for i in range(n):
+        out[i, i] += diagonal[i]
+        out[i, max(i - 1, 0)] += lower[i]
+        out[i, min(i + 1, n - 1)] += upper[i]
+
+
+@njit(cache=True)
+def _banded_product(bands, column, out, k):
+    """out[:, k] = tridiag(lower, diagonal, upper) @ ``column``, the interior rows in one
+    branch-free pass (each row summed diagonal, lower, upper, as :func:`tridiagonal_rows`)."""
+    lower, diagonal, upper = bands
+    n = len(diagonal)
+    out[0, k] = diagonal[0] * column[0] + upper[0] * column[1]
+    for i in range(1, n - 1):
+        out[i, k] = diagonal[i] * column[i] + lower[i] * column[i - 1] + upper[i] * column[i + 1]
+    out[n - 1, k] = diagonal[n - 1] * column[n - 1] + lower[n - 1] * column[n - 2]
+
+
+@njit(cache=True)
+def film_jacobian(squeeze, compliance, by_gap, flux_bands, viscous_bands, out):
+    """The film's rows of the Newton matrix into ``out`` (at least n x (n + 1)):
+    d(r)/dP = S C + K + E and d(r)/dX = S g, with S = ``squeeze`` the bands of d(r)/dH,
+    C = ``compliance`` (dH/dP), g = ``by_gap`` (dH/dX), K = ``flux_bands`` and E =
+    ``viscous_bands`` (:mod:`ehdfem.motion.implicit_step`). Column by column, so that a matrix
+    in LAPACK's column order is written in its own order (``compliance`` best so too)."""
+    n = len(by_gap)
+    for k in range(n):
+        _banded_product(squeeze, compliance[:, k], out, k)
+    _banded_product(squeeze, by_gap, out, n)
+    _add_bands(flux_bands, out)
+    _add_bands(viscous_bands, out)

@@ -49,7 +49,7 @@ from functools import partial
 import numpy as np
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
-from ..film.elements import tridiagonal_rows
+from ..film.elements import film_jacobian, tridiagonal_rows
 from ..film.reynolds import Film, FilmState
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
@@ -142,6 +142,9 @@ class ImplicitStep:
     ):
         self.film = film
         self.compliance = np.asarray(compliance_matrix, dtype=float)
+        self._compliance_columns = np.asfortranarray(self.compliance)  # for the Newton matrix
+        self._nodes = np.arange(len(self.compliance))
+        self._no_load = np.ones(len(self.compliance))  # dH/dX without asperities
         self.shear = shear_matrix
         self.surface_motion = surface_motion
         self.compliance_diagonal = np.diag(self.compliance).copy()
@@ -242,7 +245,7 @@ class ImplicitStep:
             )
             fresh = iteration == 1 or refresh
             if fresh:
-                self._factorise(it, step, a0, fill)
+                self._factorise(self._newton_matrix(it, step, a0, fill), it)
                 refresh = False
             update = self._newton_update(it, step, a0, fill)
             damping = self._damping(pressure, gap, update, it.rhs)
@@ -312,18 +315,25 @@ class ImplicitStep:
         return _Iterate(rhs, state, motion, h, fixed, theta_nodes, sets), cavitated, fill
 
     def _newton_update(self, it: _Iterate, step, a0, fill):
-        """(dP, d theta, dX, dV) from the (possibly reused) factorisation."""
-        rows = partial(
-            self._rows, it.state, step=step, a0=a0, fill=fill, theta_nodes=it.theta_nodes
-        )
+        """(dP, d theta, dX, dV) from the (possibly reused) factorisation; the rows and columns
+        that changed since it are the iterate's Newton matrix's, formed once if needed."""
+        formed = []
 
-        def columns(indices):
-            return self._newton_matrix(it, step, a0, fill)[:, indices]
+        def matrix():
+            if not formed:
+                formed.append(self._newton_matrix(it, step, a0, fill))
+            return formed[0]
 
         try:
-            update = self.factor.solve(it.rhs, it.fixed, rows, it.theta_nodes, columns)
+            update = self.factor.solve(
+                it.rhs,
+                it.fixed,
+                lambda rows: matrix()[rows],
+                it.theta_nodes,
+                lambda columns: matrix()[:, columns],
+            )
         except TooManyChanges:
-            self._factorise(it, step, a0, fill)
+            self._factorise(matrix(), it)
             update = self.factor.solve(it.rhs, it.fixed, None)
         n = len(it.film_thickness)
         d_node, d_gap, d_velocity = update[:n], update[n], update[n + 1]
@@ -357,50 +367,38 @@ class ImplicitStep:
         jacobian[nodes, nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
         return jacobian
 
-    def _factorise(self, it: _Iterate, step, a0, fill):
-        """A new LU of the Newton matrix (:meth:`_newton_matrix`)."""
-        jacobian = self._newton_matrix(it, step, a0, fill)
+    def _factorise(self, matrix, it: _Iterate):
+        """A new LU of the iterate's Newton ``matrix`` (:meth:`_newton_matrix`)."""
         try:
-            self.factor = ReusableLU(jacobian, it.fixed, it.theta_nodes)
+            self.factor = ReusableLU(matrix, it.fixed, it.theta_nodes)
         except SingularMatrix as err:
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1
 
-    def _rows(self, state: FilmState, rows, *, step, a0, fill=1.0, theta_nodes=None):
-        """Film rows of the Jacobian, d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) =
-        ((m theta a0/dt + D) C + K + E, (m theta a0/dt + D) 1, 0), for the node indices
-        ``rows`` (E: the viscosity's d(K P)/dP - K), none of them in ``theta_nodes``: the
-        columns of those hold d/d(theta), which is zero off their own rows."""
+    def _film_rows(self, state: FilmState, step, a0, fill, out):
+        """The film rows of the Jacobian into ``out`` (zeros, at least n x (n + 2)),
+        d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) = ((m theta a0/dt + D) C + K + E,
+        (m theta a0/dt + D) 1, 0) (E: the viscosity's d(K P)/dP - K)."""
         n = len(state.mass)
         lower, diag, upper = state.dflux_dH
         squeeze = (lower, diag + state.mass * fill * a0 / step, upper)
-        out = np.zeros((len(rows), n + 2))
         loaded = self.loaded()
-        c = self.compliance if loaded is None else loaded.by_pressure
-        out[:, :n] = tridiagonal_rows(squeeze, c, rows)
-        below, above = np.maximum(rows - 1, 0), np.minimum(rows + 1, n - 1)
-        j = np.arange(len(rows))
-        for k_low, k_diag, k_up in (state.conductance, state.dflux_dP):
-            out[j, rows] += k_diag[rows]
-            out[j, below] += k_low[rows]
-            out[j, above] += k_up[rows]
+        c = self._compliance_columns if loaded is None else loaded.by_pressure
+        by_gap = self._no_load if loaded is None else loaded.by_gap  # dH/dX = (I - C D)^-1 1
+        film_jacobian(squeeze, c, by_gap, state.conductance, state.dflux_dP, out)
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
             motion = self.surface_motion
-            out[:, :n] += tridiagonal_rows(state.transport, motion.matrix, rows) * (
+            out[:n, :n] += tridiagonal_rows(state.transport, motion.matrix, self._nodes) * (
                 motion.sqrt_delta * a0 / step
             )
-        by_gap = np.ones(n) if loaded is None else loaded.by_gap  # dH/dX = (I - C D)^-1 1
-        out[:, n] = tridiagonal_rows(squeeze, by_gap[:, None], rows)[:, 0]
-        if theta_nodes is not None:
-            out[:, np.flatnonzero(theta_nodes)] = 0.0
         return out
 
     def _jacobian(self, state: FilmState, motion: SphereState, fixed, step, a0, fill):
         """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the sphere's X and V
         rows (:meth:`ehdfem.motion.sphere.Sphere.jacobian_rows`)."""
         n = len(state.mass)
-        jac = np.zeros((n + 2, n + 2))
-        jac[:n] = self._rows(state, np.arange(n), step=step, a0=a0, fill=fill)
+        jac = np.zeros((n + 2, n + 2), order="F")  # LAPACK's order: no copy for the LU
+        self._film_rows(state, step, a0, fill, jac)
         fixed_rows = np.flatnonzero(fixed)
         jac[fixed_rows, :] = 0.0
         jac[fixed_rows, fixed_rows] = 1.0

@@ -36,35 +36,36 @@ def _power_of_two(largest: float) -> float:
     return math.ldexp(1.0, math.frexp(largest)[1])
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath={"nnan", "ninf", "reassoc", "nsz"})
 def _equilibrated(matrix):
     """(S, c, r): S = diag(1/r) A diag(1/c), c the powers of two of the columns' largest
     absolute entries and then r those of the scaled rows' (:func:`_power_of_two`): the
-    scaling is exact, and its compiled passes cost a tenth of the LU."""
+    scaling is exact. Columns outer: S is in LAPACK's column order (getrf takes it without a
+    copy), read best from A in the same. The fast-math flags let the compiler vectorise the
+    largest-entry searches (a maximum is exact in any order) on a finite A (checked by the
+    caller); the products are single roundings, the same in any order."""
     n, m = matrix.shape
-    col = np.zeros(m)
-    for i in range(n):
-        for j in range(m):
-            value = abs(matrix[i, j])
-            if value > col[j]:
-                col[j] = value
-    inverse = np.empty(m)
+    scaled = np.empty((m, n)).T
+    col = np.empty(m)
+    row = np.zeros(n)
     for j in range(m):
-        col[j] = _power_of_two(col[j])
-        inverse[j] = 1.0 / col[j]
-    scaled = np.empty((m, n)).T  # in LAPACK's column order: getrf takes it without a copy
-    row = np.empty(n)
-    for i in range(n):
         largest = 0.0
-        for j in range(m):
-            scaled[i, j] = matrix[i, j] * inverse[j]
-            value = abs(scaled[i, j])
-            if value > largest:
-                largest = value
-        row[i] = _power_of_two(largest)
-        factor = 1.0 / row[i]
-        for j in range(m):
-            scaled[i, j] *= factor
+        for i in range(n):
+            largest = max(largest, abs(matrix[i, j]))
+        col[j] = _power_of_two(largest)
+    for j in range(m):
+        inverse = 1.0 / col[j]
+        for i in range(n):
+            value = matrix[i, j] * inverse
+            scaled[i, j] = value
+            row[i] = max(row[i], abs(value))
+    inverse_row = np.empty(n)
+    for i in range(n):
+        row[i] = _power_of_two(row[i])
+        inverse_row[i] = 1.0 / row[i]
+    for j in range(m):
+        for i in range(n):
+            scaled[i, j] *= inverse_row[i]
     return scaled, col, row
 
 

@@ -13,12 +13,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ehdfem import from_presets
+from ehdfem import CollisionParameters, collide, from_presets
 from ehdfem.cli.main import main
 from ehdfem.config import RunConfig
 from ehdfem.dem.engines import liggghts, yade
 from ehdfem.dem.engines.compare import compare, engine_law
 from ehdfem.dem.engines.rebound import read_rebound, run_binary
+from ehdfem.inputs.presets import Liquid
 
 pytestmark = pytest.mark.serial  # the engines are serial binaries: nothing to check on 2 ranks
 MU = 96.5e-3  # Pa s, silicone_oil_100cst
@@ -76,7 +77,7 @@ def test_liggghts_bridge_force_is_the_rigid_lubrication_force(tmp_path):
     collision = small()
     liggghts.run(collision, liggghts.LiggghtsLaw(), tmp_path)
     rows = np.loadtxt(tmp_path / "history.txt", skiprows=1)
-    time, gap, velocity, force = rows.T
+    time, gap, velocity, force = rows.T[:4]
     after = time > time[np.argmax(gap < 0)]
     bridge = after & (gap > 0.1e-4) & (gap < 0.9e-4)
     exact = 6 * math.pi * MU * (collision.radius / 2) ** 2 * velocity[bridge] / gap[bridge]
@@ -151,18 +152,56 @@ def test_dem_command_refuses_bad_input(tmp_path, capsys, extra, flag):
 
 
 def test_each_engine_runs_its_example(tmp_path, capsys):
-    """``dem --example`` with either engine: LIGGGHTS's two equal spheres take the example's
-    sphere material for the wall and a head-on impact (the example is steel on glass at 30
-    degrees), unless the user gives them; both conflicts are named in one refusal."""
+    """``dem --example`` with either engine, obliquely (the example is steel on glass at 30
+    degrees): LIGGGHTS's two equal spheres take the example's sphere material for the wall
+    unless the user gives another, which is refused."""
     for engine in ("liggghts", "yade"):
         folder = tmp_path / engine
         assert main(["dem", "--engine", engine, "--example", "--folder", str(folder)]) == 0
-        assert "beside ehdfem's half-space model" in capsys.readouterr().out
+        out = capsys.readouterr().out
+        assert "beside ehdfem's half-space model" in out and "e_t" in out
     args = ["dem", "--engine", "liggghts", "--example", "--folder", str(tmp_path / "conflict"),
-            "--wall", "glass", "--angle", "20"]  # fmt: skip
+            "--wall", "glass"]  # fmt: skip
     assert main(args) == 2
     err = capsys.readouterr().err
-    assert err.startswith("ehdfem dem: error: --wall:") and "head-on only" in err
+    assert err.startswith("ehdfem dem: error: --wall:") and "two equal spheres" in err
+
+
+def test_liggghts_oblique_sliding_contact_is_the_rigid_body_law(tmp_path):
+    """Two equal steel spheres at 60 degrees through a layer of a liquid of 1e-9 Pa s (no
+    liquid force) with Coulomb friction mu = 0.1 slide throughout the contact
+    (mu (1 + e_n)(1 + 1/k) = 0.66 < tan 60), so the tangential impulse is mu times the normal
+    one: e_t = 1 - mu (1 + e_n) / tan(angle) and each sphere's spin change is (1 - e_t)/(2 k),
+    k = 2/5 (rigid-body impact of two spheres, the pair's inertia factor k). Measured 1.1e-4
+    and 5e-5 off (relative): the line of centres turns by x0 tan(angle) / R = 1.7e-3 while the
+    contact lasts; tested at 3e-4 and 2e-4."""
+    thin_liquid = Liquid("inviscid", 1e-9, 1000.0, 2000.0)
+    collision = from_presets(
+        sphere="steel", wall="steel", liquid=thin_liquid, radius=2e-3, speed=0.5,
+        layer_thickness=2e-6, angle=60.0, friction_coefficient=0.1, e_dry=0.9,
+        sphere_roughness=1e-7,
+    )  # fmt: skip
+    rebound = liggghts.run(collision, engine_law("liggghts", collision, {}), tmp_path)
+    rigid = 1.0 - 0.1 * (1.0 + rebound.e_n) / math.tan(math.radians(60.0))
+    assert rebound.e_n == pytest.approx(0.9, abs=1e-3)  # the Hertz contact's coefficient
+    assert rebound.e_t == pytest.approx(rigid, abs=3e-4)
+    assert rebound.spin_change == pytest.approx((1.0 - rebound.e_t) / 0.8, rel=2e-4)
+
+
+def test_liggghts_oblique_full_model_is_the_equal_pair(tmp_path):
+    """Obliquely, LIGGGHTS's full-model counterpart (the reduced radius and mass, sphere 1's
+    spin rate doubled, half the spin change) is the two-sphere collision of equal spheres
+    (``lower = sphere``) at the same groups: e_n, e_t and sphere 1's spin change to 1e-12."""
+    collision = small(angle=30.0, spin=50.0)
+    result = compare("liggghts", collision, liggghts.LiggghtsLaw(), tmp_path)
+    full = result["full_model"]
+    params = CollisionParameters.from_settings(**result["inputs"]["parameters"])
+    pair = collide(params, lower="sphere", radius_ratio=1.0, density_ratio=1.0,
+                   lower_inertia_factor=0.4)  # fmt: skip
+    assert full["e_n"] == pytest.approx(pair.normal.e_n, rel=1e-12)
+    assert full["e_t"] == pytest.approx(pair.tangential.e_t, rel=1e-12)
+    assert full["spin_change"] == pytest.approx(pair.tangential.spin_change, rel=1e-12)
+    assert result["engine"]["e_t"] is not None
 
 
 STUDY = Path(__file__).resolve().parents[1] / "studies/results/dem_engines.json"

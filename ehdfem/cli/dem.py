@@ -27,8 +27,9 @@ def add_dem(parser) -> None:
         choices=tuple(ENGINES),
         required=True,
         help="yade: a sphere on a wall with its implicit lubrication law; liggghts: two equal "
-        "spheres (--wall the sphere's material, head-on) with its easo/capillary/viscous "
-        "bridge, beside the half-space model at the reduced radius and mass; default: required",
+        "spheres (--wall the sphere's material) with its easo/capillary/viscous bridge and "
+        "Hertz-Mindlin contact, beside the half-space model at the reduced radius and mass; "
+        "default: required",
     )
     engine.add_argument(
         "--folder",
@@ -69,16 +70,14 @@ def dem_command(args) -> int:
 
 
 def _two_equal_spheres_example(args) -> None:
-    """The main job's example as LIGGGHTS can run it (two equal spheres, head-on): the wall of
-    the sphere's material and angle 0 where the user gave neither (a given one is refused by
-    the engine with the reason)."""
+    """The main job's example as LIGGGHTS can run it (two equal spheres): the wall of the
+    sphere's material where the user gave none (a given other one is refused by the engine
+    with the reason)."""
     own_wall = args.wall is not None or any(
         getattr(args, f"wall_{suffix}", None) is not None for suffix in MATERIAL_OPTIONS
     )
     if not own_wall:
         args.wall = args.sphere or EXAMPLE["sphere"]
-    if not hasattr(args, "angle"):
-        args.angle = 0.0
 
 
 def print_comparison(result: dict, report) -> None:

@@ -5,7 +5,11 @@ Yade's sphere on a wall is the full model's collision as given. LIGGGHTS's two e
 R/2 and mass m/2 with theta summed over both spheres: the asymptotic theory of Davis, Serayssol
 & Hinch (1986) is exact for two spheres so at leading order in x0 / R, and it runs in seconds
 where the FE model's lower sphere (``--lower sphere``) takes minutes; both spheres here are of
-one material (theta = 2 (1 - nu^2) / (pi E)).
+one material (theta = 2 (1 - nu^2) / (pi E)). Obliquely, the pair's tangential motion is the
+sphere on a wall's with the contact spin w = a1 Omega1 + a2 Omega2 and the pair's inertia
+factor, which for equal spheres is each one's (docs/tangential.md, "Two spheres"): the reduced
+collision starts with w = R Omega1(0) (sphere 1's spin R Omega1 over the reduced radius R/2 is
+twice its rate), and each sphere takes half of the change of w.
 """
 
 from __future__ import annotations
@@ -77,7 +81,10 @@ def full_model_collision(engine: str, collision: PhysicalCollision) -> PhysicalC
         return collision
     liggghts.check_equal_spheres(collision)
     return dataclasses.replace(
-        collision, radius=collision.radius / 2, sphere_mass=collision.mass / 2
+        collision,
+        radius=collision.radius / 2,
+        sphere_mass=collision.mass / 2,
+        spin=2.0 * collision.spin,
     )
 
 
@@ -101,6 +108,7 @@ def compare(
     result = collide(full, config)
     params = full.dimensionless()
     tangential = result.tangential
+    spin_share = 0.5 if engine == "liggghts" else 1.0  # sphere 1's share of the contact spin
     model = {
         "model": result.model,
         "St": params.St,
@@ -110,7 +118,7 @@ def compare(
         "asperities": params.asperities.name,
         "e_n": result.normal.e_n,
         "e_t": None if tangential is None else tangential.e_t,
-        "spin_change": None if tangential is None else tangential.spin_change,
+        "spin_change": None if tangential is None else spin_share * tangential.spin_change,
     }
     return {
         "engine": rebound.summary(),

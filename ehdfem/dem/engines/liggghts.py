@@ -9,20 +9,36 @@ viscous force is
 
     F = 6 pi mu R*^2 v / max(h, minSeparationDistanceRatio R*),   R* = R1 R2 / (R1 + R2),
 
-with the capillary force (zero here: surface tension 0, since the full model has none). No
-liquid force acts while the spheres approach: the bridge does not exist before contact.
+with the capillary force (zero here: surface tension 0, since the full model has none), and
+the tangential viscous force -6 pi mu R* (8/15 ln(R*/h) + 0.9588) v_t on the relative
+tangential velocity v_t of the surfaces at the contact (h capped alike), with its torque about
+each centre at the sphere's radius. No liquid force acts while the spheres approach: the
+bridge does not exist before contact. The dry contact is Hertz's with Mindlin's tangential
+spring (``tangential history``) up to Coulomb's limit at the collision's friction coefficient.
 The liquid volume is set so that Lian's rupture distance is beyond the cut-off; the cut-off's
 default, maxSeparationDistanceRatio = 1 + x0 / (2 R), breaks the bridge at the layer's
 thickness x0.
 
 The spheres, each of the collision's radius R, material and mass (e.g. 4/3 pi R^3 rho), meet
-at the relative speed V0 (the collision's normal speed), starting at the gap x0. The full
-model's counterpart (:func:`ehdfem.dem.engines.compare.full_model_collision`) is the
-half-space model at the reduced radius R/2 and mass m/2 (Davis, Serayssol & Hinch 1986).
+at the relative normal speed V0 (the collision's normal speed) along x, starting at the gap
+x0, and, obliquely, with the relative tangential speed U0 = |v| sin(angle) along y; sphere 1
+(at -x) is ehdfem's upper sphere and carries the initial spin. ehdfem's axes are then
+z = -x (the normal from sphere 2 to sphere 1), x = y (the tangential motion) and y = -z, so
+that its spin about y, rolling sense positive, is -omega_z of sphere 1 (its contact point
+moves at v_y + R omega_z, ehdfem's U - a Omega); e_t = (v_1 - v_2).t / U0 (t the tangent)
+and the spin change
+-R (omega_z1 - omega_z1(0)) / U0 are read at the exit (or the run's end if they stick).
+The relative velocity is split along the line of centres as it stands at each moment (the gap
+is the distance of the centres less 2R): obliquely it turns during the collision by about
+x0 tan(angle) / R, and the normal force's share along the first tangent would otherwise count
+as a tangential impulse. The full model's counterpart
+(:func:`ehdfem.dem.engines.compare.full_model_collision`) is the half-space model at the
+reduced radius R/2 and mass m/2 (Davis, Serayssol & Hinch 1986).
 
 The input (in.collision) is written into a folder and run there with
 ``liggghts -in in.collision``; LIGGGHTS writes history.txt (t [s], gap [m], relative normal
-velocity [m/s], force on the first sphere [N]); ehdfem reads it and writes rebound.json.
+velocity [m/s], force on the first sphere [N], the relative tangential velocity of sphere 1
+[m/s] and both spins omega_z [rad/s]); ehdfem reads it and writes rebound.json.
 """
 
 from __future__ import annotations
@@ -105,28 +121,21 @@ def liquid_content(collision: PhysicalCollision, law: LiggghtsLaw) -> float:
 
 
 def check_equal_spheres(collision: PhysicalCollision) -> None:
-    """Refuse a collision whose wall differs from its sphere (LIGGGHTS collides two equal
-    spheres; its liquid bridge on a wall is dry only) or that is oblique, naming every
-    conflict in one refusal."""
-    conflicts = []
+    """Refuse a collision whose wall differs from its sphere: LIGGGHTS collides two equal
+    spheres (its liquid bridge on a wall is dry only)."""
     if collision.wall != collision.sphere:
-        conflicts.append(
-            (
-                "wall",
-                f"LIGGGHTS collides two equal spheres: the wall ({collision.wall.name}) must be "
-                f"the sphere's material ({collision.sphere.name})",
-            )
+        raise checks.InputError(
+            f"LIGGGHTS collides two equal spheres: the wall ({collision.wall.name}) must be "
+            f"the sphere's material ({collision.sphere.name})",
+            "wall",
         )
-    if collision.angle != 0.0:
-        conflicts.append(("angle", "LIGGGHTS's liquid bridge is compared head-on only (angle 0)"))
-    if conflicts:
-        raise checks.InputError("; ".join(text for _, text in conflicts), conflicts[0][0])
 
 
 def script(collision: PhysicalCollision, law: LiggghtsLaw) -> str:
     """The LIGGGHTS input of ``collision`` with ``law`` (SI)."""
     check_equal_spheres(collision)
     r, x0, v0 = collision.radius, collision.layer_thickness, collision.normal_speed
+    u0 = collision.normal_speed * math.tan(math.radians(collision.angle))
     material = collision.sphere
     dt = law.liggghts_time_step * hertz_contact_time(collision)
     duration = LAYER_TIMES * x0 / v0 + 10.0 * hertz_contact_time(collision)
@@ -149,7 +158,7 @@ neigh_modify delay 0
 fix m1 all property/global youngsModulus peratomtype {material.young_modulus!r}
 fix m2 all property/global poissonsRatio peratomtype {material.poisson_ratio!r}
 fix m3 all property/global coefficientRestitution peratomtypepair 1 {collision.e_dry!r}
-fix m4 all property/global coefficientFriction peratomtypepair 1 0.0
+fix m4 all property/global coefficientFriction peratomtypepair 1 {collision.friction_coefficient!r}
 fix l1 all property/global surfaceLiquidContentInitial scalar {liquid_content(collision, law)!r}
 fix l2 all property/global surfaceTension scalar 0.0
 fix l3 all property/global fluidViscosity scalar {collision.liquid.viscosity!r}
@@ -163,32 +172,44 @@ create_atoms 1 single {-(r + x0 / 2)!r} 0 0 units box
 create_atoms 1 single {r + x0 / 2!r} 0 0 units box
 set atom * diameter {2 * r!r} density {density!r}
 velocity all set 0 0 0 units box
-set atom 1 vx {v0 / 2!r}
-set atom 2 vx {-v0 / 2!r}
+set atom 1 vx {v0 / 2!r} vy {u0 / 2!r} omegaz {-collision.spin!r}
+set atom 2 vx {-v0 / 2!r} vy {-u0 / 2!r}
 fix integrate all nve/sphere
+compute spin all property/atom omegaz
 variable t equal time
-variable gap equal x[2]-x[1]-{2 * r!r}
-variable vrel equal vx[2]-vx[1]
+variable dx equal x[2]-x[1]
+variable dy equal y[2]-y[1]
+variable distance equal sqrt(v_dx*v_dx+v_dy*v_dy)
+variable gap equal v_distance-{2 * r!r}
+variable vrel equal ((vx[2]-vx[1])*v_dx+(vy[2]-vy[1])*v_dy)/v_distance
 variable force equal fx[1]
-fix history all print 10 "${{t}} ${{gap}} ${{vrel}} ${{force}}" file history.txt screen no title "time_s gap_m separation_velocity_m_s force_N"
+variable slide equal ((vy[1]-vy[2])*v_dx-(vx[1]-vx[2])*v_dy)/v_distance
+variable spin1 equal c_spin[1]
+variable spin2 equal c_spin[2]
+fix history all print 10 "${{t}} ${{gap}} ${{vrel}} ${{force}} ${{slide}} ${{spin1}} ${{spin2}}" file history.txt screen no title "time_s gap_m separation_velocity_m_s force_N tangential_velocity_m_s omega_z1_rad_s omega_z2_rad_s"
 thermo 100000
 run {math.ceil(duration / dt)}
 """  # noqa: E501
 
 
 def rebound_of_history(history: np.ndarray, collision: PhysicalCollision) -> dict:
-    """e_n, rebounded, time in the layer [s] and the thinnest gap [m] from the rows (t, gap,
-    separation velocity, force): the first row after contact where the gap is back at x0."""
+    """e_n, e_t, the spin change (module docstring; None head-on), rebounded, time in the
+    layer [s] and the thinnest gap [m] from the rows (t, gap, separation velocity, force,
+    v_y1 - v_y2, omega_z1, omega_z2): the first row after contact where the gap is back at
+    x0, else the last."""
     time, gap, velocity = history[:, 0], history[:, 1], history[:, 2]
     x0, v0 = collision.layer_thickness, collision.normal_speed
     touched = np.argmax(gap <= 0.0) if np.any(gap <= 0.0) else len(gap)
     out = np.flatnonzero((gap[touched:] >= x0) & (velocity[touched:] > 0.0))
     rebounded = out.size > 0
     end = touched + out[0] if rebounded else len(gap) - 1
+    u0 = v0 * math.tan(math.radians(collision.angle))
+    oblique = u0 > 0.0
+    spin = history[:, 5]
     return {
         "e_n": float(velocity[end] / v0) if rebounded else 0.0,
-        "e_t": None,
-        "spin_change": None,
+        "e_t": float(history[end, 4] / u0) if oblique else None,
+        "spin_change": float(-collision.radius * (spin[end] - spin[0]) / u0) if oblique else None,
         "rebounded": bool(rebounded),
         "time_in_layer": float(time[end]),
         "thinnest_gap": float(gap.min()),

@@ -103,12 +103,13 @@ TEXT = [
     "Equal pairs of radius 2 mm through a layer of 20 um (eps, St by the reduced radius and "
     "mass), both surfaces of rms roughness 0.5 um (sigma/x0 = 0.035), friction mu = 0.1 at the "
     "solid contact; the full model's tangential film is the Couette shear, its solid contact the "
-    "impact asperity model, rigid tangentially (\"full\") or with the contact's tangential "
-    "compliance kappa = 4 G*/E* (\"compliant\", Mindlin-Deresiewicz by the method of "
-    "dimensionality reduction, docs/tangential.md; 0.87 for glass, 0.84 for steel); LIGGGHTS's smallest gap is 3 sigma (the setting `ehdfem dem` takes "
-    "from the roughness, docs \"DEM engines\" below). e_t is the relative tangential velocity "
+    'impact asperity model, rigid tangentially ("full") or with the contact\'s tangential '
+    'compliance kappa = 4 G*/E* ("compliant", Mindlin-Deresiewicz by the method of '
+    "dimensionality reduction, docs/tangential.md; 0.87 for glass, 0.84 for steel); LIGGGHTS's "
+    "smallest gap is 3 sigma (the setting `ehdfem dem` takes from the roughness, docs "
+    '"DEM engines" below). e_t is the relative tangential velocity '
     "of the centres at exit over its value at first touch, the spin change sphere 1's "
-    "a (Omega - Omega0) / U0 (sphere 2 takes the same: docs/tangential.md, \"Two spheres\"). "
+    'a (Omega - Omega0) / U0 (sphere 2 takes the same: docs/tangential.md, "Two spheres"). '
     "LIGGGHTS's velocities are split along the line of centres as it stands at exit (it turns "
     "by about x0 tan(angle) / R during the collision; tests/test_dem_engines.py checks the "
     "engine's sliding contact against the rigid-body law to 1e-4). Computed by "

@@ -702,6 +702,12 @@ def test_sweep_counts_only_its_own_points_and_prints_short_numbers(tmp_path):
     assert re.search(r"e_n=0\.\d{4} \(", lines[0])
 
 
+def cpu_seconds(pid: int) -> float:
+    """The CPU time [s] the process ``pid`` has used, user and system (/proc/pid/stat)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rpartition(")")[2].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 @pytest.mark.serial
 def test_ctrl_c_ends_a_long_command_with_one_line():
     """SIGINT during `ehdfem critical` (a search of many collisions): exit status 130 and one
@@ -721,10 +727,15 @@ def test_ctrl_c_ends_a_long_command_with_one_line():
     # waiting for them in the process's maps, not a fixed time, keeps a loaded machine's slow
     # imports out of the test (an interrupt there is the imports' line, not the search's)
     maps = Path(f"/proc/{process.pid}/maps")
-    deadline = time.monotonic() + 60.0
+    deadline = time.monotonic() + 120.0
     while "_flapack" not in maps.read_text() and time.monotonic() < deadline:
         time.sleep(0.05)
-    time.sleep(3.0)  # the rest of the imports and numba's cache load (the search: 100 s)
+    # then 2.5 s of the process's own CPU time, not of the clock: the rest of the imports and
+    # numba's cache load take about one, and a machine busy with other work only stretches them
+    # (the search: 100 s)
+    start = cpu_seconds(process.pid)
+    while cpu_seconds(process.pid) < start + 2.5 and time.monotonic() < deadline:
+        time.sleep(0.05)
     process.send_signal(signal.SIGINT)
     _, err = process.communicate(timeout=60)
     assert process.returncode == 130, err

@@ -443,9 +443,13 @@ def with_tangential(
 def sphere_pair(params: CollisionParameters, lower) -> SpherePair:
     """The partner of a two-sphere collision (:class:`ehdfem.tangential.pair.SpherePair`) from
     the upper sphere's inertia factor in ``params`` and the :class:`ehdfem.config.LowerSphere`
-    ``lower`` (its mass ratio, inertia factor and spin)."""
+    ``lower`` (its mass ratio, inertia factor, spin and radius ratio)."""
     return SpherePair(
-        lower.mass_ratio, params.inertia_factor, lower.lower_inertia_factor, lower.lower_spin
+        lower.mass_ratio,
+        params.inertia_factor,
+        lower.lower_inertia_factor,
+        lower.lower_spin,
+        lower.radius_ratio,
     )
 
 

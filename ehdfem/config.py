@@ -54,14 +54,14 @@ class Numerics:
 
 
 def curved_lower_sliding(kind: str) -> str:
-    """The refusal of the tangential films derived for a flat lower body only, over a curved
+    """The refusal of the sliding film, derived for a flat lower body only, over a curved
     lower body of ``kind``."""
     return (
-        "tangential = 'lubrication' or 'gcb' needs a wall or coated wall below the sphere (lower "
-        f"= {kind!r} is not supported: their film pressure is driven by each surface's velocity "
-        "relative to the gap, not by the slip alone, and the two spheres' share of its force and "
-        "torque is not derived, docs/tangential.md 'Two spheres'); use tangential = 'couette' or "
-        "'flat'"
+        "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower "
+        f"= {kind!r} is not supported: the sliding film of two spheres needs the entrainment "
+        "w_pair = U (a2 - a1)/(a1 + a2) + s1 - s2 in its mode-1 pressure and each sphere's own "
+        "force and torque, which are derived but not built, docs/tangential.md 'Two spheres'); "
+        "use tangential = 'couette', 'flat' or 'gcb'"
     )
 
 

@@ -203,34 +203,52 @@ def _flat(normal: NormalResult) -> TangentialResult:
     return _sheared(normal, "flat", shear)
 
 
-def integrate_resistance(
-    time, resistance, St: float, k: float, start, contact: CoulombContact | None = None
-) -> np.ndarray:
-    """(U, a Omega) at the instants ``time`` (by x0/V0) under a linear resistance R(T)
-    (``resistance`` (steps, 2, 2), symmetric non-negative, force by 6 pi mu a^2 U0 / x0):
-    St dU/dT = -(R (U, a Omega))_1, k St d(a Omega)/dT = -(R (U, a Omega))_2, from ``start``
-    (by U0). Each step takes the exact exponential of its mean R (trapezoid): second order,
-    exact for a constant R, and never gaining energy. ``contact``: a solid contact whose
-    Coulomb impulse acts after each step (None: none)."""
-    inverse_mass = np.diag([1.0 / St, 1.0 / (k * St)])
+def integrate_resistance(time, resistance, St: float, inertia, start, jump=None):
+    """(states, dissipated): the velocities v at the instants ``time`` (by x0/V0) under a linear
+    resistance R(T) (``resistance`` (steps, n, n), symmetric non-negative, generalised forces
+    by 6 pi mu a^2 U0 / x0), St diag(``inertia``) dv/dT = -R v from ``start`` (by U0; a sphere
+    on a wall: v = (U, a Omega), inertia (1, k)), and the film's dissipation int v.R v dT so
+    far (by m U0^2 / St). Each step takes the exact exponential of its mean R (trapezoid):
+    second order, exact for a constant R, and never gaining energy (:func:`resistance_step`).
+    ``jump``: a function (step, v) -> v acting after each step (a solid contact's Coulomb
+    impulse; None: none)."""
+    inverse_mass = np.diag(1.0 / (St * np.asarray(inertia, dtype=float)))
     means = 0.5 * (resistance[1:] + resistance[:-1]) * np.diff(time)[:, None, None]
-    states = np.empty((len(time), 2))
+    states = np.empty((len(time), len(start)))
+    dissipated = np.zeros(len(time))
     states[0] = start
     for i, mean in enumerate(means):
-        states[i + 1] = scipy.linalg.expm(-inverse_mass @ mean) @ states[i]
-        if contact is not None:
-            states[i + 1] = contact.act(i + 1, *states[i + 1])
-    return states
+        propagator, gram = resistance_step(mean, inverse_mass)
+        states[i + 1] = propagator @ states[i]
+        dissipated[i + 1] = dissipated[i] + states[i] @ gram @ states[i]
+        if jump is not None:
+            states[i + 1] = jump(i + 1, states[i + 1])
+    return states, dissipated
+
+
+def resistance_step(impulse, inverse_mass, fraction: float = 1.0):
+    """(P, G) of a step under a constant resistance whose impulse over the step is ``impulse``
+    (R dT, (n, n)), on the share ``fraction`` of the step: v_end = P v and the dissipation
+    int v.R v dT = v.G v, with P = exp(-A f), A = M^-1 R dT, G = int_0^f exp(-A^T s) R dT
+    exp(-A s) ds, both from one exponential of the block matrix [[A^T, R dT], [0, -A]] f
+    (Van Loan 1978)."""
+    n = len(impulse)
+    rate = inverse_mass @ impulse
+    block = np.zeros((2 * n, 2 * n))
+    block[:n, :n], block[:n, n:], block[n:, n:] = rate.T, impulse, -rate
+    exponential = scipy.linalg.expm(fraction * block)
+    propagator = exponential[n:, n:]
+    return propagator, propagator.T @ exponential[:n, n:]
 
 
 def _resisted(normal: NormalResult, model: str, resistance: np.ndarray) -> TangentialResult:
     """The result of a resistance model (:func:`integrate_resistance`) on the normal solution."""
     params, hist = normal.params, normal.history
     contact = CoulombContact.of(normal)
+    jump = None if contact is None else lambda i, state: contact.act(i, *state)
     start = (1.0, initial_spin(params))
-    states = integrate_resistance(
-        hist.time, resistance, params.St, params.inertia_factor, start, contact
-    )
+    inertia = (1.0, params.inertia_factor)
+    states, _ = integrate_resistance(hist.time, resistance, params.St, inertia, start, jump)
     velocity, spin = states.T
     force = -np.einsum("ij,ij->i", resistance[:, 0], states)
     shear = 3.0 * resistance[:, 0, 0] / params.delta

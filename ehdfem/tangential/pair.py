@@ -1,5 +1,6 @@
 """Two free spheres colliding obliquely: the pair's tangential motion, mapped exactly onto the
-sphere on a wall (docs/tangential.md, "Two spheres").
+sphere on a wall where the film's force depends on the slip alone, and the two spheres'
+resistances in ``gcb`` (docs/tangential.md, "Two spheres").
 
 Sphere 1 (upper: radius a1, mass m1, inertia factor k1 = I1/(m1 a1^2)) meets sphere 2 (lower:
 a2, m2, k2) along the line of centres, the normal. U = U1 - U2 is the relative tangential
@@ -24,6 +25,19 @@ frame (by m U0^2 / St)
     E = (St/2) (U^2 + k1 (1 + m1/m2) s1^2 + k2 (1 + m2/m1) s2^2)
 
 changes at the rate F u_s, as the wall's (St/2)(U^2 + k w^2) does.
+
+``gcb``: the film's pressure also turns the spheres. The surfaces at the gap entrain the
+liquid at w_pair = rho U + s1 - s2, rho = (a2 - a1)/(a1 + a2) (U + a Omega on a wall), whose
+mode-1 pressure pushes sphere 1 by rho times its force on a wall and turns the spheres
+oppositely; with the Couette shear of the slip, the force on sphere 1 and the torques over
+each sphere's radius are -delta L R (U, s1, s2) with R = (1/3) e e^T + (1/5) g g^T,
+e = (1, -1, -1), g = (rho, 1, -1): Jeffrey & Onishi's (1984) logarithmic resistances
+(:mod:`ehdfem.exact.sphere_pair`). The equations St dU/dT = -(R v)_1,
+St k_i (1 + m_i/m_j) ds_i/dT = -(R v)_(i+1) keep the pair's angular momentum about the contact
+point, (a1 + a2) U + a1 k1 (1 + m1/m2) s1 + a2 k2 (1 + m2/m1) s2 (R's null vector), and
+lose E at the rate v.R v: not a function of the slip alone, the pair is no longer the sphere on
+a wall. Equal spheres (rho = 0): the pressure exerts no net force, and equal and opposite spins
+(rolling like gears) are braked by it, unlike in the slip-only models.
 """
 
 from __future__ import annotations
@@ -33,27 +47,32 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .. import checks
+from ..exact.sphere_pair import pair_logarithmic
 from ..motion.normal import NormalResult
-from .motion import solve_tangential
-from .result import TangentialResult, end_index
+from .friction import CoulombContact
+from .motion import integrate_resistance, resistance_step, solve_tangential
+from .result import TangentialResult, end_index, tangential_result
 
-PAIR_MODELS = ("couette", "flat")  # the tangential models whose force depends on the slip alone
+SLIP_MODELS = ("couette", "flat")  # the tangential models whose force depends on the slip alone
+PAIR_MODELS = (*SLIP_MODELS, "gcb")
 
 
 @dataclass(frozen=True)
 class SpherePair:
     """The partner of a two-sphere collision as the tangential motion needs it: ``mass_ratio``
     m1/m2 in (0, inf), the inertia factors ``upper_inertia`` k1 and ``lower_inertia`` k2 in
-    (0, 2/3], the lower sphere's initial spin ``lower_spin`` a2 Omega2 / V0 (module
-    docstring)."""
+    (0, 2/3], the lower sphere's initial spin ``lower_spin`` a2 Omega2 / V0, the
+    ``radius_ratio`` a1/a2 in (0, inf) (module docstring)."""
 
     mass_ratio: float
     upper_inertia: float
     lower_inertia: float
     lower_spin: float = 0.0
+    radius_ratio: float = 1.0
 
     def __post_init__(self):
         checks.positive("mass_ratio", self.mass_ratio)
+        checks.positive("radius_ratio", self.radius_ratio)
         for name in ("upper_inertia", "lower_inertia"):
             checks.number(name, getattr(self, name), lower=0.0, upper=2 / 3, lower_open=True)
         checks.number("lower_spin", self.lower_spin)
@@ -105,10 +124,12 @@ class PairMotion:
 
 def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> TangentialResult:
     """The tangential motion of two free spheres on the normal solution ``normal`` (by the
-    reduced radius and mass), with the film ``model`` (PAIR_MODELS) and the partner ``pair``:
-    the sphere-on-wall motion of inertia factor ``pair.inertia_factor`` and initial spin
-    w0 = s1(0) + s2(0) (:func:`ehdfem.tangential.motion.solve_tangential`), split between the
-    spheres by their shares. The result's ``velocity`` and ``e_t`` are the relative ones
+    reduced radius and mass), with the film ``model`` (PAIR_MODELS) and the partner ``pair``.
+    The slip-only models (SLIP_MODELS): the sphere-on-wall motion of inertia factor
+    ``pair.inertia_factor`` and initial spin w0 = s1(0) + s2(0)
+    (:func:`ehdfem.tangential.motion.solve_tangential`), split between the spheres by their
+    shares; ``gcb``: the two spheres' logarithmic resistances on (U, s1, s2)
+    (:func:`gcb_pair`). The result's ``velocity`` and ``e_t`` are the relative ones
     (U1 - U2), ``spin`` and ``spin_change`` the upper sphere's, ``slip`` u_s = U - s1 - s2, and
     ``pair`` the rest (:class:`PairMotion`)."""
     checks.choice("tangential model of two spheres", model, PAIR_MODELS)
@@ -122,6 +143,8 @@ def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> Tangential
             "inertia_factor",
         )
     mapped = replace(params, inertia_factor=pair.inertia_factor, spin=params.spin + pair.lower_spin)
+    if model == "gcb":
+        return gcb_pair(replace(normal, params=mapped), pair)
     wall = solve_tangential(replace(normal, params=mapped), model)
     tangent = params.tangential_speed
     first, second = pair.shares
@@ -131,6 +154,71 @@ def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> Tangential
     change = wall.spin_change
     motion = _pair_motion(normal, wall, pair, (upper, lower), change)
     return replace(wall, spin=upper, spin_change=first * change, pair=motion)
+
+
+def gcb_resistance_pair(delta: float, min_film, radius_ratio: float) -> np.ndarray:
+    """The two spheres' leading logarithmic resistances on (U, s1, s2) at the thinnest film
+    h = H_min x0 (``min_film``, any shape) and a1/a2 ``radius_ratio``: delta L R with
+    L = ln(a/h) = -ln(delta H_min), a the reduced radius, and R Jeffrey & Onishi's
+    (:func:`ehdfem.exact.sphere_pair.pair_logarithmic`; force on sphere 1 and the torques
+    T_i/a_i by 6 pi mu a^2 U0 / x0; shape (..., 3, 3)). The O(1) terms are left out, as in the
+    wall's :func:`ehdfem.tangential.motion.gcb_resistance`, which it is for a1/a2 -> 0."""
+    logarithm = -np.log(delta * np.asarray(min_film, dtype=float))
+    return delta * logarithm[..., None, None] * pair_logarithmic(radius_ratio)
+
+
+def gcb_pair(normal: NormalResult, pair: SpherePair) -> TangentialResult:
+    """The gcb model of two spheres on the normal solution ``normal`` whose parameters carry
+    the pair's inertia factor k and contact spin w0 (:func:`solve_pair`):
+    St dU/dT = -(R v)_1, St k_i (1 + m_i/m_j) ds_i/dT = -(R v)_(i+1) for v = (U, s1, s2) and
+    R of :func:`gcb_resistance_pair` (module docstring), by the exact exponential of each
+    step's mean R (:func:`ehdfem.tangential.motion.integrate_resistance`), also from the last
+    step to the end; the solid contact's Coulomb impulse on the slip after each step (its
+    change of w = s1 + s2 shared as c1, c2). Not a function of the slip alone: the pressure's
+    force and torques act on the entrainment rho U + s1 - s2 (docs/tangential.md)."""
+    params, hist = normal.params, normal.history
+    resistance = gcb_resistance_pair(params.delta, hist.min_film, pair.radius_ratio)
+    contact = CoulombContact.of(normal)
+    shares = np.array((0.0, *pair.shares))
+
+    def jump(i, state):  # (U, s1, s2) after the contact's impulse at step i
+        velocity, spin = contact.act(i, state[0], state[1] + state[2])
+        return state + (velocity - state[0], 0.0, 0.0) + shares * (spin - state[1] - state[2])
+
+    tangent, inertia = params.tangential_speed, (1.0, *pair.spin_weights)
+    start = (1.0, (params.spin - pair.lower_spin) / tangent, pair.lower_spin / tangent)
+    states, film = integrate_resistance(
+        hist.time, resistance, params.St, inertia, start, None if contact is None else jump
+    )
+    end = end_index(normal)  # in step i: the exact exponential of its mean R over its share
+    i = min(int(end), len(states) - 2)
+    impulse = 0.5 * (resistance[i] + resistance[i + 1]) * (hist.time[i + 1] - hist.time[i])
+    propagator, gram = resistance_step(
+        impulse, np.diag(1.0 / (params.St * np.array(inertia))), end - i
+    )
+    at_end = propagator @ states[i]
+    velocity, upper, lower = states.T
+    force = -np.einsum("ij,ij->i", resistance[:, 0], states)
+    histories = (velocity, upper + lower, 3.0 * resistance[:, 0, 0] / params.delta, force)
+    wall = tangential_result(
+        normal, "gcb", "none", histories, None, at_end=(at_end[0], at_end[1] + at_end[2]),
+        contact=contact,
+    )  # fmt: skip
+    friction = np.zeros(len(states)) if contact is None else wall.friction.dissipated
+    kinetic = 0.5 * params.St * (states**2 @ np.array(inertia))
+    lost = kinetic[0] - 0.5 * params.St * (at_end**2 @ np.array(inertia))
+    residual = lost - film[i] - states[i] @ gram @ states[i] - friction[i]
+    motion = PairMotion(
+        pair=pair,
+        lower_spin=lower,
+        lower_spin_change=float(at_end[2] - lower[0]),
+        contact_spin_change=float(wall.spin_change),
+        kinetic=kinetic,
+        film_dissipated=film,
+        friction_dissipated=friction,
+        balance_error=float(abs(residual) / lost) if lost > 0 else 0.0,
+    )
+    return replace(wall, spin=upper, spin_change=float(at_end[1] - upper[0]), pair=motion)
 
 
 def _pair_motion(normal, wall, pair, spins, change) -> PairMotion:

@@ -459,9 +459,7 @@ def _slide(result, given_mode_one):
     :func:`_collide_on`."""
     params, normal, compliance = result.params, result.normal, result.compliance
     model, deformation = result.config.tangential, result.config.deformation
-    if result.config.lower.kind == "sphere":
-        result.tangential = solve_pair(normal, model, sphere_pair(params, result.config.lower))
-        return result
+    pair = result.config.lower.kind == "sphere"
     outer_flow = result.config.outer_flow
     mode_one = None
     if model == "lubrication" and deformation != "none":
@@ -471,10 +469,15 @@ def _slide(result, given_mode_one):
     built = mode_one is not None and given_mode_one is None
     surface_sum = getattr(compliance, "surface_sum_matrix", None)
     try:
-        result.tangential = solve_tangential(
-            normal, model, mode_one, surface_sum, deformation, outer_flow=outer_flow
-        )
-        if model == "lubrication":
+        if pair:  # two spheres: no 2-D superposition check, no outer flow (docs/tangential.md)
+            partner = sphere_pair(params, result.config.lower)
+            film = (mode_one, surface_sum, deformation)
+            result.tangential = solve_pair(normal, model, partner, *film)
+        else:
+            result.tangential = solve_tangential(
+                normal, model, mode_one, surface_sum, deformation, outer_flow=outer_flow
+            )
+        if model == "lubrication" and not pair:
             result.superposition = superposition_validity(
                 normal,
                 result.tangential,
@@ -484,13 +487,13 @@ def _slide(result, given_mode_one):
             )
             if result.superposition.flagged:
                 warnings.warn(result.superposition.warning(), SuperpositionWarning, stacklevel=4)
-            energy = result.tangential.energy
-            if energy.flagged:
-                warnings.warn(energy.warning(deformation), TangentialEnergyWarning, stacklevel=4)
+        energy = result.tangential.energy
+        if model == "lubrication" and energy.flagged:
+            warnings.warn(energy.warning(deformation), TangentialEnergyWarning, stacklevel=4)
     finally:
         if built:
             mode_one.close()
-    if outer_flow == "none":
+    if outer_flow == "none" and not pair:
         result.outer_film = outer_film(normal, result.tangential)
         if result.outer_film is not None and result.outer_film.flagged:
             warnings.warn(result.outer_film.note(), ResultRangeWarning, stacklevel=4)

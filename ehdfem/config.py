@@ -54,14 +54,13 @@ class Numerics:
 
 
 def curved_lower_sliding(kind: str) -> str:
-    """The refusal of the sliding film, derived for a flat lower body only, over a curved
-    lower body of ``kind``."""
+    """The refusal of the sliding film over a curved FE lower body of ``kind``, whose mode-1
+    compliance is not built."""
     return (
-        "tangential = 'lubrication' needs a wall or coated wall below the sphere (lower "
-        f"= {kind!r} is not supported: the sliding film of two spheres needs the entrainment "
-        "w_pair = U (a2 - a1)/(a1 + a2) + s1 - s2 in its mode-1 pressure and each sphere's own "
-        "force and torque, which are derived but not built, docs/tangential.md 'Two spheres'); "
-        "use tangential = 'couette', 'flat' or 'gcb'"
+        "tangential = 'lubrication' on FE solids needs a wall or coated wall below the sphere "
+        f"(lower = {kind!r} is not supported: the mode-1 compliance of a curved FE lower body is "
+        "not built, docs/tangential.md 'Two spheres'); use model = 'halfspace', or tangential = "
+        "'couette', 'flat' or 'gcb'"
     )
 
 
@@ -119,8 +118,10 @@ class RunConfig:
                 "a uniform wall or a second sphere)",
                 "lower",
             )
-        if self.tangential not in PAIR_MODELS and self.lower.radius is not None:
-            raise checks.InputError(curved_lower_sliding(self.lower.kind), "tangential")
+        curved = self.lower.radius is not None
+        if curved and (self.tangential not in PAIR_MODELS or self.tangential == "lubrication"):
+            if self.tangential != "lubrication" or self.model == "fem":
+                raise checks.InputError(curved_lower_sliding(self.lower.kind), "tangential")
         if self.outer_flow == "exact" and self.lower.radius is not None:
             raise checks.InputError(
                 "outer_flow = 'exact' needs a flat lower body, a wall below: its resistances are "

@@ -31,8 +31,13 @@ from ehdfem.checks import InputError
 from ehdfem.collision import with_tangential
 from ehdfem.config import RunConfig
 from ehdfem.exact.rigid_impact import frictional_impact, pair_impact
+from ehdfem.exact.sliding_sphere import MODE_ONE_END
+from ehdfem.exact.sphere_pair import pair_logarithmic
+from ehdfem.film.grid import contact_grid
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import from_presets, reduced_mass, reduced_radius
+from ehdfem.motion.normal import solve_normal
+from ehdfem.solids.compliance import RigidSolids
 from ehdfem.solids.fe.bodies import LowerSphere
 from ehdfem.tangential.pair import PAIR_MODELS, SLIP_MODELS, SpherePair, solve_pair
 
@@ -228,18 +233,26 @@ def test_pair_is_the_two_spheres_equations(unequal, model):
 ROUGH_CASES = {"impact": (None, 0.05), "stick": (None, 1.0), "asperities": (0.2, 0.3)}
 
 
+# the energy balance's bound: exact integrations (round-off), and the sliding film's BDF2 on the
+# normal motion's steps, as on a wall (measured for the pair 1.8e-3, 4.5e-4, 3.3e-4 smooth, at
+# the impact, stuck; 1.8e-2 with the asperity load, where the wall's is 2.7e-2)
+BALANCE = {"couette": 1e-10, "flat": 1e-10, "gcb": 1e-10, "lubrication": 3e-3}
+
+
 @pytest.mark.parametrize("model", PAIR_MODELS)
 @pytest.mark.parametrize("rough", [None, *ROUGH_CASES])
 def test_energy_closes_over_both_spheres(unequal, model, rough):
     """Every model offered for a pair, smooth and with the solid contact's friction (an impact
     sliding at mu = 0.05 or sticking at mu = 1, an asperity load of 20 % of the film's at
     mu = 0.3): the kinetic energy of both spheres' translation and spin at exit equals its
-    impact value less the film's and the friction's dissipation to 1e-10 of the loss, never
-    rises, and the pair's angular momentum about the contact point,
-    (a1 + a2) U + a1 W1 s1 + a2 W2 s2 with W_i = k_i (1 + m_i/m_j), keeps its impact value at
-    every step to 1e-12 (the film's and the contact's forces act at the contact point). In the
-    slip-only models the spheres' spins change in the ratio of their shares; not in gcb, whose
-    film pressure turns them by the entrainment too."""
+    impact value less the film's and the friction's dissipation (and the sliding film's
+    elastic energy and exchange with the normal motion) to BALANCE of the loss (10 times it
+    for the sliding film with the asperity load), never rises, and the pair's angular
+    momentum about the contact point, (a1 + a2) U + a1 W1 s1 + a2 W2 s2 with
+    W_i = k_i (1 + m_i/m_j), keeps its impact value at every step to 1e-12 (the film's and
+    the contact's forces act at the contact point; measured 1e-14 in the sliding film). In
+    the slip-only models the spheres' spins change in the ratio of their shares; not in gcb
+    and the sliding film, whose pressure turns them by the entrainment too."""
     normal, mu = unequal.normal, 0.0
     if rough is not None:
         share, mu = ROUGH_CASES[rough]
@@ -248,7 +261,8 @@ def test_energy_closes_over_both_spheres(unequal, model, rough):
     collision = replace(unequal, params=params, normal=replace(normal, params=params))
     tangential = with_tangential(collision, model).tangential
     motion = tangential.pair
-    assert motion.balance_error <= 1e-10
+    bound = BALANCE[model] * (10.0 if model == "lubrication" and rough == "asperities" else 1.0)
+    assert motion.balance_error <= bound, motion.balance_error
     assert np.all(np.diff(motion.kinetic) <= 1e-12 * motion.kinetic[0])
     assert (tangential.friction is not None) == (rough is not None)
     pair = motion.pair
@@ -329,6 +343,71 @@ def test_equal_spheres_in_gcb(equal, spin):
     )
 
 
+def rigid_immersed_approach():
+    """A rigid sphere pair's immersed approach by the reduced radius (delta = 1e-3, St = 6: it
+    stops near X = exp(-6)) at 45 degrees, spinning, on a grid with a node at R_a = 1/sqrt(delta)
+    (400 nodes)."""
+    params = CollisionParameters(
+        St=6.0, eps=1.0, delta=1e-3, layer="immersed", angle=45.0, spin=0.3
+    )
+    outer = 1.0 / np.sqrt(params.delta)
+    return solve_normal(params, RigidSolids(contact_grid(400, 0.3, 2.0 * outer, node_at=outer)))
+
+
+@pytest.mark.slow
+def test_rigid_pair_sliding_film_has_the_cut_film_resistances():
+    """The sliding film of two rigid spheres (deformation "none") at a1/a2 = 0.5 and 3, the
+    lower one spinning: at every step with X <= 0.1 its force on sphere 1 is
+    -delta (R v)_1 of the film cut at r = a in closed form,
+    R = L_a ((1/3) e e^T + (1/5) g g^T) - (1/5)(1 + 2/sqrt(10)) g g^T, L_a = ln(1 + 1/(2 delta X)),
+    v = (U, s1, s2), e the slip, g = (rho, 1, -1) the entrainment (the wall's cut film,
+    ehdfem.exact.sliding_sphere, with w_pair in place of U + a Omega and rho on the force), to
+    2e-3 (the film's discretisation on 400 nodes: measured 9.6e-4 and 1.4e-6), and the torques
+    over the radii, St k_i (1 + m_i/m_j) ds_i/dT by differences of the spins' histories, and
+    St dU/dT likewise, its rows 2 and 3 to 1e-2 (the differences' error: measured 1.3e-3 to
+    7.3e-3). This checks the new terms: the entrainment, rho on the undeformed slope and
+    each sphere's torque from its own traction."""
+    normal = rigid_immersed_approach()
+    hist, delta = normal.history, normal.params.delta
+    steps = np.flatnonzero((hist.gap <= 0.1) & (hist.gap > 0))
+    steps = steps[(steps > 1) & (steps < len(hist.time) - 2)]
+    assert len(steps) > 10
+    cut = np.log1p(1.0 / (2.0 * delta * hist.gap[steps]))[:, None, None]
+    for ratio in (0.5, 3.0):
+        pair = SpherePair(0.731, 0.4, 2 / 3, -0.2, ratio)
+        tangential = solve_pair(normal, "lubrication", pair, deformation="none")
+        entrainment = np.array([pair.rho, 1.0, -1.0])
+        closed = cut * pair_logarithmic(ratio) - MODE_ONE_END * np.outer(entrainment, entrainment)
+        histories = (tangential.velocity, tangential.spin, tangential.pair.lower_spin)
+        expected = -delta * np.einsum("sij,sj->si", closed, np.column_stack(histories)[steps])
+        assert np.abs(tangential.force[steps] / expected[:, 0] - 1.0).max() < 2e-3
+        weights = (1.0, *pair.spin_weights)
+        for row, (weight, history) in enumerate(zip(weights, histories, strict=True)):
+            rate = weight * normal.params.St * np.gradient(history, tangential.time)[steps]
+            assert np.abs(rate / expected[:, row] - 1.0).max() < 1e-2, row
+
+
+@pytest.mark.parametrize("spin", [0.3, -1.2])
+def test_equal_spheres_sliding_film(equal, spin):
+    """Equal spheres, the sliding film on rigid mode-1 solids (deformation "none"; identical
+    half-spaces, so the surfaces' axisymmetric displacements cancel in their sum): rho = 0, so
+    the mode-1 pressure exerts no net force and U and the contact spin s1 + s2 move under the
+    Couette shear alone. Spinning equally and oppositely: e_t and the contact spin's change
+    are those without spin (1e-12), while the entrainment s1 - s2 drives the mode-1 pressure,
+    which brakes both spins alike: their difference falls by 0.26 % (St 20, eps 1e-2, 40
+    degrees, the thin layer's film; gcb's logarithm brakes it by 1.05 %)."""
+    base = with_tangential(equal[0], "lubrication", deformation="none").tangential
+    params = replace(equal[0].params, spin=spin)
+    spun = collide(
+        params, nodes=40, lower="sphere", lower_spin=-spin, tangential="lubrication",
+        deformation="none",
+    ).tangential  # fmt: skip
+    assert spun.e_t == pytest.approx(base.e_t, abs=1e-12)
+    assert spun.pair.contact_spin_change == pytest.approx(base.pair.contact_spin_change, abs=1e-12)
+    difference = spun.spin - spun.pair.lower_spin
+    assert difference[-1] / difference[0] < 0.999
+
+
 def pair_groups(ratio: float):
     """The scaled inputs of a steel-like upper sphere (St 10, eps 1e-3, delta 0.01 and
     P_cav -2 on a wall) meeting a sphere ``ratio`` times larger, of the same material and
@@ -344,7 +423,11 @@ def pair_groups(ratio: float):
     )
 
 
-LARGE_PARTNERS = {"couette": ((10.0, 100.0, 1000.0), 5e-4), "gcb": ((100.0, 1000.0, 1e4), 3e-4)}
+LARGE_PARTNERS = {
+    "couette": ((10.0, 100.0, 1000.0), 5e-4),
+    "gcb": ((100.0, 1000.0, 1e4), 3e-4),
+    "lubrication": ((100.0, 1000.0, 1e4), 1e-4),
+}
 
 
 @pytest.mark.slow
@@ -357,9 +440,11 @@ def test_a_large_heavy_partner_is_a_wall(model):
     Couette 2.0e-2, 2.1e-3, 2.3e-4 at N = 10, 100, 1000 (orders 0.97-1.00 per decade), tested
     within 5e-4 at N = 1000; gcb 2.2e-1, 2.6e-2, 2.7e-3, 2.7e-4 at N = 10 to 10^4 (spin
     change 1.4e-1, 1.8e-2, 1.8e-3, 2.0e-4; orders 0.89-1.01), tested over N = 100 to 10^4,
-    within 3e-4 at 10^4. The lower sphere's spin change falls as N^-3 (its inertia
-    k2 (1 + m2/m1)); in the Couette model it is its share k1 m1/(k2 m2) of the contact
-    spin's."""
+    within 3e-4 at 10^4; the sliding film (mode-1 gap) 6.3e-2, 8.1e-3, 8.5e-4, 8.3e-5 (spin
+    change 1.2e-2, 2.5e-3, 2.6e-4, 2.3e-5; orders 0.69-1.05, from N = 100 on 0.98-1.05),
+    tested over N = 100 to 10^4, within 1e-4 at 10^4. The lower sphere's spin change falls
+    as N^-3 (its inertia k2 (1 + m2/m1)); in the Couette model it is its share k1 m1/(k2 m2)
+    of the contact spin's."""
     ratios, bound = LARGE_PARTNERS[model]
     nodes = 60
     wall = collide(pair_groups(math.inf), nodes=nodes, tangential=model).tangential
@@ -400,17 +485,16 @@ def test_pair_inputs_are_checked():
 
 
 def test_pair_refusals(unequal):
-    """The sliding film is refused for a pair (its entrainment and each sphere's force and
-    torque are derived, not built), by name and before any work, and so is a pair whose upper
-    inertia factor is not the collision's; physical inputs (one sphere's radius and mass) are
-    refused for a pair before any work."""
+    """The sliding film of a pair on FE solids is refused by name before any work (the lower
+    sphere's FE mode-1 compliance is not built), and so is a pair whose upper inertia factor
+    is not the collision's; physical inputs (one sphere's radius and mass) are refused for a
+    pair before any work."""
     with pytest.raises(InputError, match="reduced radius"):
         collide(from_presets(**EXAMPLE), lower="sphere")
     with pytest.raises(InputError, match="lower = 'sphere' is not supported") as refused:
-        with_tangential(unequal, "lubrication")
+        RunConfig(model="fem", lower=LowerSphere(), tangential="lubrication")
     assert refused.value.name == "tangential"
-    with pytest.raises(InputError, match="lower = 'sphere' is not supported"):
-        RunConfig(lower=LowerSphere(), tangential="lubrication")
+    RunConfig(lower=LowerSphere(), tangential="lubrication")  # on half-spaces: built
     with pytest.raises(InputError, match="inertia_factor"):
         solve_pair(unequal.normal, "couette", SpherePair(1.0, 0.5, 0.4))
 

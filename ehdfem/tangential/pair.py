@@ -52,9 +52,10 @@ from ..motion.normal import NormalResult
 from .friction import CoulombContact
 from .motion import integrate_resistance, resistance_step, solve_tangential
 from .result import TangentialResult, end_index, tangential_result
+from .sliding_film import FilmBodies, SlidingFilm
 
 SLIP_MODELS = ("couette", "flat")  # the tangential models whose force depends on the slip alone
-PAIR_MODELS = (*SLIP_MODELS, "gcb")
+PAIR_MODELS = (*SLIP_MODELS, "gcb", "lubrication")
 
 
 @dataclass(frozen=True)
@@ -93,6 +94,12 @@ class SpherePair:
         return min(exact, max(self.upper_inertia, self.lower_inertia))
 
     @property
+    def rho(self) -> float:
+        """(a2 - a1)/(a1 + a2): the entrainment's factor of U and the undeformed slope's of
+        the force on sphere 1 (1 for a wall, 0 for equal spheres)."""
+        return (1.0 - self.radius_ratio) / (1.0 + self.radius_ratio)
+
+    @property
     def shares(self) -> tuple[float, float]:
         """(c1, c2) = k / (k1 (1 + m1/m2)), k / (k2 (1 + m2/m1)): each sphere's share of the
         contact spin's change (c1 + c2 = 1); c_i = (1/weight_i) / sum 1/weight_j for the
@@ -122,16 +129,25 @@ class PairMotion:
     balance_error: float
 
 
-def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> TangentialResult:
+def solve_pair(
+    normal: NormalResult,
+    model: str,
+    pair: SpherePair,
+    mode_one=None,
+    surface_sum=None,
+    deformation: str = "gap",
+) -> TangentialResult:
     """The tangential motion of two free spheres on the normal solution ``normal`` (by the
     reduced radius and mass), with the film ``model`` (PAIR_MODELS) and the partner ``pair``.
     The slip-only models (SLIP_MODELS): the sphere-on-wall motion of inertia factor
     ``pair.inertia_factor`` and initial spin w0 = s1(0) + s2(0)
     (:func:`ehdfem.tangential.motion.solve_tangential`), split between the spheres by their
     shares; ``gcb``: the two spheres' logarithmic resistances on (U, s1, s2)
-    (:func:`gcb_pair`). The result's ``velocity`` and ``e_t`` are the relative ones
-    (U1 - U2), ``spin`` and ``spin_change`` the upper sphere's, ``slip`` u_s = U - s1 - s2, and
-    ``pair`` the rest (:class:`PairMotion`)."""
+    (:func:`gcb_pair`); ``lubrication``: the sliding film of two spheres (:func:`sliding_pair`,
+    with ``mode_one``, ``surface_sum`` and ``deformation`` as for
+    :func:`ehdfem.tangential.motion.solve_tangential`). The result's ``velocity`` and ``e_t``
+    are the relative ones (U1 - U2), ``spin`` and ``spin_change`` the upper sphere's, ``slip``
+    u_s = U - s1 - s2, and ``pair`` the rest (:class:`PairMotion`)."""
     checks.choice("tangential model of two spheres", model, PAIR_MODELS)
     params = normal.params
     if params.tangential_speed == 0.0:
@@ -145,6 +161,9 @@ def solve_pair(normal: NormalResult, model: str, pair: SpherePair) -> Tangential
     mapped = replace(params, inertia_factor=pair.inertia_factor, spin=params.spin + pair.lower_spin)
     if model == "gcb":
         return gcb_pair(replace(normal, params=mapped), pair)
+    if model == "lubrication":
+        film = (mode_one, surface_sum, deformation)
+        return sliding_pair(replace(normal, params=mapped), pair, *film)
     wall = solve_tangential(replace(normal, params=mapped), model)
     tangent = params.tangential_speed
     first, second = pair.shares
@@ -219,6 +238,39 @@ def gcb_pair(normal: NormalResult, pair: SpherePair) -> TangentialResult:
         balance_error=float(abs(residual) / lost) if lost > 0 else 0.0,
     )
     return replace(wall, spin=upper, spin_change=float(at_end[1] - upper[0]), pair=motion)
+
+
+def sliding_pair(normal, pair, mode_one, surface_sum, deformation) -> TangentialResult:
+    """The sliding film of two spheres on the normal solution ``normal`` whose parameters
+    carry the pair's k and contact spin w0 (:func:`solve_pair`): the wall's system
+    (:class:`ehdfem.tangential.sliding_film.SlidingFilm`) on (q, v, U, s1, s2), its mode-1
+    pressure driven by the entrainment w_pair = rho U + s1 - s2, rho times the undeformed
+    slope in the force on sphere 1, each sphere's torque from its own shear traction and its
+    energy balance over both spheres (docs/tangential.md, "Two spheres"). ``mode_one``: the
+    half-spaces' mode-1 compliance (None: rigid), ``surface_sum`` and ``deformation`` as for
+    the wall. The end's values are interpolated linearly, as the wall's."""
+    params = normal.params
+    tangent = params.tangential_speed
+    start = (1.0, (params.spin - pair.lower_spin) / tangent, pair.lower_spin / tangent)
+    bodies = FilmBodies((1.0, *pair.spin_weights), pair.rho)
+    film = SlidingFilm(normal, mode_one, surface_sum, deformation, None, bodies, start)
+    wall = film.solve()
+    motion = film.states[:, film.motion]
+    end, steps = end_index(normal), np.arange(len(motion))
+    upper, lower = motion[:, 1], motion[:, 2]
+    ends = [float(np.interp(end, steps, spin)) for spin in (upper, lower)]
+    energy = wall.energy
+    record = PairMotion(
+        pair=pair,
+        lower_spin=lower,
+        lower_spin_change=ends[1] - lower[0],
+        contact_spin_change=float(wall.spin_change),
+        kinetic=energy.kinetic,
+        film_dissipated=energy.dissipated,
+        friction_dissipated=energy.friction,
+        balance_error=energy.balance_error,
+    )
+    return replace(wall, spin=upper, spin_change=ends[0] - upper[0], pair=record)
 
 
 def _pair_motion(normal, wall, pair, spins, change) -> PairMotion:

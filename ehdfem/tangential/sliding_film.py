@@ -6,6 +6,8 @@ them), and the checks that its linearisation holds.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.integrate
 import scipy.linalg
@@ -30,6 +32,44 @@ class SlidingFilmError(NormalSolverError):
     :func:`viscosity_tilt`) reached BREAKDOWN_TILT or its linear system had no finite solution.
     Where this happens (a film frozen by a pressure-dependent viscosity, docs/tangential.md)
     only the Couette model applies."""
+
+
+@dataclass(frozen=True)
+class FilmBodies:
+    """The bodies the sliding film moves, as its equations need them: ``inertia`` the weights
+    of the motion (U, spins) in the kinetic energy by the mass m ((1, k) for a sphere on a
+    wall with its spin a Omega; (1, k1 (1 + m1/m2), k2 (1 + m2/m1)) for two spheres with
+    s1 = a1 Omega1, s2 = a2 Omega2 and the reduced mass, docs/tangential.md "Two spheres"),
+    and ``rho`` = (a2 - a1)/(a1 + a2) (1 on a wall): the factor of the undeformed surfaces'
+    slope in the force and of U in the entrainment."""
+
+    inertia: tuple
+    rho: float = 1.0
+
+    @property
+    def sliding(self) -> np.ndarray:
+        """The slip u_s on the motion: (1, -1) or (1, -1, -1)."""
+        return np.r_[1.0, -np.ones(len(self.inertia) - 1)]
+
+    @property
+    def entrainment(self) -> np.ndarray:
+        """The entrainment w on the motion: U + a Omega (1, 1) on a wall, w_pair = rho U +
+        s1 - s2 (rho, 1, -1) for two spheres."""
+        return np.array([self.rho, 1.0, -1.0][: len(self.inertia)])
+
+    @property
+    def arms(self) -> np.ndarray:
+        """Each spin's torque over its radius is -F + arm (P + (2/5) delta tail w), P the
+        pressure's x-force (delta/6) int q R^2 dR: (-1,) on a wall, (-(1 + rho)/2,
+        (1 - rho)/2) for two spheres (a/a1 and a/a2 of P, on each undeformed sphere)."""
+        return np.array([-(1.0 + self.rho) / 2.0, (1.0 - self.rho) / 2.0][: len(self.inertia) - 1])
+
+    @property
+    def shares(self) -> np.ndarray:
+        """Each spin's share of a change of the contact spin by an impulse at the contact
+        point: (1/weight_i) / sum_j (1/weight_j) (1 on a wall)."""
+        inverse = 1.0 / np.asarray(self.inertia[1:], dtype=float)
+        return inverse / inverse.sum()
 
 
 def sliding_amplitude(params) -> float:
@@ -57,7 +97,10 @@ class SlidingFilm:
     """The lubrication model's linear system over the normal solution's steps.
 
     Unknowns z = (q, v_r, v_phi, U, a Omega) at a step (v only with deformation "full"; else
-    the nodal slip is u_s). Loads on the solids L = (q, a_r, a_phi), the Couette traction
+    the nodal slip is u_s); for two spheres (``bodies``, :class:`FilmBodies`; None: a sphere on
+    a wall) (q, v_r, v_phi, U, s1, s2) from ``start`` (1, s1(0), s2(0)), with the entrainment
+    w_pair in the film, rho times the undeformed slope in the force and a torque row for each
+    sphere. Loads on the solids L = (q, a_r, a_phi), the Couette traction
     a = -(j / m) v on the sphere (m the lumped mass, j the Couette weights; by mu U0 / x0,
     i.e. (U0/V0) sqrt(delta) times the traction unit of the mode-1 compliance) and -a on the
     wall. Relative displacements of the faces: the gap H1, the sum Sigma1 and the tangential
@@ -66,15 +109,22 @@ class SlidingFilm:
     (U, a Omega), in the force and torque rows and the dissipation (None: left out;
     :mod:`ehdfem.tangential.outer_film`)."""
 
-    def __init__(self, normal, mode_one, surface_sum, deformation, outer=None):
+    def __init__(
+        self, normal, mode_one, surface_sum, deformation, outer=None, bodies=None, start=None
+    ):
         params = normal.params
         self.normal, self.deformation = normal, deformation
         self.outer = outer  # delta dR on (U, a Omega), the flow beyond the film (None: none)
-        self.St, self.k, self.delta = params.St, params.inertia_factor, params.delta
+        self.St, self.delta = params.St, params.delta
+        self.bodies = FilmBodies((1.0, params.inertia_factor)) if bodies is None else bodies
         n = self.n = len(normal.radii)
         self.mass_full = Film(normal.radii).full_mass
-        self.size = n + (2 * n if deformation == "full" else 0) + 2
-        self.u, self.omega = self.size - 2, self.size - 1
+        self.u = n + (2 * n if deformation == "full" else 0)  # then the spins
+        self.size = self.u + len(self.bodies.inertia)
+        self.motion = np.arange(self.u, self.size)  # (U, spins) in z
+        # the motion at impact (by U0): (1, a Omega0 / U0) on a wall, ``start`` for two spheres
+        self.start = np.r_[1.0, initial_spin(params)] if start is None else np.asarray(start)
+        self.states = None  # z at the steps, once solved
         # (N, 3N) face combinations of the loads L: gap and sum of the normal displacements,
         # and with "full" the relative tangential ones (r, phi); zero for rigid mode-1 solids
         deformed = mode_one is not None and deformation != "none"
@@ -96,8 +146,8 @@ class SlidingFilm:
         hist = normal.history
         steps = len(hist.time)
         z = np.zeros((steps, self.size))
-        z[0, self.u], z[0, self.omega] = 1.0, initial_spin(normal.params)
-        z[0, n:-2] = z[0, self.u] - z[0, self.omega]  # v = u_s (nothing deformed yet)
+        z[0, self.motion] = self.start
+        z[0, n : self.u] = self.bodies.sliding @ z[0, self.motion]  # v = u_s (nothing deformed)
         displacements = {name: np.zeros((steps, n)) for name in ("gap", "r", "phi")}
         shear, force = np.zeros(steps), np.zeros(steps)
         rates = np.zeros((steps, 2))  # dissipation and exchange rates
@@ -127,8 +177,11 @@ class SlidingFilm:
                     self._impact_acts(contact, z[i], i)
             force[i] = ops["force"] @ z[i]
             *rates[i], elastic[i] = self._energy_terms(mf, ops, z[i], i, displacements)
-        velocity, spin = z[:, self.u], z[:, self.omega]
-        kinetic = 0.5 * self.St * (velocity**2 + self.k * spin**2)
+        self.states = z
+        motion = z[:, self.motion]
+        velocity = motion[:, 0]
+        spin = motion[:, 1:].sum(axis=1)  # a Omega, or the contact spin s1 + s2
+        kinetic = 0.5 * self.St * (motion**2 @ np.asarray(self.bodies.inertia))
         dissipated, exchanged = scipy.integrate.cumulative_trapezoid(
             rates, hist.time, axis=0, initial=0.0
         ).T
@@ -149,13 +202,17 @@ class SlidingFilm:
         )
 
     def _impact_acts(self, contact: CoulombContact, z: np.ndarray, i: int) -> None:
-        """The solid impact's Coulomb impulse at step i on U and a Omega in z (in place); with
-        deformation "full" the nodal slips v = u_s + sqrt(delta) dD/dT change by the same jump
-        of u_s (the faces' displacements D do not jump)."""
-        slip = z[self.u] - z[self.omega]
-        z[self.u], z[self.omega] = contact.act(i, z[self.u], z[self.omega], load=False)
+        """The solid impact's Coulomb impulse at step i on U and the contact spin in z (in
+        place; its change shared between the spins); with deformation "full" the nodal slips
+        v = u_s + sqrt(delta) dD/dT change by the same jump of u_s (the faces' displacements D
+        do not jump)."""
+        sliding, spins = self.bodies.sliding, z[self.motion[1:]]
+        slip = sliding @ z[self.motion]
+        velocity, spin = contact.act(i, z[self.u], spins.sum(), load=False)
+        z[self.u] = velocity
+        z[self.motion[1:]] = spins + self.bodies.shares * (spin - spins.sum())
         if self.deformation == "full":
-            z[self.n : -2] += (z[self.u] - z[self.omega]) - slip
+            z[self.n : self.u] += sliding @ z[self.motion] - slip
 
     def _step(self, mf: ModeOneFilm, ops: dict, rate: float, past: dict, i: int, contact=None):
         """z at step i (:meth:`_system`), or SlidingFilmError if it has no finite solution;
@@ -164,13 +221,13 @@ class SlidingFilm:
         try:
             matrix, rhs = self._system(mf, ops, rate, past)
             if contact is None or contact.force_bounds[i] == 0.0:
-                z = _solve_equilibrated(matrix, rhs, self.u, self.omega)
+                z = _solve_equilibrated(matrix, rhs, self.motion)
             else:
                 unit = np.zeros(self.size)
-                unit[self.u], unit[self.omega] = 1.0, -1.0
+                unit[self.motion] = self.bodies.sliding  # a force at the contact point
                 rhs = np.column_stack([rhs, unit])
-                free, response = _solve_equilibrated(matrix, rhs, self.u, self.omega).T
-                slips = [y[self.u] - y[self.omega] for y in (free, response)]
+                free, response = _solve_equilibrated(matrix, rhs, self.motion).T
+                slips = [self.bodies.sliding @ y[self.motion] for y in (free, response)]
                 z = free + contact.resist(i, *slips) * response
         except (np.linalg.LinAlgError, ValueError):
             z = np.full(self.size, np.nan)
@@ -206,11 +263,10 @@ class SlidingFilm:
     def _operators(self, mf: ModeOneFilm, i: int) -> dict:
         """Row operators on z at step i: q, the Couette weights, the loads L, the face
         displacements (gap, sum, r, phi), the force and the torque."""
-        n, size, delta = self.n, self.size, self.delta
+        n, size, delta, bodies = self.n, self.size, self.delta, self.bodies
         full = self.deformation == "full"
         rolling, sliding = np.zeros(size), np.zeros(size)
-        rolling[[self.u, self.omega]] = 1.0, 1.0
-        sliding[[self.u, self.omega]] = 1.0, -1.0
+        rolling[self.motion], sliding[self.motion] = bodies.entrainment, bodies.sliding
         traction = -mf.shear_weights / self.mass_full  # a = traction * v, by mu U0 / x0
 
         def slip(component):  # nodal slip velocity v_r or v_phi as rows on z
@@ -239,19 +295,22 @@ class SlidingFilm:
         if self.surface_sum is not None:
             surface_sum = self.surface_sum @ self.normal.history.pressure[i]
         slope_weights = mf.surface_slope_weights(surface_sum)
+        if bodies.rho != 1.0:  # rho times the undeformed surfaces' slope, the deformed one's kept
+            slope_weights = slope_weights - (1.0 - bodies.rho) * mf.surface_slope_weights()
         gradient_weights = mf.gradient_weights()
         force = (delta / 12.0) * (gradient_weights @ ops["sum"])
         force[:n] -= (delta / 12.0) * slope_weights
         force -= (delta / 6.0) * (mf.shear_weights @ (ops["slip_r"] + ops["slip_phi"]))
-        force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * rolling)
-        torque = -force - 0.4 * delta * mf.tail * rolling
-        torque[:n] -= (delta / 6.0) * mf.torque_weights
+        force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * bodies.rho * rolling)
+        pressure = 0.4 * delta * mf.tail * rolling  # P: the pressure's x-force, tail and film
+        pressure[:n] += (delta / 6.0) * mf.torque_weights
+        torques = [-force + arm * pressure for arm in bodies.arms]
         if self.outer is not None:  # the flow beyond the film: force and torque over a
-            force[[self.u, self.omega]] -= self.outer[0]
-            torque[[self.u, self.omega]] -= self.outer[1]
+            force[self.motion] -= self.outer[0]
+            torques[0][self.motion] -= self.outer[1]
         ops.update(
             force=force,
-            torque=torque,
+            torques=torques,
             gradient_weights=gradient_weights,
             rolling=rolling,
             sliding=sliding,
@@ -288,12 +347,12 @@ class SlidingFilm:
                 matrix[block] = ops["slip_" + name] - np.outer(np.ones(n), ops["sliding"])
                 matrix[block] -= root * rate * ops[name]
                 rhs[block] = root * past[name]
-        matrix[self.u] = -ops["force"]
-        matrix[self.u, self.u] += self.St * rate
-        rhs[self.u] = -self.St * past["z"][self.u]
-        matrix[self.omega] = -ops["torque"]
-        matrix[self.omega, self.omega] += self.k * self.St * rate
-        rhs[self.omega] = -self.k * self.St * past["z"][self.omega]
+        for row, load, weight in zip(
+            self.motion, (ops["force"], *ops["torques"]), self.bodies.inertia, strict=True
+        ):  # St weight d(U or spin)/dT = force or torque over the radius
+            matrix[row] = -load
+            matrix[row, row] += weight * self.St * rate
+            rhs[row] = -weight * self.St * past["z"][row]
         return matrix, rhs
 
     def _energy_terms(self, mf: ModeOneFilm, ops: dict, z: np.ndarray, i: int, displacements):
@@ -309,12 +368,13 @@ class SlidingFilm:
         )
         dissipation += delta * mf.tail * (u_s**2 / 3.0 + w**2 / 5.0)
         if self.outer is not None:
-            motion = z[[self.u, self.omega]]
+            motion = z[self.motion]
             dissipation += motion @ self.outer @ motion
         pressure_force = (delta / 12.0) * (
             ops["gradient_weights"] @ sigma1 - ops["slope_weights"] @ q
         )
-        exchange = u_s * (pressure_force + (delta / 12.0) * (mf.torque_weights @ q))
+        rho = self.bodies.rho  # the power of the pressure on the spheres (docs/tangential.md)
+        exchange = u_s * (pressure_force + rho * (delta / 12.0) * (mf.torque_weights @ q))
         exchange -= (delta / 6.0) * (q @ mf.thickness_coupling @ h1 + q @ mf.pressure_coupling @ q)
         exchange += (delta / 12.0) * w * ((mf.drive - mf.torque_weights) @ q)
         work = self.mass_full @ (q * h1)
@@ -325,17 +385,18 @@ class SlidingFilm:
         return dissipation, exchange, (delta / 12.0) * work
 
 
-def _solve_equilibrated(matrix, rhs, u: int, omega: int):
+def _solve_equilibrated(matrix, rhs, motion):
     """Solve matrix z = rhs (``rhs`` a vector, or one right-hand side per column) in the
-    unknowns y = z except the sliding velocity U - a Omega in
-    place of U (index ``u``; ``omega`` that of a Omega), with every column of the transformed
-    matrix and then every row scaled to unit largest entry. A piezoviscous film's Reynolds rows
+    unknowns y = z except the slip U - a Omega (U - s1 - s2) in place of U (``motion``: the
+    indices of U and the spins), with every column of the transformed matrix and then every row
+    scaled to unit largest entry. A piezoviscous film's Reynolds rows
     are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
     the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
     are then parallel to round-off (the film locks the sphere into rolling), the scaled system
     is not."""
-    transformed = matrix.copy()  # matrix @ B, B = I + e_u e_omega^T: z_U = (U - a Omega) + a Omega
-    transformed[:, omega] += matrix[:, u]
+    u, spins = motion[0], motion[1:]
+    transformed = matrix.copy()  # matrix @ B, B = I + e_u sum e_spin^T: z_U = u_s + spins
+    transformed[:, spins] += matrix[:, [u]]
     column_scale = 1.0 / np.abs(transformed).max(axis=0)
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
@@ -345,7 +406,7 @@ def _solve_equilibrated(matrix, rhs, u: int, omega: int):
         )
     else:
         z = column_scale * scipy.linalg.solve(transformed * row_scale[:, None], rhs * row_scale)
-    z[u] += z[omega]  # back from y to z = B y
+    z[u] += z[spins].sum(axis=0)  # back from y to z = B y
     return z
 
 

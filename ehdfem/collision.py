@@ -148,8 +148,8 @@ def mode_one_elasticity(params: CollisionParameters, compliance: Compliance, phy
     """The solids' mode-1 compliance (:class:`ehdfem.solids.compliance.ModeOneCompliance`) matching
     ``compliance`` at params.eps, for the sliding film: half-spaces of the same materials, or
     the FE solids' own mesh (:class:`ehdfem.solids.fe.mode_one.FEModeOne`). None for rigid
-    solids. The sliding film's force and torque are derived for a sphere on a wall: a lower
-    sphere is refused."""
+    solids. A curved FE lower body (a lower sphere) is refused: its mode-1 compliance is not
+    built."""
     if compliance.model == "rigid":
         return None
     if compliance.model == "fem":

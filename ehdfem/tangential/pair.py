@@ -1,6 +1,6 @@
 """Two free spheres colliding obliquely: the pair's tangential motion, mapped exactly onto the
-sphere on a wall where the film's force depends on the slip alone, and the two spheres'
-resistances in ``gcb`` (docs/tangential.md, "Two spheres").
+sphere on a wall where the film's force depends on the slip alone, the two spheres'
+resistances in ``gcb`` and their sliding film (docs/tangential.md, "Two spheres").
 
 Sphere 1 (upper: radius a1, mass m1, inertia factor k1 = I1/(m1 a1^2)) meets sphere 2 (lower:
 a2, m2, k2) along the line of centres, the normal. U = U1 - U2 is the relative tangential
@@ -38,6 +38,11 @@ point, (a1 + a2) U + a1 k1 (1 + m1/m2) s1 + a2 k2 (1 + m2/m1) s2 (R's null vecto
 lose E at the rate v.R v: not a function of the slip alone, the pair is no longer the sphere on
 a wall. Equal spheres (rho = 0): the pressure exerts no net force, and equal and opposite spins
 (rolling like gears) are braked by it, unlike in the slip-only models.
+
+``lubrication``: the sliding film's system with the same entrainment, rho times the
+undeformed slope in the force on sphere 1 and each sphere's torque from its own shear traction,
+T_i/a_i = -F1 -+ (a/a_i) P with P the mode-1 pressure's x-force
+(:class:`ehdfem.tangential.sliding_film.FilmBodies`); on half-spaces only.
 """
 
 from __future__ import annotations

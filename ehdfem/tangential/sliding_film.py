@@ -1,7 +1,10 @@
 """The sliding film (tangential model "lubrication"): the linear differential-algebraic system
 in (q, v, U, a Omega) over the normal solution's steps, its mode-1 deformation and its energy
 balance (:mod:`ehdfem.tangential.motion` gives the equations, docs/tangential.md derives
-them), and the checks that its linearisation holds.
+them), and the checks that its linearisation holds. For two free spheres (:class:`FilmBodies`)
+the same system in (q, v, U, s1, s2): the film driven by the entrainment rho U + s1 - s2, rho
+times the undeformed slope in the force, a torque row for each sphere (docs/tangential.md,
+"Two spheres").
 """
 
 from __future__ import annotations

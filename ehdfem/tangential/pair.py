@@ -209,8 +209,7 @@ def gcb_pair(normal: NormalResult, pair: SpherePair) -> TangentialResult:
         velocity, spin = contact.act(i, state[0], state[1] + state[2])
         return state + (velocity - state[0], 0.0, 0.0) + shares * (spin - state[1] - state[2])
 
-    tangent, inertia = params.tangential_speed, (1.0, *pair.spin_weights)
-    start = (1.0, (params.spin - pair.lower_spin) / tangent, pair.lower_spin / tangent)
+    inertia, start = (1.0, *pair.spin_weights), _pair_start(params, pair)
     states, film = integrate_resistance(
         hist.time, resistance, params.St, inertia, start, None if contact is None else jump
     )
@@ -254,10 +253,8 @@ def sliding_pair(normal, pair, mode_one, surface_sum, deformation) -> Tangential
     energy balance over both spheres (docs/tangential.md, "Two spheres"). ``mode_one``: the
     half-spaces' mode-1 compliance (None: rigid), ``surface_sum`` and ``deformation`` as for
     the wall. The end's values are interpolated linearly, as the wall's."""
-    params = normal.params
-    tangent = params.tangential_speed
-    start = (1.0, (params.spin - pair.lower_spin) / tangent, pair.lower_spin / tangent)
     bodies = FilmBodies((1.0, *pair.spin_weights), pair.rho)
+    start = _pair_start(normal.params, pair)
     film = SlidingFilm(normal, mode_one, surface_sum, deformation, None, bodies, start)
     wall = film.solve()
     motion = film.states[:, film.motion]
@@ -276,6 +273,13 @@ def sliding_pair(normal, pair, mode_one, surface_sum, deformation) -> Tangential
         balance_error=energy.balance_error,
     )
     return replace(wall, spin=upper, spin_change=ends[0] - upper[0], pair=record)
+
+
+def _pair_start(params, pair: SpherePair) -> tuple[float, float, float]:
+    """(U, s1, s2) at impact by U0 from the mapped ``params`` (their spin the contact spin
+    w0 = s1(0) + s2(0), by V0) and the partner's own spin."""
+    tangent = params.tangential_speed
+    return 1.0, (params.spin - pair.lower_spin) / tangent, pair.lower_spin / tangent
 
 
 def _pair_motion(normal, wall, pair, spins, change) -> PairMotion:

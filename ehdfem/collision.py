@@ -35,7 +35,7 @@ from .solids.halfspace import (
     halfspace_range,
 )
 from .tangential.motion import solve_tangential
-from .tangential.outer_film import OuterFilm, outer_film
+from .tangential.outer_film import OuterFilm, outer_film, unestimated_for_pair
 from .tangential.pair import SpherePair, solve_pair
 from .tangential.result import TangentialEnergyWarning, TangentialResult
 from .tangential.superposition import (
@@ -497,4 +497,7 @@ def _slide(result, given_mode_one):
         result.outer_film = outer_film(normal, result.tangential)
         if result.outer_film is not None and result.outer_film.flagged:
             warnings.warn(result.outer_film.note(), ResultRangeWarning, stacklevel=4)
+    note = unestimated_for_pair(normal, result.tangential) if pair else None
+    if note is not None:
+        warnings.warn(note, ResultRangeWarning, stacklevel=4)
     return result

@@ -19,6 +19,7 @@ Checked against exact results:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -37,6 +38,7 @@ from ehdfem.film.grid import contact_grid
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import from_presets, reduced_mass, reduced_radius
 from ehdfem.motion.normal import solve_normal
+from ehdfem.outputs.plausibility import ResultRangeWarning
 from ehdfem.solids.compliance import RigidSolids
 from ehdfem.solids.fe.bodies import LowerSphere
 from ehdfem.tangential.pair import PAIR_MODELS, SLIP_MODELS, SpherePair, solve_pair
@@ -526,3 +528,20 @@ def test_fe_and_halfspace_pairs_agree_as_the_wall_does():
     for ratio in (1.0, 3.0):
         pair = differences(lower="sphere", radius_ratio=ratio)
         assert np.all(pair <= wall), (ratio, pair, wall)
+
+
+def test_an_immersed_pair_says_its_outer_flow_is_left_out():
+    """An immersed oblique pair warns, and notes in its JSON, that the flow beyond its film's
+    integrals (two spheres' O(1) resistances) is neither estimated nor added; a thin pair,
+    whose film ends at its wetted edge inside r = a, does not."""
+    immersed = CollisionParameters.from_settings(
+        St=10.0, eps=1e-3, angle=30.0, layer="immersed", delta=0.01
+    )
+    with pytest.warns(ResultRangeWarning, match="neither estimated nor added"):
+        result = collide(immersed, nodes=60, **UNEQUAL)
+    assert any("neither estimated nor added" in note for note in result.summary()["notes"])
+    thin = CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0, **THIN)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResultRangeWarning)
+        result = collide(thin, nodes=60, **UNEQUAL)
+    assert not any("neither estimated" in note for note in result.summary()["notes"])

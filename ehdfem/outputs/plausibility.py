@@ -17,6 +17,8 @@ JSON (``notes``), so that a result read later still says what was questionable a
 
 from __future__ import annotations
 
+from ..tangential.outer_film import unestimated_for_pair
+
 SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real surfaces are rough
 NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
 LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which an impact is
@@ -76,10 +78,13 @@ def result_notes(params, physical, normal) -> list[str]:
 def notes(result) -> list[str]:
     """Every note on a collision's result (:class:`ehdfem.collision.CollisionResult`): its
     liquid's, its normal motion's (:func:`result_notes`), then its left-out outer flow's
-    (:class:`ehdfem.tangential.outer_film.OuterFilm`)."""
+    (:class:`ehdfem.tangential.outer_film.OuterFilm`), or for two spheres that it is left out
+    unestimated (:func:`ehdfem.tangential.outer_film.unestimated_for_pair`)."""
     liquid = None if result.physical is None else liquid_note(result.physical)
     outer = result.outer_film
     flagged = [outer.note()] if outer is not None and outer.flagged else []
+    if result.config is not None and result.config.lower.kind == "sphere":
+        flagged += filter(None, [unestimated_for_pair(result.normal, result.tangential)])
     return (
         [liquid] * (liquid is not None)
         + result_notes(result.params, result.physical, result.normal)

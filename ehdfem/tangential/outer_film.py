@@ -99,6 +99,21 @@ class OuterFilm:
         return text
 
 
+def unestimated_for_pair(normal: NormalResult, tangential: TangentialResult | None) -> str | None:
+    """The note on an immersed oblique collision of two spheres (``tangential`` not None): the
+    flow beyond its film's integrals is that of two spheres, whose O(1) resistances this module
+    does not have (dR is a sphere's near a wall), so it is neither estimated nor added; None for
+    a thin layer or a head-on impact."""
+    if normal.params.layer != "immersed" or tangential is None or tangential.e_t is None:
+        return None
+    return (
+        "the tangential film of the two spheres is integrated to r = a only, and the flow "
+        "beyond it (the two spheres' O(1) resistances) is neither estimated nor added: for a "
+        "sphere near a wall it changes 1 - e_t by 30-160 % in immersed runs "
+        "(docs/tangential.md, 'The flow beyond r = a'); e_t and the spin changes leave it out"
+    )
+
+
 def outer_film(normal: NormalResult, tangential: TangentialResult | None) -> OuterFilm | None:
     """The :class:`OuterFilm` estimate of an immersed oblique collision (its normal and
     tangential results); None for a thin layer (its film ends at the wetted edge, inside r = a),

@@ -11,8 +11,10 @@ and its JSON summary (:mod:`ehdfem.bounce.result`).
 
 from __future__ import annotations
 
+from dataclasses import fields
+
 from .. import checks
-from ..config import DEFAULT_NODES
+from ..config import Numerics
 from ..motion.timestepping import IntegratorOptions
 from .contact import MODELS, ImmersedCollision
 from .flight import EHD_MULTIPLE, HANDOVER_JUMP, FarField, FlightState
@@ -24,8 +26,7 @@ from .result import BounceResult
 def bounce_sphere(
     inputs: BounceInputs,
     model: str = "halfspace",
-    nodes: int = DEFAULT_NODES,
-    options: IntegratorOptions | None = None,
+    numerics: Numerics | None = None,
     handover_jump: float = HANDOVER_JUMP,
     ehd_multiple: float = EHD_MULTIPLE,
     max_bounces: int = 30,
@@ -34,14 +35,16 @@ def bounce_sphere(
     """The trajectory of a sphere settling onto a wall in a liquid and bouncing until it rests
     (module docstring). ``model``: the solids of the contacts, "halfspace" (the elastic
     half-space theory) or "rigid" (eps -> 0); the FE solids do not apply to the immersed film,
-    which reaches beyond the sphere. ``nodes`` and ``options``: the film model's grid and
-    time-step control. ``handover_jump`` in (0, 0.5), ``ehd_multiple`` >= 1: the hand-over
-    criterion. ``max_bounces``: the most contacts computed. ``rest_apex``: an apex below this
-    fraction of D ends the bounce."""
+    which reaches beyond the sphere. ``numerics``: the film model's :class:`ehdfem.config.Numerics`
+    (nodes, refinements, time-step control; default: a collision's), its exit gap left to each
+    contact (:meth:`ehdfem.bounce.flight.FarField.exit_gap`). ``handover_jump`` in (0, 0.5),
+    ``ehd_multiple`` >= 1: the hand-over criterion. ``max_bounces``: the most contacts
+    computed. ``rest_apex``: an apex below this fraction of D ends the bounce."""
     if not isinstance(inputs, BounceInputs):
         raise checks.InputError(f"inputs must be BounceInputs, got {inputs!r}")
     checks.choice("model", model, MODELS)
-    checks.integer("nodes", nodes, lower=20, upper=5000)
+    numerics = Numerics() if numerics is None else numerics
+    _check_numerics(numerics)
     checks.number(
         "handover_jump", handover_jump, lower=0.0, upper=0.5, lower_open=True, upper_open=True
     )
@@ -55,7 +58,7 @@ def bounce_sphere(
             f"the start gap {gap!r} m is inside the hand-over region of the film model: "
             "start the sphere higher"
         )
-    collision = ImmersedCollision(far, model, nodes, options or IntegratorOptions())
+    collision = ImmersedCollision(far, model, numerics)
     run = BounceLoop(collision, rest_apex)
     status = run.go(FlightState(0.0, gap, velocity), max_bounces)
     return BounceResult(
@@ -69,3 +72,17 @@ def bounce_sphere(
         ehd_multiple,
         rest_apex,
     )
+
+
+def _check_numerics(numerics) -> None:
+    """Refuse numerics that are not :class:`ehdfem.config.Numerics`, and an integrator's exit gap,
+    which each contact sets from the flight (a given one could not act)."""
+    if not isinstance(numerics, Numerics):
+        raise checks.InputError(f"numerics must be Numerics, got {numerics!r}", "numerics")
+    exit_gap = next(f for f in fields(IntegratorOptions) if f.name == "exit_gap").default
+    if numerics.integrator.exit_gap != exit_gap:
+        raise checks.InputError(
+            f"exit_gap = {numerics.integrator.exit_gap!r} cannot act in a bounce: each contact "
+            "hands back to the flight at its own exit gap (docs/bounce.md)",
+            "exit_gap",
+        )

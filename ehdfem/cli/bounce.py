@@ -9,7 +9,7 @@ from pathlib import Path
 from .. import BounceInputs, IntegratorOptions, bounce_sphere, checks
 from ..bounce.contact import MODELS as BOUNCE_MODELS
 from ..bounce.flight import EHD_MULTIPLE, HANDOVER_JUMP
-from ..config import DEFAULT_NODES
+from ..config import Numerics
 from ..study.sweep import write_csv
 from . import paths
 from .arguments import JSON_HELP, add_fields, given, named_by_option, report_stream, write_json
@@ -27,6 +27,8 @@ def _with_default(text: str, default) -> str:
 
 
 START = ("radius", "release_height", "start_gap", "start_speed")  # BounceInputs' start
+NUMERICS = ("nodes", "refinements")  # the contacts' film numerics
+INTEGRATOR = ("rtol",)  # and their time-step control (the exit gap is each contact's)
 
 
 def add_bounce(b) -> None:
@@ -53,7 +55,9 @@ def add_bounce(b) -> None:
 
 
 def _add_numerics(num) -> None:
-    """The hand-over, the film model's numerics and the outputs."""
+    """The hand-over, the film model's numerics (film nodes, refinements and the time-step
+    tolerance, generated from :class:`ehdfem.config.Numerics` and
+    :class:`ehdfem.IntegratorOptions`) and the outputs."""
     for name, kind, default, text in (
         ("handover-jump", float, HANDOVER_JUMP, "largest relative force jump at the hand-over "
          "to the film model, (0, 0.5)"),
@@ -61,9 +65,6 @@ def _add_numerics(num) -> None:
          "EHD gap, [1, 1e4]"),
         ("max-bounces", int, 30, "most contacts computed, [1, 1000]"),
         ("rest-apex", float, 1e-3, "an apex below this fraction of D ends the bounce, [0, 1)"),
-        ("nodes", int, DEFAULT_NODES, "film nodes of each contact, [20, 5000]"),
-        ("rtol", float, IntegratorOptions.rtol, "time-step tolerance of each contact: local "
-         "error per step [relative], [1e-10, 0.1]"),
     ):  # fmt: skip
         num.add_argument(
             f"--{name}",
@@ -72,6 +73,8 @@ def _add_numerics(num) -> None:
             metavar="X",
             help=_with_default(text, f"{default:g}"),
         )
+    add_fields(num, Numerics, names=NUMERICS)
+    add_fields(num, IntegratorOptions, names=INTEGRATOR)
     num.add_argument(
         "--folder",
         metavar="DIR",
@@ -110,8 +113,10 @@ def bounce_command(args) -> int:
     result = bounce_sphere(
         inputs,
         model=args.model,
-        nodes=args.nodes,
-        options=IntegratorOptions(rtol=args.rtol),
+        numerics=Numerics(
+            **given(args, Numerics, NUMERICS),
+            integrator=IntegratorOptions(**given(args, IntegratorOptions, INTEGRATOR)),
+        ),
         handover_jump=args.handover_jump,
         ehd_multiple=args.ehd_multiple,
         max_bounces=args.max_bounces,

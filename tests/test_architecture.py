@@ -449,7 +449,7 @@ def test_the_bounce_options_are_generated_from_its_inputs():
 
 
 def test_the_inputs_hold_components_in_at_most_fifteen_fields():
-    """CollisionParameters holds the liquid's laws and the surfaces' asperity model as
+    """CollisionParameters holds the liquid's laws, the gap and the surfaces' asperity model as
     components (issue 46: at most 15 fields); every component constant's flat key is unique
     across the roles and differs from the inputs' own fields, so a flat key names one thing."""
     import dataclasses
@@ -460,7 +460,7 @@ def test_the_inputs_hold_components_in_at_most_fifteen_fields():
     assert len(dataclasses.fields(CollisionParameters)) <= 15
     own = {f.name for f in described(CollisionParameters)}
     roles = components(CollisionParameters)
-    assert {f.name for f, _ in roles} == {"viscosity", "cavitation", "asperities"}
+    assert {f.name for f, _ in roles} == {"viscosity", "cavitation", "gap", "asperities"}
     keys = [{g.name for _, g in registry.fields()} for _, registry in roles]
     for i, mine in enumerate(keys):
         assert not mine & own and not any(mine & other for other in keys[i + 1 :])

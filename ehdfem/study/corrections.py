@@ -32,6 +32,7 @@ import numpy as np
 from .. import checks
 from ..collision import collide, elasticity, film_radii
 from ..config import RunConfig
+from ..film.gap import GAPS, ParaboloidGap
 from ..inputs.scales import CollisionParameters
 
 VARIANTS = {
@@ -53,7 +54,7 @@ def variant_parameters(params: CollisionParameters, variant: str) -> CollisionPa
     """``params`` with the gap and the surface effects of ``variant`` (the true gap only for a
     thin layer: an immersed layer keeps the paraboloid)."""
     _, gap, shear = VARIANTS[checks.choice("variant", variant, tuple(VARIANTS))]
-    gap = gap if params.layer == "thin" else "paraboloid"
+    gap = GAPS[gap]() if params.layer == "thin" else ParaboloidGap()
     return replace(params, gap=gap, shear_traction=shear)
 
 

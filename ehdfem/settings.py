@@ -254,6 +254,23 @@ class Registry:
                 given[key] = f.metadata["read"](given[key])
         return cls(**given)
 
+    def of_inputs(self, name: str, values: dict):
+        """The component ``name`` from the physical inputs' ``values`` (flat keys, scaled; the
+        physical inputs hold the constants of every component of the role): its own fields from
+        them. A constant of another component of the role cannot act with this one: refused,
+        by its key, when it differs from its default (given on purpose), else left out."""
+        own = {f.name for f in dataclasses.fields(self[name])}
+        defaults = {f.name: f.default for _, f in self.fields()}
+        for key in self.foreign(name, values):
+            if values[key] != defaults[key]:
+                owners = " or ".join(map(repr, self.owners(key)))
+                raise checks.InputError(
+                    f"{key} = {values[key]!r} acts only with {self.role} = {owners}: it cannot "
+                    f"act with {self.role} = {name!r}",
+                    key,
+                )
+        return self[name](**{k: v for k, v in values.items() if k in own})
+
     def foreign(self, name: str | None, values) -> list[str]:
         """The keys of ``values`` that are fields of other components of the role but not of
         the component ``name`` (None: of none): they cannot act with it."""

@@ -45,6 +45,11 @@ class Paraboloid:
 
     name = "paraboloid"
 
+    @classmethod
+    def of(cls, delta: float, surface_radii=(1.0, math.inf)) -> Paraboloid:
+        """The paraboloid: delta and the surfaces' radii do not enter."""
+        return cls()
+
     def height(self, radius):
         """S(R) by x0 at R by sqrt(a x0)."""
         return 0.5 * radius**2
@@ -69,6 +74,11 @@ class ExactSpheres(Paraboloid):
     D = S - R^2/2 (of order delta R^4) is interpolated, so no precision is lost to cancellation."""
 
     name = "exact"
+
+    @classmethod
+    def of(cls, delta: float, surface_radii=(1.0, math.inf)) -> ExactSpheres:
+        """The true spheres at delta = x0/a with the surfaces' radii by a."""
+        return cls(delta, surface_radii)
 
     def __init__(self, delta: float, radii=(1.0, math.inf)):
         self.delta = checks.number("delta", delta, lower=0.0, upper=1.0, lower_open=True)
@@ -136,30 +146,35 @@ class GapChoice(Protocol):
 GAPS = Registry("gap", GapChoice)  # the choices of gap by name
 
 
+class ShapeOfGap:
+    """The members every built-in choice of gap shares (a base of their frozen dataclasses):
+    its ``name`` is that of its shape class ``gap_class``, which builds the gap."""
+
+    gap_class: ClassVar[type]
+
+    def shape(self, delta: float, surface_radii=(1.0, math.inf)) -> Paraboloid:
+        """The gap ``gap_class.of(delta, surface_radii)`` (delta = x0/a, radii by a)."""
+        return self.gap_class.of(delta, surface_radii)
+
+
 @GAPS.register
 @dataclass(frozen=True)
-class ParaboloidGap:
-    """The asymptotic theory's gap S = R^2 / 2, whatever the surfaces."""
+class ParaboloidGap(ShapeOfGap):
+    """The asymptotic theory's gap S = R^2 / 2 (:class:`Paraboloid`), whatever the surfaces."""
 
+    gap_class: ClassVar[type] = Paraboloid
     name: ClassVar[str] = Paraboloid.name
     thin_layer_only: ClassVar[bool] = False
 
-    def shape(self, delta: float, surface_radii=(1.0, math.inf)) -> Paraboloid:
-        """:class:`Paraboloid` (delta and the radii do not enter)."""
-        return Paraboloid()
-
 
 @GAPS.register
 @dataclass(frozen=True)
-class ExactGap:
+class ExactGap(ShapeOfGap):
     """The true spheres' gap (:class:`ExactSpheres`); a thin layer only."""
 
+    gap_class: ClassVar[type] = ExactSpheres
     name: ClassVar[str] = ExactSpheres.name
     thin_layer_only: ClassVar[bool] = True
-
-    def shape(self, delta: float, surface_radii=(1.0, math.inf)) -> ExactSpheres:
-        """:class:`ExactSpheres` at ``delta`` for the surfaces' radii by a."""
-        return ExactSpheres(delta, surface_radii)
 
 
 def default_gap(model: str, layer: str) -> GapChoice:

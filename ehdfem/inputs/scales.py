@@ -262,7 +262,9 @@ class PhysicalCollision:
     asperities' eta beta sigma and sigma/beta are pure numbers, taken by the asperity model
     ``asperities`` that uses them (:class:`CollisionParameters`). The cavitation model, the
     viscosity law and the asperity model are named here; their scaled constants come from the
-    physical inputs through their classes (``with_limit``, ``of_liquid``, ``of_surfaces``).
+    physical inputs through their classes (``with_limit``, ``of_liquid``) and their registry
+    (:meth:`ehdfem.settings.Registry.of_inputs`, which refuses another asperity model's
+    constants).
     The friction coefficient of the solid contact and its tangential compliance k_t/k_n are
     dimensionless (as in :class:`CollisionParameters`; k_t/k_n of two materials from
     :func:`ehdfem.tangential.compliant_contact.mindlin_stiffness_ratio`).
@@ -477,12 +479,15 @@ class PhysicalCollision:
             gap=None if self.gap is None else GAPS[self.gap](),
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,
-            asperities=ASPERITY_MODELS[self.asperities].of_surfaces(
-                self.roughness / x0,
-                self.friction_coefficient,
-                self.asperity_density,
-                self.asperity_slope,
-                self.tangential_compliance,
+            asperities=ASPERITY_MODELS.of_inputs(
+                self.asperities,
+                {
+                    "roughness": self.roughness / x0,
+                    "friction_coefficient": self.friction_coefficient,
+                    "asperity_density": self.asperity_density,
+                    "asperity_slope": self.asperity_slope,
+                    "tangential_compliance": self.tangential_compliance,
+                },
             ),
         )
 

@@ -16,7 +16,6 @@ from scipy.integrate import quad
 from ehdfem.bounce.flight import (
     FarField,
     FlightState,
-    brenner_factor,
     cavity_edge_ratio,
     drag_factor,
     release_height_for_speed,
@@ -29,6 +28,7 @@ from ehdfem.cli.arguments import destination, help_text, option
 from ehdfem.cli.inputs import BODIES
 from ehdfem.cli.main import main, parsers
 from ehdfem.config import Numerics
+from ehdfem.exact.sphere_towards_wall import resistance as brenner_factor
 from ehdfem.motion.timestepping import IntegratorOptions
 from ehdfem.settings import described
 

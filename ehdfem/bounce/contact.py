@@ -30,12 +30,13 @@ from scipy.integrate import cumulative_trapezoid, trapezoid
 
 from ..collision import collide, film_radii
 from ..config import Numerics, RunConfig
+from ..exact import sphere_towards_wall as towards_wall
 from ..film import cavitation
 from ..inputs.scales import PhysicalCollision
 from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
 from . import unsteady
-from .flight import FarField, Flight, FlightState, brenner_factor
+from .flight import FarField, Flight, FlightState
 from .result import Contact
 
 MODELS = ("halfspace", "rigid")  # the solids of the contacts
@@ -252,7 +253,7 @@ class ImmersedCollision:
         gap = np.maximum(hist.min_film[shown], 1e-12) * scales.gap
         velocity = hist.velocity[shown] * speed
         phi = far.phi(velocity)
-        lam = brenner_factor(gap / far.inputs.radius)
+        lam = towards_wall.resistance(gap / far.inputs.radius)
         remainder = -far.stokes * velocity * (phi - 1.0 + lam - far.inputs.radius / gap)
         momentum = mass * speed
         weight = 0.0 if far.inputs.contact_gravity else far.net_weight

@@ -19,7 +19,7 @@ and halfspace variants are the theory and surface ones, and its geometry share i
 The first correction: each share divided by sqrt(delta) tends to a constant c1 as delta -> 0
 when the cause acts at order sqrt(delta) (:func:`first_order_fit`: q = c1 + c2 sqrt(delta) by
 least squares, with the standard errors of c1 and c2). The surface effects' c1 in closed form,
-where the leading order is the rigid approach (eps -> 0): :mod:`ehdfem.study.surface_limit`.
+where the leading order is the rigid approach (eps -> 0): :mod:`ehdfem.exact.surface_limit`.
 """
 
 from __future__ import annotations

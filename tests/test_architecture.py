@@ -412,15 +412,17 @@ def test_viscosity_and_cavitation_names_only_in_the_film():
 
 def hand_written_bounce_options(add=None) -> list[str]:
     """The options of ``ehdfem bounce`` (those ``add`` puts on a parser; default: the
-    command's) for a field of the bounce's inputs (BounceInputs) that are not the generated
-    ones (:func:`ehdfem.cli.arguments.add_fields`: their help, unit, range and default from the
+    command's) for a field of the bounce's inputs (BounceInputs) or of its numerics
+    (BounceRun, and the contacts' film numerics it holds) that are not the generated ones
+    (:func:`ehdfem.cli.arguments.add_fields`: their help, unit, range and default from the
     field's metadata), and the fields without an option."""
     import argparse
 
-    from ehdfem import BounceInputs
+    from ehdfem import BounceInputs, BounceRun, IntegratorOptions
     from ehdfem.cli import bounce
     from ehdfem.cli.arguments import add_fields
     from ehdfem.cli.inputs import BODIES, add_body_arguments
+    from ehdfem.config import Numerics
 
     parser = argparse.ArgumentParser()
     (add or bounce.add_bounce)(parser)
@@ -428,6 +430,9 @@ def hand_written_bounce_options(add=None) -> list[str]:
     add_body_arguments(generated)
     add_fields(generated, BounceInputs, names=bounce.START)
     add_fields(generated, BounceInputs, exclude=(*BODIES, *bounce.START), switches=True)
+    add_fields(generated, BounceRun)
+    add_fields(generated, Numerics, names=bounce.NUMERICS)
+    add_fields(generated, IntegratorOptions, names=bounce.INTEGRATOR)
     expected = {a.dest: (a.option_strings, a.help) for a in generated._actions if a.dest != "help"}
     actual = {a.dest: (a.option_strings, a.help) for a in parser._actions}
     return [
@@ -438,14 +443,19 @@ def hand_written_bounce_options(add=None) -> list[str]:
 
 
 def test_the_bounce_options_are_generated_from_its_inputs():
-    """Issue 46: cli/bounce.py has no hand-written option for a field of BounceInputs: each
-    field's option is the one generated from its metadata."""
-    from ehdfem import BounceInputs
+    """Issue 46: cli/bounce.py has no hand-written option for a field of BounceInputs or of the
+    bounce's numerics (BounceRun): each field's option is the one generated from its metadata;
+    the only options written out are the outputs'."""
+    from ehdfem import BounceInputs, BounceRun
+    from ehdfem.cli import bounce
     from ehdfem.settings import flat_fields
 
-    assert len(list(flat_fields(BounceInputs))) >= 20
+    assert len(list(flat_fields(BounceInputs))) >= 20 and len(list(flat_fields(BounceRun))) == 5
     wrong = hand_written_bounce_options()
     assert not wrong, "bounce options not generated from BounceInputs:\n" + "\n".join(wrong)
+    source = Path(bounce.__file__).read_text()
+    written = re.findall(r"add_argument\(\s*\"(--[a-z-]+)\"", source)
+    assert sorted(written) == ["--folder", "--json", "--out"], written
 
 
 def test_the_inputs_hold_components_in_at_most_fifteen_fields():

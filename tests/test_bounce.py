@@ -21,6 +21,7 @@ from ehdfem.bounce.flight import (
     release_height_for_speed,
 )
 from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.run import BounceRun
 from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.checks import InputError
 from ehdfem.cli import bounce as cli_bounce
@@ -164,7 +165,7 @@ def test_energy_is_accounted_for_over_a_bounce(e_dry, history):
     inputs = BounceInputs(
         **OIL_BOUNCE, release_height=3e-3, e_dry=e_dry, cavitation="none", history=history
     )
-    result = bounce_sphere(inputs, max_bounces=1)
+    result = bounce_sphere(inputs, BounceRun(max_bounces=1))
     contact = result.contacts[0]
     assert contact.status == "rebound" and contact.apex_gap > 0.1 * inputs.diameter
     assert contact.film["energy_error"] < 2e-3 and result.energy_error() < 2e-3
@@ -198,7 +199,7 @@ def test_handover_joins_flight_and_film_both_ways():
     oil = inputs.liquid
     apexes = []
     for jump in (0.005, 0.05):
-        result = bounce_sphere(inputs, max_bounces=1, handover_jump=jump)
+        result = bounce_sphere(inputs, BounceRun(max_bounces=1, handover_jump=jump))
         (contact,) = result.contacts
         assert abs(contact.entry_jump) < 0.06 and abs(contact.exit_jump) < 0.08
         cavity_free = math.sqrt(3 * oil.viscosity * inputs.radius * contact.handover_speed / 101325)
@@ -223,7 +224,7 @@ def test_rigid_immersed_sphere_sticks_where_the_rigid_theory_stops_it():
         contact_gravity=False,
         contact_history=False,
     )
-    result = bounce_sphere(inputs, model="rigid")
+    result = bounce_sphere(inputs, BounceRun(contact_solids="rigid"))
     (contact,) = result.contacts
     assert contact.status == "stick" and result.status == "rest: the contact sticks"
     assert 5 < contact.contact_St < 15
@@ -251,10 +252,10 @@ def test_rough_rigid_sphere_rebounds_from_its_asperities_as_the_rigid_theory_say
         contact_history=False,
         e_dry=0.8,
     )
-    (first,) = bounce_sphere(smooth, model="rigid").contacts
+    (first,) = bounce_sphere(smooth, BounceRun(contact_solids="rigid")).contacts
     sigma = first.handover_gap * math.exp(-first.contact_St / 4)
     rough = replace(smooth, sphere_roughness=sigma, clear_exit=False)
-    contact = bounce_sphere(rough, model="rigid", max_bounces=1).contacts[0]
+    contact = bounce_sphere(rough, BounceRun(contact_solids="rigid", max_bounces=1)).contacts[0]
     assert contact.handover_gap == pytest.approx(first.handover_gap, rel=1e-12)
     assert contact.film["solid_impact_speed_m_s"] is not None and contact.status == "rebound"
     share = 0.25  # L / St
@@ -279,7 +280,7 @@ def test_history_force_in_the_contact_slows_the_rebound_and_keeps_the_energy():
     test above."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, e_dry=0.9, cavitation="none")
     results = {
-        name: bounce_sphere(replace(base, **changes), max_bounces=1)
+        name: bounce_sphere(replace(base, **changes), BounceRun(max_bounces=1))
         for name, changes in {
             "off": {"contact_history": False},
             "history": {},
@@ -306,7 +307,7 @@ def test_the_memory_across_a_contact_changes_only_the_flight_after_it():
     the history force's work is integrated in flight whatever its memory holds)."""
     base = BounceInputs(**OIL_BOUNCE, release_height=3e-3, cavitation="none")
     results = {
-        memory: bounce_sphere(replace(base, history_memory=memory), max_bounces=1)
+        memory: bounce_sphere(replace(base, history_memory=memory), BounceRun(max_bounces=1))
         for memory in ("keep", "reset", "approach")
     }
     kept = results["keep"].contacts[0]
@@ -339,7 +340,9 @@ def test_heavy_rigid_sphere_settles_through_the_film_under_gravity():
     )
     far = FarField(inputs)
     options = IntegratorOptions(rtol=1e-5, max_time=5.0)
-    result = bounce_sphere(inputs, model="rigid", numerics=Numerics(nodes=300, integrator=options))
+    result = bounce_sphere(
+        inputs, BounceRun(contact_solids="rigid", numerics=Numerics(nodes=300, integrator=options))
+    )
     (contact,) = result.contacts
     assert contact.status == "stalled" and "settling" in result.status
     inside = np.asarray(result.trajectory["phase"]) == "contact"
@@ -397,7 +400,7 @@ def test_bad_inputs_are_refused_by_name(changes, named):
 @pytest.mark.parametrize(
     "options, named",
     [
-        ({"model": "fem"}, "model"),
+        ({"contact_solids": "fem"}, "contact_solids"),
         ({"handover_jump": 0.7}, "handover_jump"),
         ({"max_bounces": 0}, "max_bounces"),
         ({"rest_apex": 1.0}, "rest_apex"),
@@ -408,7 +411,7 @@ def test_bad_inputs_are_refused_by_name(changes, named):
 def test_bad_options_are_refused_by_name(options, named):
     inputs = BounceInputs(**OIL_BOUNCE, release_height=0.01)
     with pytest.raises(InputError, match=named):
-        bounce_sphere(inputs, **options)
+        bounce_sphere(inputs, BounceRun(**options))
 
 
 def test_a_start_inside_the_film_region_is_refused():
@@ -549,7 +552,7 @@ def test_a_piezoviscous_liquid_thickens_the_contacts_film():
     contacts = [
         bounce_sphere(
             BounceInputs(**OIL_BOUNCE, release_height=3e-3, viscosity=law, pressure_viscosity=a),
-            max_bounces=1,
+            BounceRun(max_bounces=1),
         ).contacts[0]
         for law, a in (("constant", None), ("barus", 1e-9), ("roelands", None))
     ]

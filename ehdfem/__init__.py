@@ -13,9 +13,10 @@ inputs in SI; see :mod:`ehdfem.inputs.scales`):
 - :class:`RunConfig`: how a collision is computed (model, lower body, tangential film model,
   numerics; :mod:`ehdfem.config`), and :class:`IntegratorOptions`, its time-step
   tolerance and limits;
-- :func:`bounce_sphere` with :class:`BounceInputs` (SI): a sphere settling onto a wall in a
-  liquid and bouncing until it rests, each contact an immersed EHD collision
-  (:class:`BounceResult`); its parts are in the subpackage :mod:`ehdfem.bounce`.
+- :func:`bounce_sphere` with :class:`BounceInputs` (SI) and :class:`BounceRun` (its
+  numerics): a sphere settling onto a wall in a liquid and bouncing until it rests, each
+  contact an immersed EHD collision (:class:`BounceResult`); its parts are in the subpackage
+  :mod:`ehdfem.bounce`.
 """
 
 import importlib
@@ -27,6 +28,7 @@ from .version import __version__
 _PUBLIC = {
     "BounceInputs": "bounce.inputs",
     "BounceResult": "bounce.result",
+    "BounceRun": "bounce.run",
     "bounce_sphere": "bounce.trajectory",
     "CollisionResult": "collision",
     "collide": "collision",
@@ -56,6 +58,7 @@ def __getattr__(name: str):
 __all__ = [
     "BounceInputs",
     "BounceResult",
+    "BounceRun",
     "CollisionParameters",
     "CollisionResult",
     "IntegratorOptions",

@@ -26,7 +26,7 @@ from .motion.normal import FilmClosedError, NormalResult, solve_normal
 from .outputs import plausibility, provenance
 from .outputs import registry as outputs
 from .outputs.plausibility import ResultRangeWarning
-from .solids.compliance import Compliance, ModeOneCompliance
+from .solids.compliance import Compliance, ModeOneCompliance, default_shear_traction
 from .solids.halfspace import (
     IDENTICAL_SOLIDS,
     HalfSpaceCompliance,
@@ -119,12 +119,13 @@ def elasticity(
     else those of the physical inputs, else identical solids with Poisson ratio 0.3 (the
     half-space's pressure kernel only sees theta; the FE solids and the shear traction also
     see the moduli ratio and the nu's; a coating's modulus is the wall's times its stiffness).
-    The squeeze-shear traction is applied when params.shear_traction says so (default: FE
-    solids only). ``comm``: the FE solids' MPI communicator (default COMM_WORLD)."""
+    The squeeze-shear traction is applied when params.shear_traction says so (None: the
+    solids', :func:`ehdfem.solids.compliance.default_shear_traction`). ``comm``: the FE
+    solids' MPI communicator (default COMM_WORLD)."""
     config = RunConfig() if config is None else config
     sphere, wall = _materials(physical) if materials is None else materials
     shear = params.shear_traction
-    shear = config.model == "fem" if shear is None else shear
+    shear = default_shear_traction(config.model) if shear is None else shear
     with one_blas_thread():
         if config.model == "halfspace":
             return HalfSpaceCompliance(

@@ -122,7 +122,7 @@ def default_text(f: dataclasses.Field) -> str:
     switch)."""
     if f.metadata.get("default_text") is not None:
         return f.metadata["default_text"]
-    if "registry" in f.metadata:
+    if "registry" in f.metadata and f.default is not None:
         return f.default.name
     if f.default is dataclasses.MISSING:
         return "required"
@@ -218,8 +218,11 @@ class Registry:
                 seen.setdefault(f.name, (cls, f))
         return list(seen.values())
 
-    def check(self, component) -> None:
-        """Refuse a value that is not an instance of a registered component."""
+    def check(self, component, optional: bool = False) -> None:
+        """Refuse a value that is not an instance of a registered component (nor None, when
+        the role is ``optional``)."""
+        if optional and component is None:
+            return
         cls = self._classes.get(getattr(component, "name", None))
         if cls is None or not isinstance(component, cls):
             raise checks.InputError(
@@ -228,18 +231,21 @@ class Registry:
                 self.role,
             )
 
-    def build(self, name: str, values: dict, read: bool = False):
+    def build(self, name: str | None, values: dict, read: bool = False):
         """The component ``name`` with the given field ``values`` (flat keys; ``read``: from a
-        study file or JSON, through each field's ``read``). A value for another component's
-        field is warned of and left out: it cannot act with this one."""
-        cls = self[name]
-        own = {f.name: f for f in dataclasses.fields(cls)}
+        study file or JSON, through each field's ``read``); None for ``name`` None (an optional
+        role left to its default). A value for another component's field is warned of and left
+        out: it cannot act with this one."""
+        own = {} if name is None else {f.name: f for f in dataclasses.fields(self[name])}
         for key in self.foreign(name, values):
             warnings.warn(
                 f"{key} has no effect with {self.role} = {name!r} (a setting of "
                 f"{self.role} = {' or '.join(map(repr, self.owners(key)))})",
                 stacklevel=4,
             )
+        if name is None:
+            return None
+        cls = self[name]
         given = {k: v for k, v in values.items() if k in own}
         for key, f in own.items():
             if key not in given and f.default is dataclasses.MISSING:
@@ -248,10 +254,27 @@ class Registry:
                 given[key] = f.metadata["read"](given[key])
         return cls(**given)
 
-    def foreign(self, name: str, values) -> list[str]:
-        """The keys of ``values`` that are fields of other components of the role but not of
-        the component ``name``: they cannot act with it."""
+    def of_inputs(self, name: str, values: dict):
+        """The component ``name`` from the physical inputs' ``values`` (flat keys, scaled; the
+        physical inputs hold the constants of every component of the role): its own fields from
+        them. A constant of another component of the role cannot act with this one: refused,
+        by its key, when it differs from its default (given on purpose), else left out."""
         own = {f.name for f in dataclasses.fields(self[name])}
+        defaults = {f.name: f.default for _, f in self.fields()}
+        for key in self.foreign(name, values):
+            if values[key] != defaults[key]:
+                owners = " or ".join(map(repr, self.owners(key)))
+                raise checks.InputError(
+                    f"{key} = {values[key]!r} acts only with {self.role} = {owners}: it cannot "
+                    f"act with {self.role} = {name!r}",
+                    key,
+                )
+        return self[name](**{k: v for k, v in values.items() if k in own})
+
+    def foreign(self, name: str | None, values) -> list[str]:
+        """The keys of ``values`` that are fields of other components of the role but not of
+        the component ``name`` (None: of none): they cannot act with it."""
+        own = set() if name is None else {f.name for f in dataclasses.fields(self[name])}
         return [k for k in values if k not in own and self.owners(k)]
 
     def owners(self, key: str) -> list[str]:
@@ -262,9 +285,10 @@ class Registry:
 
     def flat(self, value, written: bool = False) -> dict:
         """The flat settings of the component ``value``: its role's name and its fields
-        (``written``: for a study file or JSON, through each field's ``write``)."""
-        out = {self.role: value.name}
-        for f in dataclasses.fields(value):
+        (``written``: for a study file or JSON, through each field's ``write``); the role None
+        for None (an optional role left to its default)."""
+        out = {self.role: None if value is None else value.name}
+        for f in dataclasses.fields(value) if value is not None else ():
             item = getattr(value, f.name)
             out[f.name] = f.metadata["write"](item) if written and f.metadata["write"] else item
         return out
@@ -277,10 +301,17 @@ def _members(protocol) -> list[str]:
     return sorted(names)
 
 
-def component(registry: Registry, default, *, help: str):
+def component(registry: Registry, default, *, help: str, default_text: str | None = None):
     """A field holding a component of ``registry``'s role (default: the instance ``default``,
-    frozen), with ``help``: what the role is."""
-    return dataclasses.field(default=default, metadata={"help": help, "registry": registry})
+    frozen; None: an optional role, whose None another input resolves, described by
+    ``default_text``), with ``help``: what the role is."""
+    metadata = {"help": help, "registry": registry, "default_text": default_text}
+    return dataclasses.field(default=default, metadata=metadata)
+
+
+def default_name(f: dataclasses.Field) -> str | None:
+    """The name of the default component of the component field ``f`` (None: none)."""
+    return None if f.default is None else f.default.name
 
 
 def components(cls) -> list[tuple[dataclasses.Field, Registry]]:
@@ -337,7 +368,7 @@ def from_flat(cls, values: dict, read: bool = False):
     built = {}
     for f, registry in components(cls):
         keys = {g.name for _, g in registry.fields()}
-        name = rest.pop(f.name, f.default.name)
+        name = rest.pop(f.name, default_name(f))
         mine = {k: rest.pop(k) for k in list(rest) if k in keys}
         built[f.name] = registry.build(name, mine, read)
     for f in described(cls):
@@ -349,7 +380,7 @@ def from_flat(cls, values: dict, read: bool = False):
 def check_components(instance) -> None:
     """Refuse a component field of ``instance`` that holds no registered component."""
     for f, registry in components(type(instance)):
-        registry.check(getattr(instance, f.name))
+        registry.check(getattr(instance, f.name), optional=f.default is None)
 
 
 def without_other_components(cls, values: dict) -> dict:
@@ -358,7 +389,8 @@ def without_other_components(cls, values: dict) -> dict:
     constant viscosity, P_cav with no cavitation model), which cannot act with the one chosen."""
     out = dict(values)
     for f, registry in components(cls):
-        own = {g.name for g in dataclasses.fields(registry[out.get(f.name, f.default.name)])}
+        name = out.get(f.name, default_name(f))
+        own = set() if name is None else {g.name for g in dataclasses.fields(registry[name])}
         for _, g in registry.fields():
             if g.name not in own:
                 out.pop(g.name, None)

@@ -44,6 +44,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.bounce.flight import FarField, release_height_for_speed  # noqa: E402
 from ehdfem.bounce.inputs import BounceInputs  # noqa: E402
+from ehdfem.bounce.run import BounceRun  # noqa: E402
 from ehdfem.bounce.trajectory import bounce_sphere  # noqa: E402
 from ehdfem.dem.closedform import legendre  # noqa: E402
 from ehdfem.inputs.literature import GONDRET_RUNS  # noqa: E402
@@ -66,7 +67,7 @@ STEADY = {  # the flight and contacts before the choices
     "clear_exit": False,
     **SMOOTH,
 }
-CHOICES = {  # name: (BounceInputs changes, bounce_sphere() options); each choice alone, then all
+CHOICES = {  # name: (BounceInputs changes, BounceRun changes); each choice alone, then all
     "steady flight": (STEADY, {}),
     "+ history force": ({**STEADY, "history": "mei-adrian"}, {}),
     "+ wall added mass": ({**STEADY, "wall_added_mass": True}, {}),
@@ -147,7 +148,7 @@ def run_case(table, run, variant):
         changes["sphere_roughness"] = changes.pop("roughness_by_radius") * run.diameter / 2
     inputs = released(replace(case_inputs(run), **changes), run.speed)
     start = time.perf_counter()
-    result = bounce_sphere(inputs, max_bounces=MAX_BOUNCES, **options)
+    result = bounce_sphere(inputs, BounceRun(max_bounces=MAX_BOUNCES, **options))
     seconds = time.perf_counter() - start
     write_csv(path, result.trajectory_rows())
     write_csv(RESULTS / f"{run.label}_{slug(variant)}_contacts.csv", result.contact_rows())

@@ -3,7 +3,7 @@
 On half-spaces (thin layer, paraboloid gap, identical solids with nu = 0.3, no cavitation) the
 thinnest film with the tangential surface effects on and off, and the quotient
 q = (H_min(on) / H_min(off) - 1) / (eps sqrt(delta)), against the closed form
-c = -kappa J(X_s) / (1 - X_s)^2 of :mod:`ehdfem.study.surface_limit` (the rigid approach's
+c = -kappa J(X_s) / (1 - X_s)^2 of :mod:`ehdfem.exact.surface_limit` (the rigid approach's
 first-order change, eps -> 0), at St = 0.5, 1 and 2 (rigid stopping gaps 0.197, 0.0997, 0.0322).
 
 Weak elasticity is measured by k = eps / X_s^(5/2), the elastic opening over the film at the
@@ -32,11 +32,11 @@ from scipy.interpolate import CubicSpline
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.exact import rigid_film
+from ehdfem.exact.surface_limit import stopping_gap_constant, velocity_integral
 from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.compliance import LinearCompliance
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
-from ehdfem.study.surface_limit import stopping_gap_constant, velocity_integral
 from ehdfem.study.sweep import ResultTable, write_csv
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -103,7 +103,7 @@ def compute():
         if table.get(**key) is not None:
             continue
         q, thinnest = quotient(St, k, delta, nodes, effect)
-        constant = stopping_gap_constant(St, effect)
+        constant = stopping_gap_constant(St, shear_coefficient(), effect)
         table.add(dict(key, quotient=q, constant=constant, min_film_off=thinnest))
         print(key, f"q = {q:.4f}, c = {constant:.4f}, ratio {q / constant:.4f}", flush=True)
     return table.rows
@@ -127,8 +127,9 @@ def summary(rows):
         deltas = [by.get((St, 0.03, d, fine, "both"), np.nan) for d in DELTAS]
         grids = [by.get((St, 0.01, 0.01, n, "both"), np.nan) for n in NODES]
         effects = [by.get((St, 0.01, 0.01, fine, e), np.nan) for e in ("opening", "velocity")]
+        constant = stopping_gap_constant(St, shear_coefficient())
         print(
-            f"St {St}: c = {stopping_gap_constant(St):.4f}; q/c at k {WEAKNESS}: "
+            f"St {St}: c = {constant:.4f}; q/c at k {WEAKNESS}: "
             f"{np.round(ratios, 4)}, k -> 0: {limit:.4f}; at delta {DELTAS}: "
             f"{np.round(deltas, 4)}; nodes {NODES}: {np.round(grids, 4)}; "
             f"opening, velocity alone: {np.round(effects, 4)}"

@@ -28,8 +28,8 @@ import numpy as np
 from mpi4py import MPI
 
 from ehdfem.bounce import unsteady
-from ehdfem.bounce.flight import brenner_factor
 from ehdfem.bounce.wall_flow import FINE, WallFlow
+from ehdfem.exact.sphere_towards_wall import resistance as brenner_factor
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "studies/results/wall_history_kernel"

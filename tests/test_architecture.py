@@ -1,12 +1,14 @@
 """The package's structure (docs/architecture.md): packages in layers whose imports point down,
-no import cycle between modules, no function over 80 lines, and every use of DOLFINx, basix and
-PETSc objects in the seam ehdfem.fenicsx. These read the source, not run it."""
+no import cycle between modules, no file over 600 lines, no function over 80 lines, every use of
+DOLFINx, basix and PETSc objects in the seam ehdfem.fenicsx, one class per lower body, no name
+of a viscosity law or cavitation model outside ehdfem/film/, and the bounce's options generated
+from its inputs. These read the source, not run it (the bounce's options: its parser). Each
+check is a function of a package folder; test_each_check_fails_on_a_planted_violation runs it
+on a small package that breaks it."""
 
 import ast
 import re
 from pathlib import Path
-
-import pytest
 
 PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
 
@@ -30,6 +32,7 @@ LAYERS = (
     ("__init__", "__main__"),
 )
 LONGEST_FUNCTION = 80  # lines, decorators excluded
+LONGEST_FILE = 600  # lines
 SEAM = "ehdfem.fenicsx"  # the package that holds every use of DOLFINx (docs/architecture.md)
 SEAM_LIBRARIES = ("dolfinx", "basix", "petsc4py")  # imported, or loaded by name, only there
 SEAM_MODULES = {path.stem for path in (PACKAGE / "fenicsx").glob("*.py")}
@@ -99,10 +102,10 @@ ON_BASES = {
 }
 
 
-def _modules():
-    """(module name, path, syntax tree) of every module of the package."""
-    for path in sorted(PACKAGE.rglob("*.py")):
-        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+def _modules(package: Path = PACKAGE):
+    """(module name, path, syntax tree) of every module of the package in folder ``package``."""
+    for path in sorted(package.rglob("*.py")):
+        parts = path.relative_to(package.parent).with_suffix("").parts
         name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
         yield name, path, ast.parse(path.read_text())
 
@@ -111,6 +114,7 @@ def _imports(name, path, tree, annotations=False):
     """The ehdfem modules (or packages) that a module imports, absolute: at run time, and with
     ``annotations`` also those for type annotations only (under ``if TYPE_CHECKING:``)."""
     here = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    root = path.parents[len(name.split(".")) - (path.name != "__init__.py")]
     typing_only = {
         id(inner)
         for node in ast.walk(tree)
@@ -127,9 +131,7 @@ def _imports(name, path, tree, annotations=False):
             modules = [  # "from .. import checks": a module of that package
                 f"{target}.{alias.name}"
                 for alias in node.names
-                if (PACKAGE.parent / f"{target}.{alias.name}".replace(".", "/"))
-                .with_suffix(".py")
-                .exists()
+                if (root / f"{target}.{alias.name}".replace(".", "/")).with_suffix(".py").exists()
             ]
             yield from modules or [target]
         elif isinstance(node, ast.ImportFrom) and (node.module or "").startswith("ehdfem"):
@@ -145,60 +147,121 @@ def _layer(module: str) -> int:
     raise AssertionError(f"{module} is in no layer: add its package to LAYERS")
 
 
-def test_imports_point_down():
+def upward_imports(package: Path = PACKAGE) -> list[str]:
+    """The imports of the package in ``package`` that do not point down (module -> target)."""
     upward = []
-    for name, path, tree in _modules():
+    for name, path, tree in _modules(package):
         top = name.split(".")[1] if "." in name else name
         for target in _imports(name, path, tree):
             target_top = target.split(".")[1] if "." in target else target
             if target_top != top and _layer(target) >= _layer(name):
                 upward.append(f"{name} -> {target}")
+    return upward
+
+
+def test_imports_point_down():
+    upward = upward_imports()
     assert not upward, "imports that do not point down:\n" + "\n".join(upward)
+
+
+def import_cycle(package: Path = PACKAGE) -> list[str]:
+    """An import cycle of the package in ``package`` (its modules in order, the first again at
+    the end; empty: none), through imports for type annotations too."""
+    graph = {name: set(_imports(name, path, tree, True)) for name, path, tree in _modules(package)}
+    state = {}
+
+    def visit(module, trail):
+        if state.get(module) == "done" or module not in graph:
+            return []
+        if state.get(module) == "open":
+            return trail[trail.index(module) :] + [module]
+        state[module] = "open"
+        for target in graph[module]:
+            cycle = visit(target, trail + [module])
+            if cycle:
+                return cycle
+        state[module] = "done"
+        return []
+
+    for module in graph:
+        cycle = visit(module, [])
+        if cycle:
+            return cycle
+    return []
 
 
 def test_no_import_cycles():
     """Not even through imports for type annotations only (a Protocol of what a module reads
     stands in for the class of a module above it)."""
-    graph = {name: set(_imports(name, path, tree, True)) for name, path, tree in _modules()}
-    state = {}
-
-    def visit(module, trail):
-        if state.get(module) == "done" or module not in graph:
-            return
-        if state.get(module) == "open":
-            pytest.fail("import cycle: " + " -> ".join(trail[trail.index(module) :] + [module]))
-        state[module] = "open"
-        for target in graph[module]:
-            visit(target, trail + [module])
-        state[module] = "done"
-
-    for module in graph:
-        visit(module, [])
+    cycle = import_cycle()
+    assert not cycle, "import cycle: " + " -> ".join(cycle)
 
 
-def test_no_function_over_80_lines():
-    long = [
+def long_functions(package: Path = PACKAGE) -> list[str]:
+    """The functions over LONGEST_FUNCTION lines of the package in ``package``."""
+    return [
         f"{name}.{node.name}: {node.end_lineno - node.lineno + 1} lines"
-        for name, _, tree in _modules()
+        for name, _, tree in _modules(package)
         for node in ast.walk(tree)
         if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
         and node.end_lineno - node.lineno + 1 > LONGEST_FUNCTION
     ]
+
+
+def test_no_function_over_80_lines():
+    long = long_functions()
     assert not long, "functions over 80 lines:\n" + "\n".join(long)
 
 
-def _outside_the_seam():
+def long_files(package: Path = PACKAGE) -> list[str]:
+    """The files of the package in ``package`` over LONGEST_FILE lines (Python and the rest)."""
+    return [
+        f"{path.relative_to(package.parent)}: {lines} lines"
+        for path in sorted(package.rglob("*.py"))
+        if (lines := len(path.read_text().splitlines())) > LONGEST_FILE
+    ]
+
+
+def test_no_file_over_600_lines():
+    long = long_files()
+    assert not long, "files over 600 lines:\n" + "\n".join(long)
+
+
+def lower_body_classes(package: Path = PACKAGE) -> list[str]:
+    """Where the classes Wall, CoatedWall and LowerSphere are defined at a module's top level in
+    the package in ``package`` (module:line)."""
+    return [
+        f"{name}:{node.lineno} {node.name}"
+        for name, _, tree in _modules(package)
+        for node in tree.body
+        if isinstance(node, ast.ClassDef) and node.name in ("Wall", "CoatedWall", "LowerSphere")
+    ]
+
+
+def test_one_class_per_lower_body():
+    """Issue 46: one definition per lower body, the class that configures the run and builds
+    the FE solid (``grep -rn "^class \\(Wall\\|CoatedWall\\|LowerSphere\\)\\b" ehdfem``:
+    three lines)."""
+    found = lower_body_classes()
+    assert sorted(line.split()[-1] for line in found) == ["CoatedWall", "LowerSphere", "Wall"], (
+        "the lower bodies' classes:\n" + "\n".join(found)
+    )
+    assert all(line.startswith("ehdfem.solids.fe.bodies.") for line in found), found
+
+
+def _outside_the_seam(package: Path = PACKAGE):
     """(module name, syntax tree) of every module outside the seam."""
-    for name, _, tree in _modules():
+    for name, _, tree in _modules(package):
         if name != SEAM and not name.startswith(SEAM + "."):
             yield name, tree
 
 
-def test_dolfinx_basix_and_petsc4py_are_imported_in_the_seam_only():
-    """Imported, or loaded by name (``importlib.import_module("dolfinx.fem")``), and UFL's
-    element constructors, which differ between the DOLFINx releases."""
+def seam_imports_outside(package: Path = PACKAGE) -> list[str]:
+    """The imports of dolfinx, basix and petsc4py outside the seam of the package in
+    ``package``: imported, or loaded by name (``importlib.import_module("dolfinx.fem")``), and
+    UFL's element constructors, which differ between the DOLFINx releases."""
     outside = []
-    for name, tree in _outside_the_seam():
+    for name, tree in _outside_the_seam(package):
         for node in ast.walk(tree):
             if isinstance(node, ast.Import | ast.ImportFrom):
                 modules = [alias.name for alias in node.names]
@@ -221,6 +284,11 @@ def test_dolfinx_basix_and_petsc4py_are_imported_in_the_seam_only():
                 for module in modules
                 if module.split(".")[0] in SEAM_LIBRARIES or module.startswith("ufl.")
             ]
+    return outside
+
+
+def test_dolfinx_basix_and_petsc4py_are_imported_in_the_seam_only():
+    outside = seam_imports_outside()
     assert not outside, "FEniCSx libraries used outside the seam:\n" + "\n".join(outside)
 
 
@@ -244,12 +312,11 @@ def _dolfinx_use(node: ast.Attribute, assigned: bool, called: bool) -> str | Non
     return None
 
 
-def test_no_dolfinx_object_is_used_outside_the_seam():
-    """Outside ehdfem.fenicsx, DOLFINx's and PETSc's objects are handles passed back to the
-    seam's functions (and to UFL): no attribute of theirs is read, called or set there, and the
-    name PETSc does not occur. A change of DOLFINx release then changes the seam alone."""
+def dolfinx_uses_outside(package: Path = PACKAGE) -> list[str]:
+    """The uses of DOLFINx's and PETSc's objects outside the seam of the package in
+    ``package`` (module:line, the use)."""
     outside = []
-    for name, tree in _outside_the_seam():
+    for name, tree in _outside_the_seam(package):
         assigned = {
             id(target)
             for node in ast.walk(tree)
@@ -264,30 +331,135 @@ def test_no_dolfinx_object_is_used_outside_the_seam():
                 use = _dolfinx_use(node, id(node) in assigned, id(node) in called)
                 if use is not None:
                     outside.append(f"{name}:{node.lineno} {ast.unparse(node)} ({use})")
+    return outside
+
+
+def test_no_dolfinx_object_is_used_outside_the_seam():
+    """Outside ehdfem.fenicsx, DOLFINx's and PETSc's objects are handles passed back to the
+    seam's functions (and to UFL): no attribute of theirs is read, called or set there, and the
+    name PETSc does not occur. A change of DOLFINx release then changes the seam alone."""
+    outside = dolfinx_uses_outside()
     assert not outside, "DOLFINx or PETSc objects used outside the seam:\n" + "\n".join(outside)
+
+
+def _model_names() -> list[str]:
+    """The names of the registered viscosity laws and cavitation models."""
+    from ehdfem.film import cavitation, viscosity
+
+    return [*viscosity.LAWS.names(), *cavitation.MODELS.names()]
+
+
+def _names_none(node: ast.AST) -> bool:
+    """Whether ``node`` is the string "none" (the cavitation model without a limit's name, also
+    the off-value of other settings)."""
+    return isinstance(node, ast.Constant) and node.value == "none"
+
+
+def _about_the_liquid(node: ast.AST) -> bool:
+    """Whether the source of ``node`` speaks of a viscosity law or cavitation model."""
+    return re.search("cavitation|viscosity", ast.unparse(node)) is not None
+
+
+def model_names_outside_the_film(package: Path = PACKAGE, names=None) -> list[str]:
+    """The quoted names of viscosity laws and cavitation models (``names``; default: the
+    registered ones) in the package in ``package`` outside its film/: every name but "none"
+    wherever quoted, and "none" where it stands for a model, compared with, assigned to or
+    passed as something that speaks of cavitation or viscosity (``cavitation == "none"``,
+    ``viscosity="none"``)."""
+    names = _model_names() if names is None else names
+    pattern = re.compile("|".join(rf"[\"']{re.escape(n)}[\"']" for n in names if n != "none"))
+    found = [
+        f"{path.relative_to(package.parent)}:{number}: {line.strip()}"
+        for path in sorted(package.rglob("*.py"))
+        if "film" not in path.relative_to(package).parts[:1]
+        for number, line in enumerate(path.read_text().splitlines(), 1)
+        if pattern.search(line)
+    ]
+    if "none" not in names:
+        return found
+    for name, _, tree in _modules(package):
+        if name.split(".")[1:2] == ["film"]:
+            continue
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Compare):
+                sides = [node.left, *node.comparators]
+                named = any(map(_names_none, sides)) and any(map(_about_the_liquid, sides))
+            elif isinstance(node, ast.keyword):
+                named = _names_none(node.value) and re.search(
+                    "cavitation|viscosity", node.arg or ""
+                )
+            elif isinstance(node, ast.Assign | ast.AnnAssign):
+                targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+                named = _names_none(node.value) and any(map(_about_the_liquid, targets))
+            else:
+                continue
+            if named:
+                found.append(f"{name}:{node.lineno}: {ast.unparse(node)[:80]}")
+    return found
 
 
 def test_viscosity_and_cavitation_names_only_in_the_film():
     """No quoted name of a viscosity law or a cavitation model outside ehdfem/film/: the other
     packages read the components (their classes, ``name``, flags such as ``tracks_liquid``),
-    never compare or build from the names. ("none", also the off-value of other settings,
-    is left out of the search.)"""
-    from ehdfem.film import cavitation, viscosity
+    never compare or build from the names ("none", also the off-value of other settings, where
+    it stands for the cavitation model)."""
+    names = _model_names()
+    found = model_names_outside_the_film()
+    assert len(names) >= 6 and "none" in names and not found, (
+        "model names outside film/:\n" + "\n".join(found)
+    )
 
-    names = [n for n in (*viscosity.LAWS.names(), *cavitation.MODELS.names()) if n != "none"]
-    pattern = re.compile("|".join(rf"[\"']{re.escape(n)}[\"']" for n in names))
-    found = [
-        f"{path.relative_to(PACKAGE.parent)}:{number}: {line.strip()}"
-        for path in sorted(PACKAGE.rglob("*.py"))
-        if "film" not in path.relative_to(PACKAGE).parts[:1]
-        for number, line in enumerate(path.read_text().splitlines(), 1)
-        if pattern.search(line)
+
+def hand_written_bounce_options(add=None) -> list[str]:
+    """The options of ``ehdfem bounce`` (those ``add`` puts on a parser; default: the
+    command's) for a field of the bounce's inputs (BounceInputs) or of its numerics
+    (BounceRun, and the contacts' film numerics it holds) that are not the generated ones
+    (:func:`ehdfem.cli.arguments.add_fields`: their help, unit, range and default from the
+    field's metadata), and the fields without an option."""
+    import argparse
+
+    from ehdfem import BounceInputs, BounceRun, IntegratorOptions
+    from ehdfem.cli import bounce
+    from ehdfem.cli.arguments import add_fields
+    from ehdfem.cli.inputs import BODIES, add_body_arguments
+    from ehdfem.config import Numerics
+
+    parser = argparse.ArgumentParser()
+    (add or bounce.add_bounce)(parser)
+    generated = argparse.ArgumentParser()
+    add_body_arguments(generated)
+    add_fields(generated, BounceInputs, names=bounce.START)
+    add_fields(generated, BounceInputs, exclude=(*BODIES, *bounce.START), switches=True)
+    add_fields(generated, BounceRun)
+    add_fields(generated, Numerics, names=bounce.NUMERICS)
+    add_fields(generated, IntegratorOptions, names=bounce.INTEGRATOR)
+    expected = {a.dest: (a.option_strings, a.help) for a in generated._actions if a.dest != "help"}
+    actual = {a.dest: (a.option_strings, a.help) for a in parser._actions}
+    return [
+        f"{dest}: {actual.get(dest)} instead of {want}"
+        for dest, want in expected.items()
+        if actual.get(dest) != want
     ]
-    assert len(names) >= 5 and not found, "model names outside film/:\n" + "\n".join(found)
+
+
+def test_the_bounce_options_are_generated_from_its_inputs():
+    """Issue 46: cli/bounce.py has no hand-written option for a field of BounceInputs or of the
+    bounce's numerics (BounceRun): each field's option is the one generated from its metadata;
+    the only options written out are the outputs'."""
+    from ehdfem import BounceInputs, BounceRun
+    from ehdfem.cli import bounce
+    from ehdfem.settings import flat_fields
+
+    assert len(list(flat_fields(BounceInputs))) >= 20 and len(list(flat_fields(BounceRun))) == 5
+    wrong = hand_written_bounce_options()
+    assert not wrong, "bounce options not generated from BounceInputs:\n" + "\n".join(wrong)
+    source = Path(bounce.__file__).read_text()
+    written = re.findall(r"add_argument\(\s*\"(--[a-z-]+)\"", source)
+    assert sorted(written) == ["--folder", "--json", "--out"], written
 
 
 def test_the_inputs_hold_components_in_at_most_fifteen_fields():
-    """CollisionParameters holds the liquid's laws and the surfaces' asperity model as
+    """CollisionParameters holds the liquid's laws, the gap and the surfaces' asperity model as
     components (issue 46: at most 15 fields); every component constant's flat key is unique
     across the roles and differs from the inputs' own fields, so a flat key names one thing."""
     import dataclasses
@@ -298,7 +470,54 @@ def test_the_inputs_hold_components_in_at_most_fifteen_fields():
     assert len(dataclasses.fields(CollisionParameters)) <= 15
     own = {f.name for f in described(CollisionParameters)}
     roles = components(CollisionParameters)
-    assert {f.name for f, _ in roles} == {"viscosity", "cavitation", "asperities"}
+    assert {f.name for f, _ in roles} == {"viscosity", "cavitation", "gap", "asperities"}
     keys = [{g.name for _, g in registry.fields()} for _, registry in roles]
     for i, mine in enumerate(keys):
         assert not mine & own and not any(mine & other for other in keys[i + 1 :])
+
+
+PLANTED = {  # a small package breaking every check above, file by file
+    "__init__.py": "",
+    "checks.py": "from .film import gap\n",  # upward
+    "config.py": "class Wall:\n    pass\n",  # a second lower body class
+    "film/__init__.py": "",
+    "film/gap.py": "from . import grid\n",  # a cycle
+    "film/grid.py": "from . import gap\n",
+    "solids/__init__.py": "",
+    "solids/mesh.py": "import dolfinx\n\n\ndef points(mesh):\n    return mesh.geometry.x\n",
+    "collision.py": (
+        "def f(params):\n    if params.cavitation == 'none':\n        return 'barus'\n"
+        + "    x = 0\n" * 80
+    ),
+    "study/__init__.py": "\n" * 601,
+}
+
+
+def test_each_check_fails_on_a_planted_violation(tmp_path):
+    """The checks above are not vacuous: on a package that breaks each of them once they report
+    exactly the planted violations, and the bounce's check reports a hand-written option."""
+
+    for name, text in PLANTED.items():
+        (tmp_path / "ehdfem" / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "ehdfem" / name).write_text(text)
+    package = tmp_path / "ehdfem"
+    assert upward_imports(package) == ["ehdfem.checks -> ehdfem.film.gap"]
+    assert sorted(import_cycle(package)[:-1]) == ["ehdfem.film.gap", "ehdfem.film.grid"]
+    assert long_functions(package) == ["ehdfem.collision.f: 83 lines"]
+    assert long_files(package) == ["ehdfem/study/__init__.py: 601 lines"]
+    assert lower_body_classes(package) == ["ehdfem.config:1 Wall"]
+    assert seam_imports_outside(package) == ["ehdfem.solids.mesh:1 dolfinx"]
+    assert dolfinx_uses_outside(package) == ["ehdfem.solids.mesh:5 mesh.geometry (Mesh.geometry)"]
+    found = model_names_outside_the_film(package, names=("barus", "none"))
+    assert [line.split(":")[:2] for line in found] == [["ehdfem/collision.py", "3"]] + [
+        ["ehdfem.collision", "2"]
+    ]
+
+    def hand_written(parser):  # --e-dry written out, not generated
+        from ehdfem import BounceInputs
+        from ehdfem.cli.arguments import add_fields
+
+        add_fields(parser, BounceInputs, exclude=("e_dry",))
+        parser.add_argument("--e-dry", type=float, help="dry restitution")
+
+    assert any(line.startswith("e_dry:") for line in hand_written_bounce_options(hand_written))

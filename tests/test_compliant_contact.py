@@ -20,13 +20,13 @@ import numpy as np
 import pytest
 import scipy.integrate
 
-from ehdfem import CollisionParameters, collide
+from ehdfem import CollisionParameters, collide, from_presets
 from ehdfem.checks import InputError
 from ehdfem.exact import compliant_impact as exact
 from ehdfem.exact.rigid_impact import frictional_impact
 from ehdfem.exact.walton_impact import walton_impact
 from ehdfem.film.asperities import GreenwoodTrippAsperities
-from ehdfem.inputs.presets import MATERIALS
+from ehdfem.inputs.presets import EXAMPLE, MATERIALS
 from ehdfem.tangential.compliant_contact import (
     compliant_impact,
     compliant_rebound,
@@ -240,8 +240,15 @@ def test_refused_on_smooth_surfaces_and_with_greenwood_tripp():
         )
     assert params.tangential_compliance == 0.0
     with pytest.raises(InputError) as error:
-        GreenwoodTrippAsperities.of_surfaces(0.03, 0.3, 0.04, 1e-3, tangential_compliance=KAPPA)
+        from_presets(
+            **EXAMPLE,
+            sphere_roughness=3e-6,
+            friction_coefficient=0.3,
+            asperities=GreenwoodTrippAsperities.name,
+            tangential_compliance=KAPPA,
+        )
     assert error.value.name == "tangential_compliance"
+    assert "acts only with asperities = 'impact'" in str(error.value)
 
 
 @pytest.mark.slow

@@ -60,7 +60,7 @@ def test_each_variant_is_one_change_from_a_neighbour():
     """theory -> geometry changes the gap, theory -> surface the surface effects, halfspace ->
     full the elasticity; an immersed layer keeps the paraboloid."""
     params = CollisionParameters(St=20.0, eps=1e-3, delta=0.01)
-    settings = {v: (m, *(lambda p: (p.gap, p.shear_traction))(variant_parameters(params, v)))
+    settings = {v: (m, *(lambda p: (p.gap.name, p.shear_traction))(variant_parameters(params, v)))
                 for v, (m, _, _) in VARIANTS.items()}  # fmt: skip
     assert settings["theory"] == ("halfspace", "paraboloid", False)
     assert settings["geometry"] == ("halfspace", "exact", False)
@@ -68,7 +68,7 @@ def test_each_variant_is_one_change_from_a_neighbour():
     assert settings["halfspace"] == ("halfspace", "exact", True)
     assert settings["full"] == ("fem", "exact", True)
     immersed = CollisionParameters(St=20.0, eps=1e-3, delta=0.01, layer="immersed")
-    assert variant_parameters(immersed, "full").gap == "paraboloid"
+    assert variant_parameters(immersed, "full").gap.name == "paraboloid"
     with pytest.raises(InputError, match="variant"):
         variant_parameters(params, "rigid")
 

@@ -14,7 +14,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from ehdfem.checks import InputError
-from ehdfem.film.gap import ExactSpheres, Paraboloid, gap_geometry
+from ehdfem.film.gap import ExactGap, ExactSpheres, Paraboloid, ParaboloidGap, default_gap
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
@@ -107,7 +107,7 @@ def test_rigid_true_sphere_slows_as_the_exact_quadrature():
         return quad(lambda x: resistance(x, shape), gap, 1.0, limit=200)[0]
 
     stop = brentq(lambda x: loss(x) - St, 1e-6, 0.999)
-    params = CollisionParameters(St=St, eps=1.0, delta=DELTA, gap="exact")
+    params = CollisionParameters(St=St, eps=1.0, delta=DELTA, gap=ExactGap())
     radii = radial_grid(200, np.sqrt(stop), 1.05 * np.sqrt(2))
     result = solve_normal(params, RigidSolids(radii), IntegratorOptions(rtol=1e-5))
     hist = result.history
@@ -119,13 +119,35 @@ def test_rigid_true_sphere_slows_as_the_exact_quadrature():
 
 
 def test_exact_gap_refusals():
-    """The exact gap needs a thin layer, and a film inside the sphere's equator."""
+    """The exact gap needs a thin layer, and a film inside the sphere's equator; a gap is a
+    registered choice (by name in the flat settings, an instance in the dataclass)."""
+    with pytest.raises(InputError, match="gap = 'exact' needs layer = 'thin'"):
+        CollisionParameters(St=10.0, eps=1e-3, layer="immersed", gap=ExactGap())
     with pytest.raises(InputError, match="gap"):
-        CollisionParameters(St=10.0, eps=1e-3, layer="immersed", gap="exact")
-    with pytest.raises(InputError, match="gap"):
-        CollisionParameters(St=10.0, eps=1e-3, gap="spherical")
+        CollisionParameters.from_settings(St=10.0, eps=1e-3, gap="spherical")
+    with pytest.raises(InputError, match="gap must be one of the registered gap components"):
+        CollisionParameters(St=10.0, eps=1e-3, gap="exact")
     with pytest.raises(InputError, match="equator"):
-        gap_geometry("exact", 0.5).height(np.array([0.0, 1.5]))
+        ExactGap().shape(0.5).height(np.array([0.0, 1.5]))
+
+
+def test_the_gap_is_chosen_by_name_and_defaults_to_the_solids_order():
+    """The flat settings name the gap (None: the solids' default, the exact spheres for FE
+    solids in a thin layer, the paraboloid otherwise) and round-trip it."""
+    for name, cls in (("paraboloid", ParaboloidGap), ("exact", ExactGap)):
+        params = CollisionParameters.from_settings(St=10.0, eps=1e-3, gap=name)
+        assert params.gap == cls() and params.settings()["gap"] == name
+        assert (
+            CollisionParameters.from_settings(**params.settings(written=True), read=True) == params
+        )
+    unset = CollisionParameters(St=10.0, eps=1e-3)
+    assert unset.gap is None and unset.settings()["gap"] is None
+    assert CollisionParameters.from_settings(**unset.settings(written=True), read=True) == unset
+    assert (
+        default_gap("fem", "thin") == ExactGap()
+        and default_gap("fem", "immersed") == ParaboloidGap()
+    )
+    assert default_gap("halfspace", "thin") == ParaboloidGap()
 
 
 def test_exact_gap_film_tends_to_the_paraboloid_at_first_order_in_delta():

@@ -12,9 +12,9 @@ import pytest
 from mpi4py import MPI
 from scipy.integrate import quad
 
-from ehdfem.bounce.flight import brenner_factor
 from ehdfem.bounce.near_wall_flow import NearWallFlow
 from ehdfem.bounce.sphere_flow import DISPLACED, SphereFlow
+from ehdfem.exact.sphere_towards_wall import resistance as brenner_factor
 
 REFERENCE_GAP = 0.055  # the mesh of studies/wall_rebound_flow.py
 

@@ -249,9 +249,9 @@ def test_brenner_series_far_from_the_wall(gap_over_radius):
 
 @pytest.mark.parametrize("gap_over_radius", [1e-2, 1e-3, 1e-4, 1e-5])
 def test_brenner_series_near_the_wall(gap_over_radius):
-    """Near the wall against Cox & Brenner's a/h + (1/5) ln(a/h) + 0.971: within
+    """Near the wall, the series against Cox & Brenner's a/h + (1/5) ln(a/h) + 0.9713: within
     (h/a) ln(a/h) + 5e-4 (the next order, and the constant's printed digits)."""
-    exact = towards_wall.resistance(gap_over_radius)
+    exact = towards_wall.series_resistance(gap_over_radius)
     bound = gap_over_radius * np.log(1.0 / gap_over_radius) + 5e-4
     assert exact == pytest.approx(towards_wall.small_gap_resistance(gap_over_radius), abs=bound)
 

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.run import BounceRun
 from ehdfem.bounce.trajectory import bounce_sphere
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig, setting_names
@@ -142,7 +143,7 @@ def test_a_bounce_contact_carries_every_output_once_in_si_where_it_has_a_unit():
         liquid="silicone_oil_10cst",
         release_height=3e-3,
     )
-    result = bounce_sphere(inputs, max_bounces=1)
+    result = bounce_sphere(inputs, BounceRun(max_bounces=1))
     contact = result.contacts[0]
     expected = {o.si_key or o.name for o in registry.OUTPUTS}
     assert set(contact.film) == expected

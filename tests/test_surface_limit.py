@@ -1,4 +1,4 @@
-"""The surface effects' first correction in the weak-elasticity limit (ehdfem.study.surface_limit)
+"""The surface effects' first correction in the weak-elasticity limit (ehdfem.exact.surface_limit)
 against its derivation and against the code."""
 
 import math
@@ -10,15 +10,15 @@ from ehdfem.checks import InputError
 from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.exact import rigid_film
-from ehdfem.film.grid import radial_grid
-from ehdfem.inputs.scales import CollisionParameters
-from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance
-from ehdfem.study.surface_limit import (
+from ehdfem.exact.surface_limit import (
     EFFECTS,
     stopping_gap_constant,
     surface_force_coefficients,
     velocity_integral,
 )
+from ehdfem.film.grid import radial_grid
+from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
 
 
 def _integral(function, gap):
@@ -94,6 +94,6 @@ def test_code_tends_to_the_closed_form_at_weak_elasticity():
         result = collide(params, config, compliance=solids)
         thinnest[shear is None] = result.normal.min_film_thickness
     quotient = (thinnest[False] / thinnest[True] - 1) / (eps * math.sqrt(delta))
-    constant = stopping_gap_constant(St)
+    constant = stopping_gap_constant(St, shear_coefficient())
     assert constant == pytest.approx(-11.5256, rel=1e-4)
     assert quotient == pytest.approx(constant, rel=0.02)

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 from mpi4py import MPI
 
-from ehdfem.bounce.flight import brenner_factor
 from ehdfem.bounce.unsteady import (
     FIT_TIMES,
     WALL_FAR,
@@ -23,6 +22,7 @@ from ehdfem.bounce.unsteady import (
     wall_ratio,
 )
 from ehdfem.bounce.wall_flow import WallFlow
+from ehdfem.exact.sphere_towards_wall import resistance as brenner_factor
 
 COARSE = 0.02  # element size on the sphere by a: 4000 cells, 1e-4 .. 3e-4 errors below
 

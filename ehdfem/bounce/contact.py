@@ -30,13 +30,13 @@ from scipy.integrate import cumulative_trapezoid, trapezoid
 
 from ..collision import collide, film_radii
 from ..config import Numerics, RunConfig
+from ..exact import sphere_towards_wall as towards_wall
 from ..film import cavitation
 from ..inputs.scales import PhysicalCollision
-from ..motion.timestepping import IntegratorOptions
 from ..outputs import registry as outputs
 from ..solids.compliance import RigidSolids
 from . import unsteady
-from .flight import FarField, Flight, FlightState, brenner_factor
+from .flight import FarField, Flight, FlightState
 from .result import Contact
 
 MODELS = ("halfspace", "rigid")  # the solids of the contacts
@@ -47,12 +47,12 @@ SETTLED_FILM = 0.95  # the film's pressure has built up once X <= this (entry fo
 class ImmersedCollision:
     """The film model of a bounce's contacts: the flight ``far`` (the bounce's inputs and the
     flight's force law), the solids ``model`` of the contacts (:data:`MODELS`: "halfspace" or
-    "rigid"), the film's ``nodes`` and time-step ``options``."""
+    "rigid") and the film's ``numerics`` (its nodes, refinements and time-step control; the
+    exit gap is each contact's own)."""
 
     far: FarField
     model: str
-    nodes: int
-    options: IntegratorOptions
+    numerics: Numerics
 
     def collide(self, leg: Flight) -> tuple[Contact, FlightState, dict]:
         """The contact after the falling ``leg``: the film model from the hand-over state (its
@@ -168,20 +168,21 @@ class ImmersedCollision:
             ambient_pressure=inputs.ambient_pressure,
             added_mass=mass - far.mass,
             cavitation=inputs.cavitation,
+            viscosity=inputs.viscosity,
+            pressure_viscosity=inputs.pressure_viscosity,
             gravity=inputs.gravity if inputs.contact_gravity else 0.0,
             sphere_roughness=inputs.sphere_roughness,  # sigma / x0 differs between contacts
             wall_roughness=inputs.wall_roughness,
             asperities=inputs.asperities,
         )
-        options = replace(self.options, exit_gap=exit_gap / gap)
-        numerics = Numerics(nodes=self.nodes, integrator=options)
-        config = RunConfig(numerics=numerics)  # half-space
+        options = replace(self.numerics.integrator, exit_gap=exit_gap / gap)
+        config = RunConfig(numerics=replace(self.numerics, integrator=options))  # half-space
         forces = ()
         if inputs.contact_history and len(start.memory):
             forces = (far.contact_history_force(gap, speed, start.memory),)
         solids = None
         if self.model == "rigid":
-            solids = RigidSolids(film_radii(physical.dimensionless(), self.nodes))
+            solids = RigidSolids(film_radii(physical.dimensionless(), self.numerics.nodes))
         result = collide(physical, config, compliance=solids, forces=forces)
         return result, physical.scales()
 
@@ -252,7 +253,7 @@ class ImmersedCollision:
         gap = np.maximum(hist.min_film[shown], 1e-12) * scales.gap
         velocity = hist.velocity[shown] * speed
         phi = far.phi(velocity)
-        lam = brenner_factor(gap / far.inputs.radius)
+        lam = towards_wall.resistance(gap / far.inputs.radius)
         remainder = -far.stokes * velocity * (phi - 1.0 + lam - far.inputs.radius / gap)
         momentum = mass * speed
         weight = 0.0 if far.inputs.contact_gravity else far.net_weight

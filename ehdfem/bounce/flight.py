@@ -11,8 +11,9 @@ force [N], energy [J]. The motion is normal to the wall:
 
 m = 4/3 pi a^3 rho_p, m_f = 4/3 pi a^3 rho_f, Re = rho_f |v| 2a / mu. phi = C_D Re / 24 is the
 steady drag law's factor over Stokes drag (:func:`drag_factor`), lambda Brenner's (1961) exact
-Stokes-flow resistance factor of a sphere moving normal to a plane wall (:func:`brenner_factor`,
-1 far away, a/h near contact). The wall's increment lambda - 1 is added to the unbounded drag
+Stokes-flow resistance factor of a sphere moving normal to a plane wall
+(:func:`ehdfem.exact.sphere_towards_wall.resistance`, 1 far away, a/h near contact). The
+wall's increment lambda - 1 is added to the unbounded drag
 (it is a viscous effect of the narrowing gap; the wake's inertia, phi - 1, is not multiplied by
 it). Moving away from the wall, the lubrication part a/h of lambda is capped by cavitation as
 in the film model: s in (0, 1] (:func:`cavity_edge_ratio`; 1 when approaching). C_M(h): the
@@ -39,6 +40,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from .. import checks
+from ..exact import sphere_towards_wall as towards_wall
 from ..film import cavitation
 from ..inputs.scales import elasticity_parameter
 from ..motion.forces import HistoryForce
@@ -50,7 +52,6 @@ EHD_MULTIPLE = 10.0  # hand over at the latest at this multiple of the EHD gap h
 FLIGHT_RTOL = 1e-10  # relative tolerance of the flight's ODE integration
 MEMORY_RTOL = 1e-7  # its relative tolerance on the history force's memory z_i
 FLIGHT_SAMPLES = 200  # trajectory samples per flight leg (besides the integrator's steps)
-LUBRICATION_GAP = 1e-4  # h/a below which Brenner's factor is its lubrication expansion
 
 
 def drag_factor(law: str, reynolds):
@@ -70,47 +71,6 @@ def drag_factor(law: str, reynolds):
     if law == "stokes":
         return np.ones_like(reynolds)
     raise checks.InputError(f"drag = {law!r} is not one of {', '.join(map(repr, DRAG_LAWS))}")
-
-
-def brenner_factor(gap_over_radius):
-    """lambda(h/a): Brenner's (1961) exact resistance of a sphere translating normal to a plane
-    wall in Stokes flow, F = -6 pi mu a v lambda, with alpha = arccosh(1 + h/a):
-
-        lambda = (4/3) sinh(alpha) sum_{n>=1} n(n+1) / ((2n-1)(2n+3))
-                 [ (2 sinh((2n+1) alpha) + (2n+1) sinh(2 alpha))
-                   / (4 sinh^2((n+1/2) alpha) - (2n+1)^2 sinh^2(alpha)) - 1 ].
-
-    The bracket is summed as e^-k alpha (2 - 2 e^-k alpha + k sinh 2alpha + k^2 sinh^2 alpha)
-    / (1 - 2 e^-k alpha + e^-2k alpha - k^2 sinh^2(alpha) e^-k alpha), k = 2n + 1 (the same
-    quantity without overflow), until its terms are below 1e-17 of the sum (about 22/alpha
-    terms; 60/alpha + 50 are taken). lambda -> 1 + 9a/(8(h+a)) far away. Below h/a =
-    LUBRICATION_GAP the lubrication expansion a/h + (1/5) ln(a/h) + 0.9713 (Cox & Brenner
-    1967) is used instead: there it differs from the series by less than 1e-8 relative."""
-    gaps = np.atleast_1d(np.asarray(gap_over_radius, dtype=float))
-    values = np.array(
-        [
-            _brenner_series(math.acosh(1.0 + g))
-            if g >= LUBRICATION_GAP
-            else 1.0 / g + 0.2 * math.log(1.0 / g) + 0.9713
-            for g in gaps
-        ]
-    )
-    return values[0] if np.ndim(gap_over_radius) == 0 else values
-
-
-def _brenner_series(alpha: float) -> float:
-    """Brenner's series (:func:`brenner_factor`) at alpha = arccosh(1 + h/a) > 0."""
-    n = np.arange(1.0, int(60.0 / alpha) + 51)
-    k = 2.0 * n + 1.0
-    decay = np.exp(-k * alpha)
-    sinh2 = math.sinh(alpha) ** 2
-    bracket = (
-        decay
-        * (2.0 - 2.0 * decay + k * math.sinh(2.0 * alpha) + k * k * sinh2)
-        / (1.0 - 2.0 * decay + decay * decay - k * k * sinh2 * decay)
-    )
-    weights = n * (n + 1.0) / ((2.0 * n - 1.0) * (2.0 * n + 3.0))
-    return 4.0 / 3.0 * math.sinh(alpha) * float(np.sum(weights * bracket))
 
 
 def cavity_edge_ratio(cavitation_number: float) -> float:
@@ -257,7 +217,7 @@ class FarField:
         a = self.inputs.radius
         phi = float(self.phi(velocity))
         lubrication_cap = (1.0 - self.cavity_factor(gap, velocity)) * a / gap
-        return phi + float(brenner_factor(gap / a)) - 1.0 - lubrication_cap
+        return phi + float(towards_wall.resistance(gap / a)) - 1.0 - lubrication_cap
 
     def cavity_factor(self, gap: float, velocity: float) -> float:
         """s of :func:`cavity_edge_ratio` at Pi = Delta p h^2 / (6 mu a v) when the sphere moves

@@ -12,6 +12,8 @@ from .. import checks
 from ..film import cavitation
 from ..film.asperities import MODELS as ASPERITY_MODELS
 from ..film.asperities import ImpactAsperities
+from ..film.viscosity import LAWS as VISCOSITY_LAWS
+from ..film.viscosity import ConstantViscosity
 from ..inputs.presets import Liquid, Material, body, check_vapour_pressure
 from ..inputs.scales import ATMOSPHERE, elastic_theta, stokes_number
 from ..settings import setting, validate
@@ -33,7 +35,10 @@ class BounceInputs:
     added-mass coefficient C_M in [0, 1] (far from the wall); gravity g [m/s^2]; the film's
     cavitation model (:data:`ehdfem.film.cavitation.MODELS`) with the ambient pressure [Pa]
     (the cavitation pressure is the liquid's vapour pressure, as in
-    :class:`ehdfem.PhysicalCollision`). The
+    :class:`ehdfem.PhysicalCollision`); the film's viscosity law
+    (:data:`ehdfem.film.viscosity.LAWS`) with the pressure-viscosity coefficient alpha [1/Pa]
+    (default: the liquid's), whose scaled constants each contact takes from its own pressure
+    scale (the flight's drag and history force use mu0, the pressure there being ambient). The
     modelling choices of docs/bounce.md, each switchable: the history force's kernel
     (:data:`ehdfem.bounce.unsteady.HISTORY_KERNELS`) and its memory across a contact
     (:data:`HISTORY_MEMORIES`: "keep" carries the contact's velocity change into it, "reset"
@@ -95,6 +100,19 @@ class BounceInputs:
     )
     ambient_pressure: float = setting(
         ATMOSPHERE, help="ambient pressure", unit="Pa", lower=0.0, lower_open=True
+    )
+    viscosity: str = setting(
+        ConstantViscosity.name,
+        help="viscosity law against pressure of the contacts' films (mu0 in flight)",
+        choices=VISCOSITY_LAWS,
+    )
+    pressure_viscosity: float | None = setting(
+        None,
+        help="pressure-viscosity coefficient alpha of a pressure-dependent viscosity law",
+        unit="1/Pa",
+        lower=0.0,
+        upper=1e-6,
+        default_text="the liquid's",
     )
     history: str = setting(
         "mei-adrian",
@@ -160,6 +178,15 @@ class BounceInputs:
         if not released and (self.start_gap is None or self.start_speed is None):
             raise checks.InputError("start_gap and start_speed must be given together")
         check_vapour_pressure(self.liquid, self.ambient_pressure)
+        if (
+            self.pressure_viscosity is not None
+            and not VISCOSITY_LAWS[self.viscosity].pressure_dependent
+        ):
+            raise checks.InputError(
+                f"pressure_viscosity = {self.pressure_viscosity!r} acts only with a "
+                f"pressure-dependent viscosity law, not viscosity = {self.viscosity!r}",
+                "pressure_viscosity",
+            )
         for surface in ("sphere_roughness", "wall_roughness"):
             checks.number(surface, getattr(self, surface), lower=0.0, upper=0.01 * self.radius)
 

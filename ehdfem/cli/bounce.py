@@ -6,10 +6,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .. import BounceInputs, IntegratorOptions, bounce_sphere, checks
-from ..bounce.contact import MODELS as BOUNCE_MODELS
-from ..bounce.flight import EHD_MULTIPLE, HANDOVER_JUMP
-from ..config import DEFAULT_NODES
+from .. import BounceInputs, BounceRun, IntegratorOptions, bounce_sphere, checks
+from ..config import Numerics
 from ..study.sweep import write_csv
 from . import paths
 from .arguments import JSON_HELP, add_fields, given, named_by_option, report_stream, write_json
@@ -20,58 +18,26 @@ HELP = (
     "contact is an immersed EHD collision (docs/bounce.md)"
 )
 
-
-def _with_default(text: str, default) -> str:
-    """``text; default: <default>`` (argparse's help, its % escaped)."""
-    return f"{text}; default: {default}".replace("%", "%%")
-
-
 START = ("radius", "release_height", "start_gap", "start_speed")  # BounceInputs' start
+NUMERICS = ("nodes", "refinements")  # the contacts' film numerics
+INTEGRATOR = ("rtol",)  # and their time-step control (the exit gap is each contact's)
 
 
 def add_bounce(b) -> None:
     """The inputs of ``ehdfem bounce``: materials, liquid, start, modelling choices (the fields
-    of :class:`ehdfem.BounceInputs`, each with its unit, range and default), the solids and
-    numerics of the contacts, the outputs."""
+    of :class:`ehdfem.BounceInputs`), the bounce's numerics (those of :class:`ehdfem.BounceRun`
+    with the contacts' film numerics of :class:`ehdfem.config.Numerics` and
+    :class:`ehdfem.IntegratorOptions`), each with its unit, range and default, and the
+    outputs."""
     phys = b.add_argument_group("physical inputs (SI)")
     add_body_arguments(phys)
     add_fields(phys, BounceInputs, names=START)
     model = b.add_argument_group("modelling choices")
     add_fields(model, BounceInputs, exclude=(*BODIES, *START), switches=True)
-    model.add_argument(
-        "--contact-solids",
-        dest="model",
-        choices=BOUNCE_MODELS,
-        default="halfspace",
-        help=_with_default(
-            "solids of the contacts: elastic half-spaces, or rigid (eps -> 0); collide's "
-            "--model chooses between half-spaces and FE solids",
-            "halfspace",
-        ),
-    )
-    _add_numerics(b.add_argument_group("numerics and output"))
-
-
-def _add_numerics(num) -> None:
-    """The hand-over, the film model's numerics and the outputs."""
-    for name, kind, default, text in (
-        ("handover-jump", float, HANDOVER_JUMP, "largest relative force jump at the hand-over "
-         "to the film model, (0, 0.5)"),
-        ("ehd-multiple", float, EHD_MULTIPLE, "hand over at the latest at this multiple of the "
-         "EHD gap, [1, 1e4]"),
-        ("max-bounces", int, 30, "most contacts computed, [1, 1000]"),
-        ("rest-apex", float, 1e-3, "an apex below this fraction of D ends the bounce, [0, 1)"),
-        ("nodes", int, DEFAULT_NODES, "film nodes of each contact, [20, 5000]"),
-        ("rtol", float, IntegratorOptions.rtol, "time-step tolerance of each contact: local "
-         "error per step [relative], [1e-10, 0.1]"),
-    ):  # fmt: skip
-        num.add_argument(
-            f"--{name}",
-            type=kind,
-            default=default,
-            metavar="X",
-            help=_with_default(text, f"{default:g}"),
-        )
+    num = b.add_argument_group("numerics and output")
+    add_fields(num, BounceRun)
+    add_fields(num, Numerics, names=NUMERICS)
+    add_fields(num, IntegratorOptions, names=INTEGRATOR)
     num.add_argument(
         "--folder",
         metavar="DIR",
@@ -80,6 +46,13 @@ def _add_numerics(num) -> None:
     )
     num.add_argument("--out", dest="old_out", help=argparse.SUPPRESS)  # refused: see --folder
     num.add_argument("--json", metavar="FILE", help=JSON_HELP)
+
+
+def _bounce_run(args) -> BounceRun:
+    """The bounce's numerics from the arguments."""
+    integrator = IntegratorOptions(**given(args, IntegratorOptions, INTEGRATOR))
+    numerics = Numerics(**given(args, Numerics, NUMERICS), integrator=integrator)
+    return BounceRun(**given(args, BounceRun), numerics=numerics)
 
 
 def _bounce_inputs(args) -> BounceInputs:
@@ -107,16 +80,7 @@ def bounce_command(args) -> int:
     paths.output_folder("folder", args.folder)
     paths.distinct_outputs({"json": args.json, "folder": args.folder})
     inputs = _bounce_inputs(args)
-    result = bounce_sphere(
-        inputs,
-        model=args.model,
-        nodes=args.nodes,
-        options=IntegratorOptions(rtol=args.rtol),
-        handover_jump=args.handover_jump,
-        ehd_multiple=args.ehd_multiple,
-        max_bounces=args.max_bounces,
-        rest_apex=args.rest_apex,
-    )
+    result = bounce_sphere(inputs, _bounce_run(args))
     summary = result.summary(args.command_line)
     report = report_stream(args)
     diameter = inputs.diameter

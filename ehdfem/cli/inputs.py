@@ -23,7 +23,7 @@ from ..inputs.presets import (
     material,
 )
 from ..motion.timestepping import IntegratorOptions
-from ..settings import components, flat_names
+from ..settings import components, default_name, flat_names
 from ..solids.fe.bodies import LOWER_BODIES, Wall
 from .arguments import add_fields, given, named_by_option
 
@@ -253,7 +253,7 @@ def _foreign(values: dict) -> list[tuple[str, str, str, list[str]]]:
     (flat settings) of a component other than the one chosen for its role."""
     out = []
     for f, registry in components(CollisionParameters):
-        name = values.get(f.name, f.default.name)
+        name = values.get(f.name, default_name(f))
         out += [(f.name, name, k, registry.owners(k)) for k in registry.foreign(name, values)]
     return out
 

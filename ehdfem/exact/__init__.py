@@ -6,7 +6,8 @@ manner of a contact-mechanics reference-solutions module): the rigid sphere's sq
 rigid-body impact with Coulomb friction (:mod:`ehdfem.exact.rigid_impact`), the rigid
 sphere in the Stokes flow near a wall: sliding and spinning (:mod:`ehdfem.exact.sliding_sphere`)
 and moving towards it (:mod:`ehdfem.exact.sphere_towards_wall`), the limits of the impact with
-tangential compliance (:mod:`ehdfem.exact.compliant_impact`) and Walton's three-parameter impact
-law (:mod:`ehdfem.exact.walton_impact`). Each is derived in
+tangential compliance (:mod:`ehdfem.exact.compliant_impact`), Walton's three-parameter impact
+law (:mod:`ehdfem.exact.walton_impact`) and the surface effects' first correction at weak
+elasticity (:mod:`ehdfem.exact.surface_limit`). Each is derived in
 its docstring and depends on nothing above :mod:`ehdfem.checks`.
 """

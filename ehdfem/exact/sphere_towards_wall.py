@@ -8,7 +8,7 @@ it, is 6 pi mu a V lambda with (Brenner 1961, bispherical coordinates, cosh(alph
              [ (2 sinh((2n + 1) alpha) + (2n + 1) sinh(2 alpha))
                / (4 sinh^2((n + 1/2) alpha) - (2n + 1)^2 sinh^2(alpha)) - 1 ].
 
-For h << a it is a/h + (1/5) ln(a/h) + 0.971 + O((h/a) ln(h/a)) (Cox & Brenner 1967): the
+For h << a it is a/h + (1/5) ln(a/h) + 0.9713 + O((h/a) ln(h/a)) (Cox & Brenner 1967): the
 lubrication film's force 6 pi mu a^2 V / h (the immersed film's 1/X, scaled by
 6 pi mu V a^2 / x0, :mod:`ehdfem.exact.rigid_film`) is its leading term; far from the wall it
 tends to Stokes' drag, lambda -> 1 + (9/8) a/(a + h).
@@ -22,35 +22,51 @@ import numpy as np
 
 from .. import checks
 
-COX_BRENNER_CONSTANT = 0.971  # the O(1) term of lambda at small gaps (Cox & Brenner 1967)
-
-
+COX_BRENNER_CONSTANT = 0.9713  # the O(1) term of lambda at small gaps (Cox & Brenner 1967)
 SMALLEST_GAP = 1e-5  # h/a: below it the series' first terms lose their digits to cancellation
+LUBRICATION_GAP = 1e-4  # h/a below which :func:`resistance` is the small-gap expansion
 
 
-def resistance(gap_over_radius: float, tolerance: float = 1e-14) -> float:
-    """Brenner's lambda at h/a = ``gap_over_radius`` (>= SMALLEST_GAP; module docstring),
-    summed until a term falls below ``tolerance`` times the sum (the terms fall as
-    exp(-2 n alpha)); below SMALLEST_GAP :func:`small_gap_resistance` is exact to 4e-4 (its
-    constant's printed digits; tests/test_outer_flow.py)."""
+def series_resistance(gap_over_radius: float) -> float:
+    """Brenner's lambda at h/a = ``gap_over_radius`` (>= SMALLEST_GAP; module docstring). With
+    k = 2n + 1 and sinh(alpha) = sqrt(h/a (2 + h/a)) (exact at small gaps), each bracket is
+    summed as e^(-k alpha) (2 - 2 e^(-k alpha) + k sinh 2alpha + k^2 sinh^2 alpha) /
+    ((1 - e^(-k alpha))^2 - k^2 sinh^2(alpha) e^(-k alpha)), the same quantity without
+    overflow, over 60/alpha + 50 terms (they fall as e^(-2n alpha): below 1e-17 of the sum
+    after about 22/alpha)."""
     gap = checks.number("gap_over_radius", gap_over_radius, lower=SMALLEST_GAP)
-    root = math.sqrt(gap * (2.0 + gap))  # sinh(alpha), exact for small gaps
+    root = math.sqrt(gap * (2.0 + gap))  # sinh(alpha)
     alpha = math.log1p(gap + root)  # acosh(1 + gap)
-    total, n = 0.0, 1
-    while True:
-        # exp(-(2n + 1) alpha) times numerator and denominator keeps them finite at large n
-        decay = math.exp(-(2 * n + 1) * alpha)
-        numerator = 1.0 - decay**2 + (2 * n + 1) * 2.0 * root * (1.0 + gap) * decay
-        denominator = math.expm1(-(2 * n + 1) * alpha) ** 2 - (2 * n + 1) ** 2 * root**2 * decay
-        term = n * (n + 1) / ((2 * n - 1) * (2 * n + 3)) * (numerator / denominator - 1.0)
-        total += term
-        if abs(term) <= tolerance * abs(total) and n > 2:
-            return 4.0 / 3.0 * root * total
-        n += 1
+    n = np.arange(1.0, int(60.0 / alpha) + 51)
+    k = 2.0 * n + 1.0
+    decay = np.exp(-k * alpha)
+    sinh2 = root * root
+    bracket = (
+        decay
+        * (2.0 - 2.0 * decay + k * 2.0 * root * (1.0 + gap) + k * k * sinh2)
+        / (np.expm1(-k * alpha) ** 2 - k * k * sinh2 * decay)
+    )
+    weights = n * (n + 1.0) / ((2.0 * n - 1.0) * (2.0 * n + 3.0))
+    return 4.0 / 3.0 * root * float(np.sum(weights * bracket))
+
+
+def resistance(gap_over_radius):
+    """lambda at h/a = ``gap_over_radius`` (> 0; a float or an array): the series
+    (:func:`series_resistance`) from LUBRICATION_GAP on, Cox & Brenner's expansion
+    (:func:`small_gap_resistance`) below, where the two differ by less than 1e-8 relative.
+    F = -6 pi mu a v lambda is the force on the sphere moving at v normal to the wall."""
+    gaps = np.atleast_1d(np.asarray(gap_over_radius, dtype=float))
+    values = np.array(
+        [
+            series_resistance(g) if g >= LUBRICATION_GAP else float(small_gap_resistance(g))
+            for g in gaps
+        ]
+    )
+    return values[0] if np.ndim(gap_over_radius) == 0 else values
 
 
 def small_gap_resistance(gap_over_radius) -> np.ndarray:
-    """Cox & Brenner's a/h + (1/5) ln(a/h) + 0.971 at h/a = ``gap_over_radius`` (> 0)."""
+    """Cox & Brenner's a/h + (1/5) ln(a/h) + 0.9713 at h/a = ``gap_over_radius`` (> 0)."""
     gap = np.asarray(gap_over_radius, dtype=float)
     if not np.all(gap > 0.0):
         raise checks.InputError("gap_over_radius must be > 0", "gap_over_radius")

@@ -185,9 +185,10 @@ class AsperityModel(Protocol):
     """An asperity model of the surfaces as an input (scaled): ``name``; ``roughness`` sigma
     (by x0, 0: smooth) and ``friction_coefficient`` of the solid contact; ``pressure_law(eps,
     delta)``, the asperities' pressure law for the film (None: no pressure); ``touch()``, the
-    thinnest film (by x0) at which the approach ends in a solid collision (None: none);
-    ``of_surfaces(roughness, friction_coefficient, asperity_density, asperity_slope)`` (a
-    classmethod), the physical inputs' route to it (roughness by x0)."""
+    thinnest film (by x0) at which the approach ends in a solid collision (None: none). The
+    physical inputs reach a model through :meth:`ehdfem.settings.Registry.of_inputs` (the
+    roughness by x0 and the pure numbers), which refuses another model's constants given
+    with it."""
 
     name: ClassVar[str]
     roughness: float
@@ -195,7 +196,6 @@ class AsperityModel(Protocol):
 
     def pressure_law(self, eps: float, delta: float) -> GreenwoodTripp | None: ...
     def touch(self) -> float | None: ...
-    def of_surfaces(cls, roughness, friction_coefficient, asperity_density, asperity_slope): ...
 
 
 MODELS = Registry("asperities", AsperityModel)  # the asperity models by name
@@ -279,30 +279,6 @@ class ImpactAsperities:
         """sigma (by x0), None for smooth surfaces."""
         return self.roughness if self.roughness > 0.0 else None
 
-    @classmethod
-    def of_surfaces(
-        cls,
-        roughness,
-        friction_coefficient,
-        asperity_density,
-        asperity_slope,
-        tangential_compliance=0.0,
-    ):
-        """The model of the surfaces; refuses asperity constants other than the defaults, which
-        only Greenwood & Tripp's pressure takes."""
-        for name, value, default in (
-            ("asperity_density", asperity_density, ASPERITY_DENSITY),
-            ("asperity_slope", asperity_slope, ASPERITY_SLOPE),
-        ):
-            if value != default:
-                raise checks.InputError(
-                    f"{name} = {value!r} acts only with asperities = "
-                    f"{GreenwoodTrippAsperities.name!r} (the impact model has no asperity "
-                    "pressure)",
-                    name,
-                )
-        return cls(roughness, friction_coefficient, tangential_compliance)
-
 
 @MODELS.register
 @dataclass(frozen=True)
@@ -345,25 +321,3 @@ class GreenwoodTrippAsperities:
     def touch(self) -> None:
         """None: the asperities' pressure carries the load, no solid impact."""
         return None
-
-    @classmethod
-    def of_surfaces(
-        cls,
-        roughness,
-        friction_coefficient,
-        asperity_density,
-        asperity_slope,
-        tangential_compliance=0.0,
-    ):
-        """The model of the surfaces with their asperity constants; refuses a tangential
-        compliance, which belongs to one Hertz contact (the impact model's), not to the many
-        small contacts whose load this model carries over the film's steps."""
-        if tangential_compliance != 0.0:
-            raise checks.InputError(
-                f"tangential_compliance = {tangential_compliance!r} acts only with asperities = "
-                f"{ImpactAsperities.name!r}: Greenwood & Tripp's asperities carry their load "
-                "through many small contacts, not one Hertz contact of the sphere "
-                "(docs/tangential.md)",
-                "tangential_compliance",
-            )
-        return cls(roughness, friction_coefficient, asperity_density, asperity_slope)

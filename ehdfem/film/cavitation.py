@@ -218,50 +218,48 @@ class MassConservingSolver(Unlimited):
         return pressure, fill, cavitated
 
 
+@dataclass(frozen=True)
+class LimitedSuction:
+    """What the models with a suction limit share (a base of their frozen dataclasses): the
+    scaled limit P_cav (-inf, the default: none), checked when made, and ``solver()``, a new
+    ``limited_solver`` at P_cav, or :class:`Unlimited` without a limit."""
+
+    limited_solver: ClassVar[type]
+    p_cav: float = setting(NO_LIMIT, **P_CAV)
+
+    def __post_init__(self):
+        suction_limit(self.p_cav)
+
+    def solver(self):
+        """A new ``limited_solver`` at P_cav, or :class:`Unlimited` without a limit."""
+        return Unlimited() if self.p_cav == NO_LIMIT else self.limited_solver(self.p_cav)
+
+    @classmethod
+    def with_limit(cls, p_cav: float):
+        """The model with the scaled limit ``p_cav``."""
+        return cls(p_cav=p_cav)
+
+
 @MODELS.register
 @dataclass(frozen=True)
-class Truncation:
+class Truncation(LimitedSuction):
     """The source's model: P >= P_cav, the liquid in a cavity neither tracked nor conserved
     (:class:`TruncationSolver`); P_cav = -inf (the default): no limit."""
 
     name: ClassVar[str] = "truncate"
     tracks_liquid: ClassVar[bool] = False
-    p_cav: float = setting(NO_LIMIT, **P_CAV)
-
-    def __post_init__(self):
-        suction_limit(self.p_cav)
-
-    def solver(self):
-        """A new :class:`TruncationSolver`, or :class:`Unlimited` without a limit."""
-        return Unlimited() if self.p_cav == NO_LIMIT else TruncationSolver(self.p_cav)
-
-    @classmethod
-    def with_limit(cls, p_cav: float):
-        """The model with the scaled limit ``p_cav``."""
-        return cls(p_cav=p_cav)
+    limited_solver: ClassVar[type] = TruncationSolver
 
 
 @MODELS.register
 @dataclass(frozen=True)
-class MassConserving:
+class MassConserving(LimitedSuction):
     """Jakobsson-Floberg-Olsson cavitation, a cavity keeps its liquid
     (:class:`MassConservingSolver`); P_cav = -inf (the default): no limit."""
 
     name: ClassVar[str] = "mass-conserving"
     tracks_liquid: ClassVar[bool] = True
-    p_cav: float = setting(NO_LIMIT, **P_CAV)
-
-    def __post_init__(self):
-        suction_limit(self.p_cav)
-
-    def solver(self):
-        """A new :class:`MassConservingSolver`, or :class:`Unlimited` without a limit."""
-        return Unlimited() if self.p_cav == NO_LIMIT else MassConservingSolver(self.p_cav)
-
-    @classmethod
-    def with_limit(cls, p_cav: float):
-        """The model with the scaled limit ``p_cav``."""
-        return cls(p_cav=p_cav)
+    limited_solver: ClassVar[type] = MassConservingSolver
 
 
 @MODELS.register

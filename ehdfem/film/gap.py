@@ -19,23 +19,36 @@ Either way the film stays a thin film normal to the wall: the Reynolds equation 
 form (the surface slope dS/dR = O(sqrt(delta) R) is neglected in the flow, and so are the
 curvature terms; see docs/model.md). The film's elements take S exactly between their nodes:
 ``between_nodes`` is S minus its linear interpolant at points of an element.
+
+The choice of gap is a component of the inputs (:mod:`ehdfem.settings`), registered in
+:data:`GAPS`: a frozen dataclass with its ``name``, whether it holds in a thin layer only
+(``thin_layer_only``: the immersed film's far field assumes the paraboloid) and ``shape(delta,
+surface_radii)``, the gap above for the solids' surfaces. A new gap (a worn sphere, say) is one
+shape class here and one such component. ``CollisionParameters.gap`` None leaves the choice to
+the solids (:func:`default_gap`: the order in delta they are computed at).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import ClassVar, Protocol
 
 import numpy as np
 
 from .. import checks
-
-GAPS = ("paraboloid", "exact")
+from ..settings import Registry
 
 
 class Paraboloid:
     """S = R^2 / 2 (the asymptotic theory)."""
 
     name = "paraboloid"
+
+    @classmethod
+    def of(cls, delta: float, surface_radii=(1.0, math.inf)) -> Paraboloid:
+        """The paraboloid: delta and the surfaces' radii do not enter."""
+        return cls()
 
     def height(self, radius):
         """S(R) by x0 at R by sqrt(a x0)."""
@@ -61,6 +74,11 @@ class ExactSpheres(Paraboloid):
     D = S - R^2/2 (of order delta R^4) is interpolated, so no precision is lost to cancellation."""
 
     name = "exact"
+
+    @classmethod
+    def of(cls, delta: float, surface_radii=(1.0, math.inf)) -> ExactSpheres:
+        """The true spheres at delta = x0/a with the surfaces' radii by a."""
+        return cls(delta, surface_radii)
 
     def __init__(self, delta: float, radii=(1.0, math.inf)):
         self.delta = checks.number("delta", delta, lower=0.0, upper=1.0, lower_open=True)
@@ -113,15 +131,55 @@ class ExactSpheres(Paraboloid):
         )
 
 
-def default_gap(model: str, layer: str) -> str:
-    """The gap a collision uses when none is asked for: the true spheres for the FE model with
-    a thin layer (the FE solids are true spheres), the paraboloid otherwise (the asymptotic
-    theory; the immersed far field needs it)."""
-    return "exact" if model == "fem" and layer == "thin" else "paraboloid"
+class GapChoice(Protocol):
+    """What a collision asks of its choice of gap: ``name``, ``thin_layer_only`` and
+    ``shape(delta, surface_radii)``: the gap (:class:`Paraboloid` or a subclass) for delta =
+    x0/a and the surfaces' radii by a (the sphere's, then the lower body's: math.inf for a
+    wall)."""
+
+    name: ClassVar[str]
+    thin_layer_only: ClassVar[bool]
+
+    def shape(self, delta: float, surface_radii) -> Paraboloid: ...
 
 
-def gap_geometry(name: str, delta: float, surface_radii=(1.0, math.inf)):
-    """The undeformed gap ``name`` ("paraboloid" or "exact") for delta = x0/a and the surfaces'
-    radii by a (the sphere's, then the lower body's: math.inf for a wall)."""
-    checks.choice("gap", name, GAPS)
-    return Paraboloid() if name == "paraboloid" else ExactSpheres(delta, surface_radii)
+GAPS = Registry("gap", GapChoice)  # the choices of gap by name
+
+
+class ShapeOfGap:
+    """The members every built-in choice of gap shares (a base of their frozen dataclasses):
+    its ``name`` is that of its shape class ``gap_class``, which builds the gap."""
+
+    gap_class: ClassVar[type]
+
+    def shape(self, delta: float, surface_radii=(1.0, math.inf)) -> Paraboloid:
+        """The gap ``gap_class.of(delta, surface_radii)`` (delta = x0/a, radii by a)."""
+        return self.gap_class.of(delta, surface_radii)
+
+
+@GAPS.register
+@dataclass(frozen=True)
+class ParaboloidGap(ShapeOfGap):
+    """The asymptotic theory's gap S = R^2 / 2 (:class:`Paraboloid`), whatever the surfaces."""
+
+    gap_class: ClassVar[type] = Paraboloid
+    name: ClassVar[str] = Paraboloid.name
+    thin_layer_only: ClassVar[bool] = False
+
+
+@GAPS.register
+@dataclass(frozen=True)
+class ExactGap(ShapeOfGap):
+    """The true spheres' gap (:class:`ExactSpheres`); a thin layer only."""
+
+    gap_class: ClassVar[type] = ExactSpheres
+    name: ClassVar[str] = ExactSpheres.name
+    thin_layer_only: ClassVar[bool] = True
+
+
+def default_gap(model: str, layer: str) -> GapChoice:
+    """The gap a collision uses when none is asked for (docs/architecture.md, "Inputs of the
+    physics and numerics"): the true spheres for the FE model with a thin layer (the FE
+    solids are true spheres, at finite delta), the paraboloid otherwise (the asymptotic
+    theory, the leading order in delta; the immersed far field needs it)."""
+    return ExactGap() if model == "fem" and layer == "thin" else ParaboloidGap()

@@ -182,14 +182,13 @@ class ConstantViscosity:
         return cls()
 
 
-@LAWS.register
-@dataclass(frozen=True)
-class Barus:
-    """Barus (1893): mu / mu0 = exp(alpha P), alpha scaled by the inverse pressure scale."""
+class Piezoviscous:
+    """What the pressure-dependent laws share (Barus, Roelands; a base of their frozen
+    dataclasses): the liquid's coefficient alpha among their constants, validated when made,
+    and the law constant (mu = mu0) when alpha = 0."""
 
-    name: ClassVar[str] = "barus"
     pressure_dependent: ClassVar[bool] = True
-    alpha: float = setting(0.0, help=ALPHA_HELP, unit=ALPHA_UNIT, lower=0.0)
+    alpha: float
 
     def __post_init__(self):
         validate(self)
@@ -198,6 +197,15 @@ class Barus:
     def constant(self) -> bool:
         """True when alpha = 0."""
         return self.alpha == 0.0
+
+
+@LAWS.register
+@dataclass(frozen=True)
+class Barus(Piezoviscous):
+    """Barus (1893): mu / mu0 = exp(alpha P), alpha scaled by the inverse pressure scale."""
+
+    name: ClassVar[str] = "barus"
+    alpha: float = setting(0.0, help=ALPHA_HELP, unit=ALPHA_UNIT, lower=0.0)
 
     def log_ratio(self, compressive):
         """ln(mu / mu0) = alpha P at the compressive part P = max(P, 0) (numpy or UFL)."""
@@ -226,12 +234,11 @@ class Barus:
 
 @LAWS.register
 @dataclass(frozen=True)
-class Roelands:
+class Roelands(Piezoviscous):
     """Roelands (1966): mu / mu0 = exp((alpha P_r / Z) [(1 + P / P_r)^Z - 1]), P_r by the
     pressure scale, Z in (0, 2] (module docstring)."""
 
     name: ClassVar[str] = "roelands"
-    pressure_dependent: ClassVar[bool] = True
     roelands_pressure: float = setting(
         help="Roelands p_r = 1.96e8 Pa", unit="by mu V0 a / x0^2", lower=0.0, lower_open=True
     )
@@ -239,14 +246,6 @@ class Roelands:
     roelands_index: float = setting(
         ROELANDS_INDEX, help="Roelands index Z", lower=0.0, upper=2.0, lower_open=True
     )
-
-    def __post_init__(self):
-        validate(self)
-
-    @property
-    def constant(self) -> bool:
-        """True when alpha = 0."""
-        return self.alpha == 0.0
 
     def log_ratio(self, compressive):
         """ln(mu / mu0) = (alpha P_r / Z) [(1 + P / P_r)^Z - 1] at the compressive part P."""

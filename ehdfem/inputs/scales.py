@@ -22,7 +22,7 @@ from .. import checks
 from ..film import cavitation
 from ..film.asperities import ASPERITY_DENSITY, ASPERITY_SLOPE, AsperityModel, ImpactAsperities
 from ..film.asperities import MODELS as ASPERITY_MODELS
-from ..film.gap import GAPS
+from ..film.gap import GAPS, GapChoice
 from ..film.reynolds import LAYERS
 from ..film.viscosity import LAWS as VISCOSITY_LAWS
 from ..film.viscosity import ConstantViscosity, ViscosityLaw
@@ -76,9 +76,9 @@ class CollisionParameters:
     k = I/(m a^2) in (0, 2/3] (2/5 solid, 2/3 thin shell); cavitation: a cavitation model with
     its scaled suction limit P_cav (a component of :data:`ehdfem.film.cavitation.MODELS`, by
     default truncation without a limit); viscosity: a viscosity law with its scaled constants
-    (a component of :data:`ehdfem.film.viscosity.LAWS`, by default constant); gap "paraboloid"
-    (the asymptotic theory), "exact" (the true spheres, thin layer only) or None, the
-    elasticity model's default (:mod:`ehdfem.film.gap`);
+    (a component of :data:`ehdfem.film.viscosity.LAWS`, by default constant); gap: a choice
+    of :data:`ehdfem.film.gap.GAPS`, the paraboloid (the asymptotic theory) or the exact
+    spheres (thin layer only), or None, the solids' (:func:`ehdfem.film.gap.default_gap`);
     shear_traction: the tangential surface effects of order sqrt(delta) (True: the squeeze
     flow's shear traction loads the solids too and the film carries the liquid the faces' radial
     velocity drags), only the pressure (False), or None, the model's default (on for the FE
@@ -124,10 +124,10 @@ class CollisionParameters:
         cavitation.Truncation(),
         help="cavitation model: truncate at P_cav (the source's), mass-conserving (JFO), none",
     )
-    gap: str | None = setting(
+    gap: GapChoice | None = component(
+        GAPS,
         None,
         help="undeformed gap: the theory's paraboloid or the true spheres (thin layer only)",
-        choices=GAPS,
         default_text="exact for FE solids with a thin layer, paraboloid otherwise",
     )
     shear_traction: bool | None = setting(
@@ -169,10 +169,10 @@ class CollisionParameters:
                 "(angle > 0): a head-on impact puts no tangential load on the contact",
                 "tangential_compliance",
             )
-        if self.gap == "exact" and self.layer == "immersed":
+        if self.gap is not None and self.gap.thin_layer_only and self.layer == "immersed":
             raise checks.InputError(
-                "gap = 'exact' needs layer = 'thin': the immersed film reaches beyond the "
-                "sphere and its far-field closure assumes the paraboloid",
+                f"gap = {self.gap.name!r} needs layer = 'thin': the immersed film reaches "
+                "beyond the sphere and its far-field closure assumes the paraboloid",
                 "gap",
             )
 
@@ -262,7 +262,9 @@ class PhysicalCollision:
     asperities' eta beta sigma and sigma/beta are pure numbers, taken by the asperity model
     ``asperities`` that uses them (:class:`CollisionParameters`). The cavitation model, the
     viscosity law and the asperity model are named here; their scaled constants come from the
-    physical inputs through their classes (``with_limit``, ``of_liquid``, ``of_surfaces``).
+    physical inputs through their classes (``with_limit``, ``of_liquid``) and their registry
+    (:meth:`ehdfem.settings.Registry.of_inputs`, which refuses another asperity model's
+    constants).
     The friction coefficient of the solid contact and its tangential compliance k_t/k_n are
     dimensionless (as in :class:`CollisionParameters`; k_t/k_n of two materials from
     :func:`ehdfem.tangential.compliant_contact.mindlin_stiffness_ratio`).
@@ -474,15 +476,18 @@ class PhysicalCollision:
                 (p_cav - self.ambient_pressure) * x0**2 / (mu * v0 * a)
             ),
             viscosity=VISCOSITY_LAWS[self.viscosity].of_liquid(self.alpha, mu, pressure_scale),
-            gap=self.gap,
+            gap=None if self.gap is None else GAPS[self.gap](),
             shear_traction=self.shear_traction,
             buoyant_weight=self.scaled_buoyant_weight,
-            asperities=ASPERITY_MODELS[self.asperities].of_surfaces(
-                self.roughness / x0,
-                self.friction_coefficient,
-                self.asperity_density,
-                self.asperity_slope,
-                self.tangential_compliance,
+            asperities=ASPERITY_MODELS.of_inputs(
+                self.asperities,
+                {
+                    "roughness": self.roughness / x0,
+                    "friction_coefficient": self.friction_coefficient,
+                    "asperity_density": self.asperity_density,
+                    "asperity_slope": self.asperity_slope,
+                    "tangential_compliance": self.tangential_compliance,
+                },
             ),
         )
 

@@ -62,7 +62,7 @@ import numpy as np
 
 from .. import checks
 from ..film.asperity_obstacle import AsperityObstacle
-from ..film.gap import Paraboloid, default_gap, gap_geometry
+from ..film.gap import Paraboloid, default_gap
 from ..film.reynolds import Film, FilmError
 from .forces import LAYER_SURFACE, SphereForce, SphereState
 from .history import NormalHistory
@@ -231,7 +231,7 @@ class _NormalIntegration:
         self.yielding = bool(np.diag(compliance.matrix).min() > 0.0)
         self.radii = np.asarray(compliance.radii, dtype=float)
         gap = params.gap or default_gap(compliance.model, params.layer)
-        self.shape = gap_geometry(gap, params.delta, compliance.surface_radii)
+        self.shape = gap.shape(params.delta, compliance.surface_radii)
         self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
         self.cavitation = params.cavitation_model()
         self.sphere = Sphere.of(params, forces)

@@ -21,6 +21,15 @@ from typing import Protocol
 import numpy as np
 
 
+def default_shear_traction(model: str) -> bool:
+    """The tangential surface effects a collision takes when its inputs leave them to the
+    solids (``shear_traction`` None; docs/architecture.md, "Inputs of the physics and
+    numerics"): on for the FE solids ``model`` "fem" (finite delta: their faces carry the
+    squeeze flow's shear traction), off for the half-space theory and rigid solids (the
+    leading order in delta, where the traction's effects, of order sqrt(delta), drop out)."""
+    return model == "fem"
+
+
 class Compliance(Protocol):
     """What the film and the time integrator need from an elasticity model."""
 

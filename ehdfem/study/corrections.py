@@ -19,7 +19,7 @@ and halfspace variants are the theory and surface ones, and its geometry share i
 The first correction: each share divided by sqrt(delta) tends to a constant c1 as delta -> 0
 when the cause acts at order sqrt(delta) (:func:`first_order_fit`: q = c1 + c2 sqrt(delta) by
 least squares, with the standard errors of c1 and c2). The surface effects' c1 in closed form,
-where the leading order is the rigid approach (eps -> 0): :mod:`ehdfem.study.surface_limit`.
+where the leading order is the rigid approach (eps -> 0): :mod:`ehdfem.exact.surface_limit`.
 """
 
 from __future__ import annotations
@@ -32,6 +32,7 @@ import numpy as np
 from .. import checks
 from ..collision import collide, elasticity, film_radii
 from ..config import RunConfig
+from ..film.gap import GAPS, ParaboloidGap
 from ..inputs.scales import CollisionParameters
 
 VARIANTS = {
@@ -53,7 +54,7 @@ def variant_parameters(params: CollisionParameters, variant: str) -> CollisionPa
     """``params`` with the gap and the surface effects of ``variant`` (the true gap only for a
     thin layer: an immersed layer keeps the paraboloid)."""
     _, gap, shear = VARIANTS[checks.choice("variant", variant, tuple(VARIANTS))]
-    gap = gap if params.layer == "thin" else "paraboloid"
+    gap = GAPS[gap]() if params.layer == "thin" else ParaboloidGap()
     return replace(params, gap=gap, shear_traction=shear)
 
 

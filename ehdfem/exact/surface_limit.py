@@ -4,8 +4,8 @@ The constant c1 of the surface effects (:mod:`ehdfem.study.corrections`) measure
 has a closed form in the limit eps -> 0, where the leading-order solution is the rigid approach
 (docs/fem.md, "The surface effects in closed form"). Scaled as in docs/model.md: gap X and film
 H by x0, radius R by sqrt(a x0), time by x0/V0, velocity V by V0, pressure by mu V0 a / x0^2,
-force by 6 pi mu V0 a^2 / x0; s = sqrt(delta); kappa the shear coefficient of
-:func:`ehdfem.solids.halfspace.shear_coefficient`.
+force by 6 pi mu V0 a^2 / x0; s = sqrt(delta); kappa the shear coefficient of the two
+solids (:func:`ehdfem.solids.halfspace.shear_coefficient`, a number here).
 
 The rigid approach through a thin layer (P = 0 at the wetted edge H = X + R^2/2 = 1, no
 cavitation): P0 = 3 |V| (1/H^2 - 1), force |V| (1 - X)^2 / X, and from St V dV/dX = force,
@@ -39,8 +39,7 @@ from __future__ import annotations
 import math
 
 from .. import checks
-from ..exact import rigid_film
-from ..solids.halfspace import IDENTICAL_SOLIDS, shear_coefficient
+from . import rigid_film
 
 EFFECTS = ("opening", "velocity", "both")
 """The surface terms: the squeeze shear's gap opening, the faces' radial velocity, both."""
@@ -94,10 +93,10 @@ def velocity_integral(gap: float, St: float, effect: str = "both") -> float:
     return fixed + per_st / St
 
 
-def stopping_gap_constant(St: float, effect: str = "both", solids=IDENTICAL_SOLIDS) -> float:
+def stopping_gap_constant(St: float, kappa: float, effect: str = "both") -> float:
     """c = -kappa J(X_s) / (1 - X_s)^2: the thinnest film's relative change by the surface
     term ``effect`` is c eps sqrt(delta) as eps -> 0 (thin layer, half-spaces, paraboloid, no
-    cavitation; module docstring), for the rigid stopping gap X_s of ``St`` and the (Young's
-    modulus, Poisson ratio) pairs ``solids`` of sphere and wall (through kappa)."""
+    cavitation; module docstring), for the rigid stopping gap X_s of ``St`` and the solids'
+    shear coefficient ``kappa``."""
     stop = rigid_film.stopping_gap(St, "thin")
-    return -shear_coefficient(solids) * velocity_integral(stop, St, effect) / (1 - stop) ** 2
+    return -kappa * velocity_integral(stop, St, effect) / (1 - stop) ** 2

@@ -14,12 +14,15 @@
    (dem_closed_forms_recipe.json), and the cost: collisions, CPU seconds, wall time.
 
 Run: python studies/dem_closed_forms.py [--reduced] [--ranks N] [--held-back-only]
+[--exports-only]
 (or bash make.sh closed-forms). --reduced fits the 1080-point grid of
 dem_closed_forms_reduced.toml instead of the full one. --held-back-only recomputes the
 held-back points alone (after a change of the solver that moves the results by far less than
 the forms' errors; delete dem_closed_forms_heldback.points first) and refits on the fit table
 as it stands: the errors are then those of the forms against the current solver, and the fit
-table's cost is kept from the run that computed it.
+table's cost is kept from the run that computed it. --exports-only rewrites the Python module
+and the C header from the stored fit (dem_closed_forms_fit.json: the forms and their held-back
+errors), without sweeping or fitting, after a change of the exports alone.
 """
 
 import argparse
@@ -33,8 +36,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ehdfem.dem import fitting, lookup
+from ehdfem.dem import export, fitting, lookup
 from ehdfem.dem.table import table_rows
+from ehdfem.version import __version__
 
 STUDIES = Path(__file__).resolve().parent
 RESULTS = STUDIES / "results"
@@ -83,13 +87,27 @@ def recipe_errors(fit_rows: list[dict], held_rows: list[dict], box: dict) -> dic
     return out
 
 
+def write_exports(name: str) -> None:
+    """The Python module and the C header rewritten from the stored fit of ``name``'s table."""
+    out = RESULTS / "dem_closed_forms"
+    forms = json.loads(Path(f"{out}_fit.json").read_text())["closed_forms"]
+    for suffix, writer in ((".py", export.python_source), (".h", export.c_header)):
+        text = writer(forms, f"{name}.csv", __version__, forms.get("held_back"))
+        Path(f"{out}{suffix}").write_text(text)
+        print(f"wrote {out}{suffix}")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--reduced", action="store_true", help="the 1080-point grid")
     parser.add_argument("--ranks", type=int, default=2)
     parser.add_argument("--held-back-only", action="store_true", help="keep the fit table")
+    parser.add_argument("--exports-only", action="store_true", help="rewrite .py, .h from the fit")
     args = parser.parse_args()
     name = "dem_closed_forms_reduced" if args.reduced else "dem_closed_forms"
+    if args.exports_only:
+        write_exports(name)
+        return
     studies = {
         "fit": STUDIES / f"{name}.toml",
         "held_back": STUDIES / "dem_closed_forms_heldback.toml",

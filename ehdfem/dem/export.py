@@ -133,6 +133,44 @@ def spin_change(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
     return (1.0 - e_t) / inertia_factor
 
 
+def pair_restitution(
+    St, eps, delta, p_cav, layer="thin", radius_ratio=1.0, density_ratio=1.0, upper_inertia=0.4,
+    lower_inertia=0.4, upper_spin=0.0, lower_spin=0.0,
+):
+    """Two spheres: St, eps, delta, P_cav by the reduced radius a1 a2/(a1 + a2) and mass
+    m1 m2/(m1 + m2); radius_ratio a1/a2, density_ratio rho2/rho1 (m1/m2 = (a1/a2)^3/(rho2/rho1)),
+    the inertia factors k1, k2 in (0, 2/3], the initial spins s_i = a_i Omega_i/U0 about one
+    axis. The wall at 1/k = 1/(k1 (1 + m1/m2)) + 1/(k2 (1 + m2/m1)), the slip scaled by 1 - w0,
+    w0 = s1 + s2 (exact for the Couette model): a dict of St_c, e_n, the relative e_t, both
+    spin changes a_i DeltaOmega_i/U0 and their sum, the impulse on sphere 1 (e_t - 1, by m U0)
+    and k. The wall's errors hold relative to 1 - e_t and the spin changes."""
+    for name, value in (("radius_ratio", radius_ratio), ("density_ratio", density_ratio)):
+        if not 0.0 < value < math.inf:
+            raise ValueError(f"{{name}} = {{value!r}} is outside (0, inf)")
+    for name, value in (("upper_inertia", upper_inertia), ("lower_inertia", lower_inertia)):
+        if not 0.0 < value <= 2.0 / 3.0:
+            raise ValueError(f"{{name}} = {{value!r}} is outside (0, 2/3]")
+    if not math.isfinite(upper_spin + lower_spin):
+        raise ValueError(f"the spins {{upper_spin!r}}, {{lower_spin!r}} must be finite")
+    mass_ratio = radius_ratio**3 / density_ratio
+    upper, lower = upper_inertia * (1.0 + mass_ratio), lower_inertia * (1.0 + 1.0 / mass_ratio)
+    k = min(1.0 / (1.0 / upper + 1.0 / lower), max(upper_inertia, lower_inertia))
+    e_t = tangential_restitution(St, eps, delta, p_cav, layer, k)
+    slip = 1.0 - (upper_spin + lower_spin)
+    change = slip * (1.0 - e_t) / k
+    e_t = 1.0 - slip * (1.0 - e_t)
+    return {{
+        "St_c": critical_stokes(eps, p_cav, layer),
+        "e_n": normal_restitution(St, eps, p_cav, layer),
+        "e_t": e_t,
+        "upper_spin_change": lower / (upper + lower) * change,
+        "lower_spin_change": upper / (upper + lower) * change,
+        "contact_spin_change": change,
+        "tangential_impulse": e_t - 1.0,
+        "inertia_factor": k,
+    }}
+
+
 def dimensionless_groups(
     radius, density, normal_speed, viscosity, theta, layer_thickness, cavitation_pressure,
     ambient_pressure=101325.0,
@@ -220,6 +258,16 @@ _C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid
  * Outside it ehd_restitution sets every output to NaN and returns the flags EHD_OUT_* of the
  * parameters outside (0 inside).
  * Largest errors on points held back from the fit: {errors}
+ *
+ * Two spheres (ehd_pair_restitution; docs/tangential.md of ehdfem, "Two spheres"): St, eps,
+ * delta, P_cav by the reduced radius a1 a2/(a1 + a2) and mass m1 m2/(m1 + m2); a1/a2 and
+ * rho2/rho1 > 0 (m1/m2 = (a1/a2)^3/(rho2/rho1)), k1 and k2 in (0, 2/3], the initial spins
+ * s_i = a_i Omega_i/U0 about one axis (U0 the relative tangential speed at first touch). The
+ * pair is the wall at 1/k = 1/(k1 (1 + m1/m2)) + 1/(k2 (1 + m2/m1)) with the slip scaled by
+ * 1 - w0, w0 = s1 + s2, exactly for the Couette model: 1 - e_t = (1 - w0)(1 - e_t(k)), the
+ * contact spin's change (1 - w0)(1 - e_t(k))/k, split as c1 = k/(k1 (1 + m1/m2)) and 1 - c1;
+ * e_t relative (U1 - U2), the impulse on sphere 1 e_t - 1 (by m U0). The wall's errors hold
+ * relative to 1 - e_t and the spin changes (|1 - w0| times the absolute ones).
  */
 #ifndef EHDFEM_CLOSED_FORMS_H
 #define EHDFEM_CLOSED_FORMS_H
@@ -229,7 +277,7 @@ _C_HEAD = """/* Closed forms for DEM of a sphere hitting a wall through a liquid
 enum {{ EHD_THIN = 0, EHD_IMMERSED = 1 }};
 enum {{
     EHD_OUT_ST = 1, EHD_OUT_EPS = 2, EHD_OUT_P_CAV = 4, EHD_OUT_DELTA = 8, EHD_OUT_LAYER = 16,
-    EHD_OUT_INERTIA = 32
+    EHD_OUT_INERTIA = 32, EHD_OUT_LOWER_INERTIA = 64, EHD_OUT_RATIO = 128, EHD_OUT_SPIN = 256
 }};
 
 typedef struct {{
@@ -238,6 +286,16 @@ typedef struct {{
     double e_t;         /* tangential restitution (for rebounds, e_n >= {clear}) */
     double spin_change; /* a DeltaOmega/U0 */
 }} ehd_restitution_t;
+
+typedef struct {{
+    double St_c, e_n;           /* the wall's, of the relative normal motion */
+    double e_t;                 /* relative: (U1 - U2) at exit over U0 */
+    double upper_spin_change;   /* a1 DeltaOmega1/U0 */
+    double lower_spin_change;   /* a2 DeltaOmega2/U0 (about the same axis) */
+    double contact_spin_change; /* their sum */
+    double tangential_impulse;  /* on sphere 1, by m U0 (e_t - 1) */
+    double inertia_factor;      /* the pair's k */
+}} ehd_pair_restitution_t;
 
 typedef struct {{
     int terms, features;
@@ -322,6 +380,46 @@ static inline int ehd_restitution(double St, double eps, double delta, double p_
     out->e_n = e_n;
     out->e_t = 1.0 - k / (1.0 + k) * -expm1(-(1.0 + 1.0 / k) * delta * total / (3.0 * St));
     out->spin_change = (1.0 - out->e_t) / k;
+    return 0;
+}}
+
+/* Two spheres (see the top): the flags of ehd_restitution at the pair's k, EHD_OUT_INERTIA
+ * and EHD_OUT_LOWER_INERTIA for k1 and k2, EHD_OUT_RATIO for a1/a2 or rho2/rho1 not a positive
+ * number, EHD_OUT_SPIN for a spin not finite (outputs NaN when they are not 0). */
+static inline int ehd_pair_restitution(double St, double eps, double delta, double p_cav,
+                                       int layer, double radius_ratio, double density_ratio,
+                                       double k1, double k2, double s1, double s2,
+                                       ehd_pair_restitution_t *out)
+{{
+    int flags = 0;
+    if (!(k1 > 0.0 && k1 <= 2.0 / 3.0)) flags |= EHD_OUT_INERTIA;
+    if (!(k2 > 0.0 && k2 <= 2.0 / 3.0)) flags |= EHD_OUT_LOWER_INERTIA;
+    if (!(radius_ratio > 0.0 && isfinite(radius_ratio) && density_ratio > 0.0
+          && isfinite(density_ratio)))
+        flags |= EHD_OUT_RATIO;
+    if (!isfinite(s1) || !isfinite(s2)) flags |= EHD_OUT_SPIN;
+    double mass_ratio = radius_ratio * radius_ratio * radius_ratio / density_ratio;
+    double upper = k1 * (1.0 + mass_ratio), lower = k2 * (1.0 + 1.0 / mass_ratio);
+    double k = 1.0 / (1.0 / upper + 1.0 / lower), top = k1 > k2 ? k1 : k2;
+    k = k < top ? k : top; /* a weighted harmonic mean of k1 and k2, capped against rounding */
+    ehd_restitution_t wall;
+    flags |= ehd_check(St, eps, delta, p_cav, layer, flags ? 0.4 : k);
+    if (flags) {{
+        out->St_c = out->e_n = out->e_t = out->upper_spin_change = out->lower_spin_change = NAN;
+        out->contact_spin_change = out->tangential_impulse = out->inertia_factor = NAN;
+        return flags;
+    }}
+    ehd_restitution(St, eps, delta, p_cav, layer, k, &wall);
+    double slip = 1.0 - (s1 + s2); /* u_s(0) = 1 - w0 */
+    double change = slip * wall.spin_change;
+    out->St_c = wall.St_c;
+    out->e_n = wall.e_n;
+    out->e_t = 1.0 - slip * (1.0 - wall.e_t);
+    out->upper_spin_change = lower / (upper + lower) * change;
+    out->lower_spin_change = upper / (upper + lower) * change;
+    out->contact_spin_change = change;
+    out->tangential_impulse = out->e_t - 1.0;
+    out->inertia_factor = k;
     return 0;
 }}
 

@@ -114,6 +114,44 @@ def spin_change(St, eps, delta, p_cav, layer="thin", inertia_factor=0.4):
     return (1.0 - e_t) / inertia_factor
 
 
+def pair_restitution(
+    St, eps, delta, p_cav, layer="thin", radius_ratio=1.0, density_ratio=1.0, upper_inertia=0.4,
+    lower_inertia=0.4, upper_spin=0.0, lower_spin=0.0,
+):
+    """Two spheres: St, eps, delta, P_cav by the reduced radius a1 a2/(a1 + a2) and mass
+    m1 m2/(m1 + m2); radius_ratio a1/a2, density_ratio rho2/rho1 (m1/m2 = (a1/a2)^3/(rho2/rho1)),
+    the inertia factors k1, k2 in (0, 2/3], the initial spins s_i = a_i Omega_i/U0 about one
+    axis. The wall at 1/k = 1/(k1 (1 + m1/m2)) + 1/(k2 (1 + m2/m1)), the slip scaled by 1 - w0,
+    w0 = s1 + s2 (exact for the Couette model): a dict of St_c, e_n, the relative e_t, both
+    spin changes a_i DeltaOmega_i/U0 and their sum, the impulse on sphere 1 (e_t - 1, by m U0)
+    and k. The wall's errors hold relative to 1 - e_t and the spin changes."""
+    for name, value in (("radius_ratio", radius_ratio), ("density_ratio", density_ratio)):
+        if not 0.0 < value < math.inf:
+            raise ValueError(f"{name} = {value!r} is outside (0, inf)")
+    for name, value in (("upper_inertia", upper_inertia), ("lower_inertia", lower_inertia)):
+        if not 0.0 < value <= 2.0 / 3.0:
+            raise ValueError(f"{name} = {value!r} is outside (0, 2/3]")
+    if not math.isfinite(upper_spin + lower_spin):
+        raise ValueError(f"the spins {upper_spin!r}, {lower_spin!r} must be finite")
+    mass_ratio = radius_ratio**3 / density_ratio
+    upper, lower = upper_inertia * (1.0 + mass_ratio), lower_inertia * (1.0 + 1.0 / mass_ratio)
+    k = min(1.0 / (1.0 / upper + 1.0 / lower), max(upper_inertia, lower_inertia))
+    e_t = tangential_restitution(St, eps, delta, p_cav, layer, k)
+    slip = 1.0 - (upper_spin + lower_spin)
+    change = slip * (1.0 - e_t) / k
+    e_t = 1.0 - slip * (1.0 - e_t)
+    return {
+        "St_c": critical_stokes(eps, p_cav, layer),
+        "e_n": normal_restitution(St, eps, p_cav, layer),
+        "e_t": e_t,
+        "upper_spin_change": lower / (upper + lower) * change,
+        "lower_spin_change": upper / (upper + lower) * change,
+        "contact_spin_change": change,
+        "tangential_impulse": e_t - 1.0,
+        "inertia_factor": k,
+    }
+
+
 def dimensionless_groups(
     radius, density, normal_speed, viscosity, theta, layer_thickness, cavitation_pressure,
     ambient_pressure=101325.0,

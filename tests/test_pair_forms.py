@@ -3,14 +3,12 @@ forms for DEM"): the mapping onto the sphere-on-wall forms against the full pair
 held-back points, equal spheres, the refusal outside the box, and the C header's pair function
 against the Python forms."""
 
-import json
 import math
-import shutil
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
+from test_closedform import SHIPPED, _compile, _shipped
 
 from ehdfem import CollisionParameters, collide
 from ehdfem.checks import InputError
@@ -23,7 +21,6 @@ from ehdfem.version import __version__
 
 pytestmark = pytest.mark.serial
 
-SHIPPED = Path(__file__).resolve().parents[1] / "studies" / "results"
 ROUNDING = 1e-12
 OUTPUTS = ("St_c", "e_n", "e_t", "upper_spin_change", "lower_spin_change", "contact_spin_change",
            "tangential_impulse", "inertia_factor")  # fmt: skip
@@ -32,7 +29,7 @@ OUTPUTS = ("St_c", "e_n", "e_t", "upper_spin_change", "lower_spin_change", "cont
 @pytest.fixture(scope="module")
 def fits():
     """The shipped fit of the wall forms (with their held-back errors)."""
-    return json.loads((SHIPPED / "dem_closed_forms_fit.json").read_text())["closed_forms"]
+    return _shipped()[0]
 
 
 def test_equal_spheres_are_the_wall_forms_at_two_fifths(fits):
@@ -159,21 +156,6 @@ def test_pair_forms_against_the_pair_model_on_held_back_points(fits, case):
     assert abs(e_n_error) <= stated["e_n"] and abs(loss_error) <= stated["tangential_loss_relative"]
 
 
-def _compile(tmp_path, source: str) -> Path:
-    """``source`` compiled with gcc as C99, every warning an error, beside the shipped header."""
-    if shutil.which("gcc") is None:
-        pytest.fail("gcc is missing: bash make.sh setup installs it")
-    shutil.copy(SHIPPED / "dem_closed_forms.h", tmp_path)
-    (tmp_path / "pair.c").write_text(source)
-    binary = tmp_path / "pair"
-    subprocess.run(
-        ["gcc", "-std=c99", "-Wall", "-Wextra", "-pedantic", "-Werror", "-O2",
-         str(tmp_path / "pair.c"), "-o", str(binary), "-lm"],
-        check=True, capture_output=True, text=True,
-    )  # fmt: skip
-    return binary
-
-
 DRIVER = """#include <stdio.h>
 #include "dem_closed_forms.h"
 int main(void)
@@ -212,10 +194,8 @@ def test_c_header_pair_equals_the_python_forms(tmp_path, fits):
     for name, writer in (("h", export.c_header), ("py", export.python_source)):
         text = writer(fits, "dem_closed_forms.csv", __version__, held)
         assert text == (SHIPPED / f"dem_closed_forms.{name}").read_text()
-    binary = _compile(tmp_path, DRIVER)
-    module = {}
-    path = SHIPPED / "dem_closed_forms.py"
-    exec(compile(path.read_text(), str(path), "exec"), module)  # noqa: S102
+    binary = _compile(tmp_path, DRIVER, "pair")
+    _, module, _ = _shipped()
     rng = np.random.default_rng(5)
     box, points = fits["box"], []
     for _ in range(200):

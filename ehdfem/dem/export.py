@@ -1,9 +1,9 @@
 """The closed forms for DEM written out for particle codes: a Python module (standard library
 only), a C99 header (no dependency but <math.h>) and the fitted table (CSV) with its
 interpolation recipe (:mod:`ehdfem.dem.lookup`). The formulas are those of
-:mod:`ehdfem.dem.forms`; inputs and outputs are dimensionless (DSH scales). Outside the fitted
-box the Python module raises ValueError naming the parameter and the box; the C functions return
-NaN and a flag naming it.
+:mod:`ehdfem.dem.forms` (and, for two spheres, :mod:`ehdfem.dem.pair_forms`); inputs and
+outputs are dimensionless (DSH scales). Outside the fitted box the Python module raises
+ValueError naming the parameter and the box; the C functions return NaN and a flag naming it.
 """
 
 from __future__ import annotations
@@ -450,8 +450,8 @@ def _c_form(prefix: str, form: dict) -> tuple[str, str]:
 
 def c_header(fits: dict, table: str, version: str, held_back: dict | None = None) -> str:
     """A C99 header (text) with the forms ``fits`` of :func:`ehdfem.dem.fitting.fit_forms`:
-    ehd_restitution and ehd_check (static functions), the same values as :func:`python_source`'s
-    module (tested to 1e-12)."""
+    ehd_restitution, ehd_pair_restitution and ehd_check (static functions), the same values as
+    :func:`python_source`'s module (tested to 1e-12)."""
     box = fits["box"]
     parts, tables = [], []
     for layer in LAYERS:

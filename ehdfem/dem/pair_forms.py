@@ -39,7 +39,9 @@ def sphere_pair(radius_ratio, density_ratio, upper_inertia, lower_inertia) -> Sp
     in (0, 2/3] (InputError naming the input outside)."""
     radius_ratio = checks.positive("radius_ratio", radius_ratio)
     density_ratio = checks.positive("density_ratio", density_ratio)
-    return SpherePair(radius_ratio**3 / density_ratio, upper_inertia, lower_inertia)
+    return SpherePair(
+        radius_ratio**3 / density_ratio, upper_inertia, lower_inertia, radius_ratio=radius_ratio
+    )
 
 
 def pair_restitution(

@@ -336,7 +336,8 @@ def _check_pair_inputs(physical, config) -> None:
         raise checks.InputError(
             "lower = 'sphere' takes scaled inputs here (St, eps and delta by the reduced radius "
             "a1 a2 / (a1 + a2) and mass m1 m2 / (m1 + m2), ehdfem.inputs.scales.reduced_radius "
-            "and reduced_mass): the physical inputs describe one sphere",
+            "and reduced_mass): the physical inputs describe one sphere; for two spheres use "
+            "ehdfem.inputs.scales.PhysicalPair (its dimensionless() and lower_settings())",
             "lower",
         )
 

@@ -23,6 +23,7 @@ docs/validation.md. Resumable: finished points are kept in the CSV.
 Run: nice -n 10 .venv/bin/python studies/roughness.py [--plot-only]   (about 2 minutes)
 """
 
+import math
 import sys
 from pathlib import Path
 
@@ -34,6 +35,7 @@ import numpy as np  # noqa: E402
 
 from ehdfem.collision import collide  # noqa: E402
 from ehdfem.config import RunConfig  # noqa: E402
+from ehdfem.dem.reduced.ehd_gap import ehd_film_thickness  # noqa: E402
 from ehdfem.exact import rigid_film  # noqa: E402
 from ehdfem.inputs.scales import CollisionParameters, from_presets  # noqa: E402
 from ehdfem.study.sweep import ResultTable, critical_stokes  # noqa: E402
@@ -87,12 +89,10 @@ def regime_points(table):
 
 
 def nijssen_film(physical) -> float:
-    """h_eps = 0.37 ((mu v / E*)^2 R*^3)^(1/5) [m], 1/E* = sum (1 - nu^2)/E, R* = a."""
-    e_star = 1.0 / sum(
-        (1 - m.poisson_ratio**2) / m.young_modulus for m in (physical.sphere, physical.wall)
-    )
-    mu, v = physical.liquid.viscosity, physical.speed
-    return 0.37 * ((mu * v / e_star) ** 2 * physical.radius**3) ** 0.2
+    """h_eps = 0.37 ((mu v / E*)^2 R*^3)^(1/5) [m], 1/E* = pi theta, R* = a
+    (:func:`ehdfem.dem.reduced.ehd_gap.ehd_film_thickness`)."""
+    modulus = 1.0 / (math.pi * physical.theta)
+    return ehd_film_thickness(physical.liquid.viscosity, physical.speed, modulus, physical.radius)
 
 
 def compared_points(table):

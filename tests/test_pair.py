@@ -545,3 +545,39 @@ def test_an_immersed_pair_says_its_outer_flow_is_left_out():
         warnings.simplefilter("error", ResultRangeWarning)
         result = collide(thin, nodes=60, **UNEQUAL)
     assert not any("neither estimated" in note for note in result.summary()["notes"])
+
+
+def test_physical_pair_gives_the_reduced_groups():
+    """Physical inputs of a pair (glass a1 = 2 mm over steel a2 = 1 mm in water, 0.5 m/s at
+    30 deg, x0 = 20 um) give the groups by the reduced radius and mass, computed here by hand:
+    a = 2/3 mm, m1 = 8.512e-5 kg, m2 = 3.259e-5 kg, m = 2.357e-5 kg, V0 = 0.4330 m/s,
+    theta = 1.0126e-11 1/Pa; St = 1.218e3, eps = 3.50e-7, delta = 0.03; the lower sphere's
+    settings a1/a2 = 2, rho2/rho1 = 7780/2540; and a collision with them runs as the pair."""
+    from ehdfem.inputs.presets import liquid, material
+    from ehdfem.inputs.scales import PhysicalPair
+
+    pair = PhysicalPair(
+        upper_radius=2e-3, lower_radius=1e-3, upper=material("glass"), lower=material("steel"),
+        liquid=liquid("water"), speed=0.5, layer_thickness=2e-5, angle=30.0,
+    )  # fmt: skip
+    a = 2e-3 * 1e-3 / 3e-3
+    m1, m2 = 4 / 3 * math.pi * 8e-9 * 2540.0, 4 / 3 * math.pi * 1e-9 * 7780.0
+    m = m1 * m2 / (m1 + m2)
+    v0 = 0.5 * math.cos(math.radians(30.0))
+    theta = (1 - 0.23**2) / (math.pi * 60e9) + (1 - 0.27**2) / (math.pi * 190e9)
+    params = pair.dimensionless()
+    assert params.St == pytest.approx(m * v0 / (6 * math.pi * 1e-3 * a**2), rel=ROUNDING)
+    assert params.St == pytest.approx(1.218e3, rel=1e-3)
+    assert params.eps == pytest.approx(4 * theta * 1e-3 * v0 * a**1.5 / 2e-5**2.5, rel=ROUNDING)
+    assert params.delta == pytest.approx(0.03, rel=ROUNDING)
+    assert params.angle == 30.0 and params.inertia_factor == 0.4
+    settings = pair.lower_settings()
+    assert settings == pytest.approx(
+        dict(lower="sphere", radius_ratio=2.0, density_ratio=7780 / 2540, lower_inertia_factor=0.4)
+    )
+    assert pair.scales().force == pytest.approx(6 * math.pi * 1e-3 * v0 * a**2 / 2e-5)
+    result = collide(params, nodes=60, **settings)
+    assert result.tangential.pair.pair.mass_ratio == pytest.approx(m1 / m2, rel=ROUNDING)
+    with pytest.raises(InputError) as error:
+        PhysicalPair(**{**vars(pair), "lower_radius": 0.0})
+    assert error.value.name == "lower_radius"

@@ -17,6 +17,14 @@ def max_compression(eps, St):
     return (90.0 * math.pi**2 / 64.0 * eps * St) ** 0.4
 
 
+def compression_force(eps, compression):
+    """Hertz's force (4/3) E* a^(1/2) d^(3/2) for the compression d = ``compression`` x0
+    (>= 0), by 6 pi mu V0 a^2 / x0: with 1/E* = pi theta and theta from eps (as in
+    :func:`max_compression`), 8 / (9 pi^2 eps) d^(3/2) (arrays broadcast). Its work from 0 to
+    delta_max at the speed V0 is St/2 (by 6 pi mu V0^2 a^2 / x0)."""
+    return 8.0 / (9.0 * math.pi**2 * eps) * compression**1.5
+
+
 def contact_time(mass: float, radius: float, modulus: float, speed: float) -> float:
     """Duration [s] of the Hertz contact for the (reduced) ``mass`` [kg] and ``radius`` [m],
     the contact modulus E* [Pa] and the normal ``speed`` [m/s]: 2.87 (m^2/(R E*^2 V))^(1/5)."""

@@ -513,3 +513,80 @@ def from_presets(**values) -> PhysicalCollision:
     e.g. ``sphere={"young_modulus": 3e9, "poisson_ratio": 0.35, "density": 1200}``."""
     bodies = ("sphere", "wall", "liquid")
     return PhysicalCollision(**{k: body(k, v) if k in bodies else v for k, v in values.items()})
+
+
+@dataclass(frozen=True)
+class PhysicalPair:
+    """Physical inputs (SI) of two free spheres colliding: the upper sphere's ``upper_radius``
+    a1 [m] and material ``upper``, the lower one's ``lower_radius`` a2 [m] and ``lower``, each
+    sphere of its material's density; the ``liquid``; the relative impact speed ``speed``
+    |v1 - v2| [m/s] at the ``angle`` [deg] from the line of centres; the layer thickness x0 [m]
+    (the gap at which the film starts acting) and its kind; the inertia factors
+    k_i = I_i / (m_i a_i^2); the surfaces' friction coefficient. The pair collides as the
+    sphere of the reduced radius a = a1 a2 / (a1 + a2) and mass m = m1 m2 / (m1 + m2) on the
+    lower material (docs/tangential.md, "Two spheres"): :meth:`equivalent` is that sphere's
+    :class:`PhysicalCollision` (theta of both materials, so that 1/E* = pi theta), and
+    :meth:`lower_settings` the lower sphere's run settings (``lower="sphere"``, a1/a2,
+    rho2/rho1, k2), for :func:`ehdfem.collision.collide` with :meth:`dimensionless`."""
+
+    upper_radius: float
+    lower_radius: float
+    upper: Material
+    lower: Material
+    liquid: Liquid
+    speed: float
+    layer_thickness: float
+    angle: float = 0.0
+    layer: str = "thin"
+    upper_inertia_factor: float = 0.4
+    lower_inertia_factor: float = 0.4
+    friction_coefficient: float = 0.0
+
+    def __post_init__(self):
+        checks.positive("upper_radius", self.upper_radius)
+        checks.positive("lower_radius", self.lower_radius)
+        checks.number(
+            "lower_inertia_factor", self.lower_inertia_factor, lower=0.0, upper=2 / 3,
+            lower_open=True,
+        )  # fmt: skip
+        self.equivalent()  # validates the rest against the equivalent sphere's ranges
+
+    @property
+    def masses(self) -> tuple[float, float]:
+        """(m1, m2) = 4/3 pi a_i^3 rho_i [kg]."""
+        volumes = (4.0 / 3.0 * math.pi * a**3 for a in (self.upper_radius, self.lower_radius))
+        return tuple(v * m.density for v, m in zip(volumes, (self.upper, self.lower), strict=True))
+
+    def equivalent(self) -> PhysicalCollision:
+        """The sphere of the reduced radius and mass on the lower sphere's material."""
+        return PhysicalCollision(
+            radius=reduced_radius(self.upper_radius, self.lower_radius),
+            sphere=self.upper,
+            wall=self.lower,
+            liquid=self.liquid,
+            speed=self.speed,
+            layer_thickness=self.layer_thickness,
+            angle=self.angle,
+            layer=self.layer,
+            inertia_factor=self.upper_inertia_factor,
+            sphere_mass=reduced_mass(*self.masses),
+            friction_coefficient=self.friction_coefficient,
+        )
+
+    def lower_settings(self) -> dict:
+        """The lower sphere's run settings: a1/a2, rho2/rho1 and k2 (module docstring)."""
+        return dict(
+            lower="sphere",
+            radius_ratio=self.upper_radius / self.lower_radius,
+            density_ratio=self.lower.density / self.upper.density,
+            lower_inertia_factor=self.lower_inertia_factor,
+        )
+
+    def dimensionless(self) -> CollisionParameters:
+        """St, eps, delta, ... by the reduced radius and mass (:meth:`equivalent`)."""
+        return self.equivalent().dimensionless()
+
+    def scales(self) -> Scales:
+        """The SI units of the scaled results (force by the reduced radius, energy by the
+        reduced mass)."""
+        return self.equivalent().scales()

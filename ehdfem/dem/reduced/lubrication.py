@@ -2,24 +2,28 @@
 obliquely (Zhang, Noda & Horio 2005, Powder Technol. 158; Tomac & Gutierrez 2013, Granular
 Matter 15; docs/validation.md, "Two spheres obliquely: the reduced CFD-DEM models").
 
-Two rigid spheres approach through a liquid layer: from the gap x0 on, the lubrication
-resistances of :mod:`ehdfem.dem.reduced.resistances` act with the gap cut off at h_min
-(h_eff = max(h, h_min)); below h_min the solids touch with Hertz's force (4/3) E* a^(1/2)
-(h_min - h)^(3/2) (:func:`ehdfem.exact.hertz.compression_force`) and Coulomb friction of
-coefficient mu at the contact point (|F_c| <= mu F_Hertz; stick while the force that holds
-the slip at zero is within it), the lubrication forces staying at their h_min values. The
-pair's equations in the scales of :mod:`ehdfem.tangential.pair` (time by x0/V0, velocities by
-V0, forces by 6 pi mu V0 a^2 / x0, St and the spins' weights by the reduced mass m):
+Two rigid spheres approach through a liquid layer: from the gap x0 down to h_min the
+lubrication resistances of :mod:`ehdfem.dem.reduced.resistances` act; below h_min they are cut
+off (zero, as in the cited codes: the lubrication force acts for h_min < h only) and the solids
+touch with Hertz's force (4/3) E* a^(1/2) (h_min - h)^(3/2)
+(:func:`ehdfem.exact.hertz.compression_force`, elastic: the pure EHD collision's e_dry = 1)
+and Coulomb friction of coefficient mu at the contact point: F_c = -mu F_H sign(u_s) while the
+slip u_s = U - s1 - s2 lasts; once it reaches zero it stays there to the parting (friction is
+the only tangential force in the touch, so no force is left to make the surfaces slip again:
+F_c = 0 holds it, within mu F_H). The pair's equations in the scales of
+:mod:`ehdfem.tangential.pair` (time by x0/V0, velocities by V0, forces by 6 pi mu V0 a^2 / x0,
+St and the spins' weights by the reduced mass m):
 
-    St dV/dT = -V/H_eff + F_H,         dH/dT = V,
+    St dV/dT = -V/H + F_H,         dH/dT = V,
     St dU/dT = F_1 + F_c,
     St k1 (1 + m1/m2) ds1/dT = -(G_1 + F_c),   St k2 (1 + m2/m1) ds2/dT = G_2 - F_c,
 
+(the lubrication terms for H > H_min, F_H and F_c for H < H_min)
 from H = 1, V = -1, U = tan(angle) to the exit H = 1 (e_n = V there, e_t = U / U0, the spin
 changes by U0) or the stop (the approach or the rebound halts in the layer: e_n = 0). Exact
 limits (tests/test_reduced_pair.py): the approach's V(H) = -1 + ln(1/H)/St down to H_min, the
-rebound's V_exit = V_r - ln(1/H_min)/St from the speed V_r at which it leaves H_min, the
-energy balance over both spheres, Coulomb's impulse law, Hertz's compression and contact time.
+elastic touch, and so e_n = 1 - 2 ln(1/H_min)/St (or 0), the energy balance over both spheres,
+Coulomb's impulse law, Hertz's compression and contact time.
 """
 
 from __future__ import annotations
@@ -38,7 +42,7 @@ from .resistances import entrainment_factor, normal_force, tangential_forces
 TOLERANCES = dict(rtol=1e-10, atol=1e-13)  # DOP853 on every phase
 STALL = 1e-7  # |V| below which the normal motion has stopped in the layer (by V0)
 LONGEST = 1e5  # the longest phase (by x0/V0): a motion still going then has stopped
-PHASES = 40  # at most this many phases (free flight, sliding or sticking contact)
+PHASES = 10  # at most this many phases (free flight, sliding or sticking contact)
 
 
 @dataclass(frozen=True)
@@ -115,29 +119,25 @@ class _Pair:
         self.inputs = inputs
         self.b = entrainment_factor(inputs.radius_ratio)
         self.weights = inputs.pair.spin_weights
-        self.mobility = 1.0 + 1.0 / inputs.pair.inertia_factor  # of the slip: 1 + 1/k
 
     def forces(self, y):
-        """(F_n + F_H, F_1, G_1, G_2, lubrication dissipation, F_H, slip, slip drive r)."""
+        """(F_n or F_H, F_1, (G_1, G_2), lubrication dissipation, F_H, slip): the
+        lubrication's above H_min, Hertz's below (the other terms 0)."""
         p = self.inputs
         H, V, U, s1, s2 = y[:5]
-        gap = max(H, p.minimum_gap)
-        tangential = tangential_forces(gap, p.delta, self.b, U, s1, s2)
-        hertz = compression_force(p.eps, p.minimum_gap - H) if H < p.minimum_gap else 0.0
-        drive = (
-            tangential.upper
-            + tangential.upper_turning / self.weights[0]
-            - tangential.lower_turning / self.weights[1]
-        )
-        lubrication = V**2 / gap + tangential.dissipation
-        normal = normal_force(gap, V) + hertz
+        slip = U - s1 - s2
+        if H < p.minimum_gap:
+            hertz = compression_force(p.eps, p.minimum_gap - H)
+            return hertz, 0.0, (0.0, 0.0), 0.0, hertz, slip
+        tangential = tangential_forces(H, p.delta, self.b, U, s1, s2)
+        lubrication = V**2 / H + tangential.dissipation
         turning = (tangential.upper_turning, tangential.lower_turning)
-        return normal, tangential.upper, turning, lubrication, hertz, U - s1 - s2, drive
+        return normal_force(H, V), tangential.upper, turning, lubrication, 0.0, slip
 
-    def rates(self, y, friction):
-        """dy/dT with the contact's friction rule ``friction`` (F_H, drive) -> F_c."""
-        normal, upper, turning, lubrication, hertz, slip, drive = self.forces(y)
-        contact = friction(hertz, drive)
+    def rates(self, y, sliding: float):
+        """dy/dT with the friction F_c = -mu F_H ``sliding`` (the slip's sign, 0: stuck)."""
+        normal, upper, turning, lubrication, hertz, slip = self.forces(y)
+        contact = -sliding * self.inputs.friction_coefficient * hertz
         St, (w1, w2) = self.inputs.St, self.weights
         return np.array(
             [
@@ -153,10 +153,6 @@ class _Pair:
             ]
         )
 
-    def holding_force(self, y) -> float:
-        """F_c* = -r / (1 + 1/k): the contact force that keeps the slip's rate at zero."""
-        return -self.forces(y)[6] / self.mobility
-
     def energy(self, y) -> float:
         """Kinetic energy of both spheres in the centre-of-mass frame plus Hertz's elastic
         energy (by m V0^2)."""
@@ -171,8 +167,8 @@ class _Pair:
 
 def reduced_collision(inputs: ReducedCollision) -> ReducedOutcome:
     """Integrate the reduced collision ``inputs`` (module docstring) phase by phase: free
-    flight (no contact), a sliding contact (F_c = -mu F_H sign of the slip) or a sticking one
-    (F_c = F_c*), each by DOP853 to the event that ends it (rtol 1e-10)."""
+    flight (no contact), a sliding contact (F_c = -mu F_H sign of the slip) or a stuck one
+    (F_c = 0, the slip at zero), each by DOP853 to the event that ends it (rtol 1e-10)."""
     pair = _Pair(inputs)
     y = np.array([1.0, -1.0, inputs.tangential_speed, inputs.spin, inputs.pair.lower_spin])
     y = np.concatenate((y, np.zeros(4)))
@@ -180,18 +176,19 @@ def reduced_collision(inputs: ReducedCollision) -> ReducedOutcome:
     record = dict(impact_speed=None, rebound_speed=None, contact_time=0.0, max_compression=0.0)
     stopped = False
     for _ in range(PHASES):
-        solution = _phase(pair, y, phase, sign)
+        solution, events = _phase(pair, y, phase, sign)
         y = solution.y[:, -1]
-        ended = [i for i, times in enumerate(solution.t_events) if len(times)]
+        found = zip(events, solution.t_events, strict=True)
+        ended = {event.__name__ for event, times in found if len(times)}
         if phase != "free":
             record["contact_time"] += solution.t[-1] - solution.t[0]
             turns = [z[0] for found in solution.y_events for z in found]  # V = 0 among them
             lowest = inputs.minimum_gap - min(solution.y[0].min(), *turns)
             record["max_compression"] = max(record["max_compression"], lowest)
-        if solution.status == 0 or (phase == "free" and 2 in ended):
-            stopped = True  # the longest phase passed, or the motion stalled in the layer
+        if solution.status == 0 or "stall" in ended:
+            stopped = True  # the longest phase passed, or the normal motion stalled
             break
-        if phase == "free" and 1 in ended:
+        if "leave" in ended:
             break  # left the layer
         phase, sign = _next_phase(pair, y, phase, ended, record)
     else:
@@ -200,11 +197,10 @@ def reduced_collision(inputs: ReducedCollision) -> ReducedOutcome:
 
 
 def _phase(pair: _Pair, y, phase: str, sign: float):
-    """One phase from ``y``: its friction rule and its terminal events (free: the touch, the
-    exit, the stall; sliding: the parting, the slip at zero; sticking: the parting, the
-    holding force at mu F_H), and in a touch the turn V = 0 (recorded only)."""
+    """One phase from ``y``, by DOP853 to the first of its terminal events (free: the touch,
+    the exit, the stall |V| = STALL; in contact: the parting, and while sliding the slip at
+    zero), the turn V = 0 recorded; the solution and the events."""
     p = pair.inputs
-    mu = p.friction_coefficient
 
     def touch(_, z):
         return z[0] - p.minimum_gap
@@ -212,7 +208,6 @@ def _phase(pair: _Pair, y, phase: str, sign: float):
     touch.terminal, touch.direction = True, -1.0 if phase == "free" else 1.0
     events = [touch]
     if phase == "free":
-        friction = _no_friction
 
         def leave(_, z):
             return z[0] - 1.0
@@ -223,70 +218,40 @@ def _phase(pair: _Pair, y, phase: str, sign: float):
         leave.terminal, leave.direction = True, 1.0
         stall.terminal, stall.direction = True, -1.0
         events += [leave, stall]
-    elif phase == "slide":
-
-        def friction(hertz, drive):
-            return -sign * mu * hertz
-
-        def slip_stops(_, z):
-            return z[2] - z[3] - z[4]
-
-        slip_stops.terminal, slip_stops.direction = True, -sign  # towards zero
-        events += [slip_stops] if mu > 0 else []
     else:
-
-        def friction(hertz, drive):
-            return -drive / pair.mobility
-
-        def slips(_, z):
-            return abs(pair.holding_force(z)) - mu * pair.forces(z)[4]
-
-        slips.terminal, slips.direction = True, 1.0
-        events.append(slips)
-    if phase != "free":
 
         def turn(_, z):  # the deepest compression, not terminal
             return z[1]
 
         events.append(turn)
-    return scipy.integrate.solve_ivp(
-        lambda _, z: pair.rates(z, friction),
-        (0.0, LONGEST),
-        y,
-        method="DOP853",
-        events=events,
-        **TOLERANCES,
+    sliding = sign if phase == "slide" else 0.0
+    if sliding != 0.0 and p.friction_coefficient > 0.0:
+
+        def slip_stops(_, z):
+            return z[2] - z[3] - z[4]
+
+        slip_stops.terminal, slip_stops.direction = True, -sliding  # towards zero
+        events.append(slip_stops)
+    rates = lambda _, z: pair.rates(z, sliding)  # noqa: E731
+    solution = scipy.integrate.solve_ivp(
+        rates, (0.0, LONGEST), y, method="DOP853", events=events, **TOLERANCES
     )
-
-
-def _no_friction(hertz, drive):
-    return 0.0
+    return solution, events
 
 
 def _next_phase(pair: _Pair, y, phase: str, ended, record) -> tuple[str, float]:
     """The phase after ``phase`` ended by the events ``ended`` at ``y``, and the sign of the
     slip a sliding phase opposes; records the touch and the parting speeds."""
-    if phase == "free":  # the touch
+    if phase == "free":  # the touch: slide unless the slip is already zero
         record["impact_speed"] = record["impact_speed"] or float(y[1])
-        return _contact_phase(pair, y)
-    if 0 in ended:  # the solids part
+        slip = y[2] - y[3] - y[4]
+        if abs(slip) > 1e-9 * pair.inputs.tangential_speed:
+            return "slide", float(np.sign(slip))
+        return "stick", 0.0
+    if "touch" in ended:  # the solids part
         record["rebound_speed"] = float(y[1])
         return "free", 0.0
-    if phase == "stick":  # the holding force reached mu F_H: slide the way the slip is driven
-        return "slide", float(np.sign(pair.forces(y)[6]))
-    return _contact_phase(pair, y)
-
-
-def _contact_phase(pair: _Pair, y) -> tuple[str, float]:
-    """Sliding in the slip's sign, or, at zero slip, sticking if the holding force is within
-    mu F_H, else sliding in the sign of the slip's drive."""
-    slip, drive, hertz = y[2] - y[3] - y[4], pair.forces(y)[6], pair.forces(y)[4]
-    mu = pair.inputs.friction_coefficient
-    if abs(slip) > 1e-9 * pair.inputs.tangential_speed or mu == 0.0:
-        return "slide", float(np.sign(slip))
-    if abs(pair.holding_force(y)) <= mu * hertz:
-        return "stick", 0.0
-    return "slide", float(np.sign(drive))
+    return "stick", 0.0  # the slip reached zero
 
 
 def _outcome(inputs, pair, y, start_energy, stopped, record) -> ReducedOutcome:

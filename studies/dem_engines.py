@@ -38,6 +38,7 @@ TABLE = ROOT / "studies/results/dem_engines.json"
 RUNS = ROOT / "out/dem_engines"
 REPORT = ROOT / "docs/validation.md"
 SECTION = "## DEM engines: Yade and LIGGGHTS against the full model"
+PAIR_SECTION = "## Two spheres obliquely"  # studies/pair_validation.py's section, kept after ours
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s
 RADIUS = 2e-3  # m
 CASES = {  # name: (sphere, Yade's wall (LIGGGHTS: a second sphere alike), liquid, layer [m])
@@ -490,10 +491,12 @@ def rough_figure(table):
 
 
 def write_section(table):
-    """The section "DEM engines" of docs/validation.md (replacing an earlier one): the tables
-    of errors, the figures, and what a DEM user should set."""
+    """The section "DEM engines" of docs/validation.md (replacing an earlier one, keeping the
+    pair's section after it): the tables of errors, the figures, and what a DEM user should
+    set."""
     text = REPORT.read_text()
     head = text.partition(SECTION)[0].rstrip("\n")
+    pair = "".join(text.partition(PAIR_SECTION)[1:])
     lines = [head, "", SECTION, "", *INTRODUCTION, ""]
     for engine in ENGINES:
         lines += [f"### {engine}", "", *error_table(table, engine), ""]
@@ -515,7 +518,7 @@ def write_section(table):
         "",
     ]
     lines += [*ROUGH_OBLIQUE_TEXT, "", *CONCLUSIONS, ""]
-    REPORT.write_text("\n".join(lines))
+    REPORT.write_text("\n".join(lines) + ("\n" + pair if pair else ""))
     print(f"wrote {REPORT}")
 
 

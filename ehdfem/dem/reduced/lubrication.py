@@ -112,8 +112,9 @@ class ReducedOutcome:
 
 class _Pair:
     """The equations of the module docstring; the state is (H, V, U, s1, s2, the dissipation
-    by the lubrication and by friction, Hertz's and the friction's impulse), both
-    dissipations by 6 pi mu V0^2 a^2 / x0 and the impulses by 6 pi mu V0 a^2."""
+    by the lubrication and by friction, Hertz's and the friction's impulse on sphere 1), the
+    dissipations by 6 pi mu V0 a^2 (their rates by 6 pi mu V0^2 a^2 / x0) and the impulses by
+    6 pi mu a^2, so that over St they are by m V0^2 and m V0."""
 
     def __init__(self, inputs: ReducedCollision):
         self.inputs = inputs
@@ -182,7 +183,7 @@ def reduced_collision(inputs: ReducedCollision) -> ReducedOutcome:
         ended = {event.__name__ for event, times in found if len(times)}
         if phase != "free":
             record["contact_time"] += solution.t[-1] - solution.t[0]
-            turns = [z[0] for found in solution.y_events for z in found]  # V = 0 among them
+            turns = [z[0] for located in solution.y_events for z in located]  # V = 0 among them
             lowest = inputs.minimum_gap - min(solution.y[0].min(), *turns)
             record["max_compression"] = max(record["max_compression"], lowest)
         if solution.status == 0 or "stall" in ended:

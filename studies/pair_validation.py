@@ -6,9 +6,9 @@ glycerol, at three Stokes numbers (the normal impact speed chosen to give them),
 thicknesses (x0 = 0.01 a and 0.03 a, a the reduced radius: two eps) and three angles of the
 relative impact velocity from the line of centres. For each: e_n, e_t and both spheres' spin
 changes of
-- the full model: the half-space theory of the pair with the Couette film
-  (ehdfem.tangential.pair), smooth and pure EHD (e_dry = 1), the liquid's vapour pressure as
-  its cavitation limit, the default film nodes;
+- the full model: the half-space theory of the pair with the sliding film (and with the
+  Couette film, in the CSV; ehdfem.tangential.pair), smooth and pure EHD (e_dry = 1), the
+  liquid's vapour pressure as its cavitation limit, the default film nodes;
 - the lubrication model with a fixed minimum gap h_min = 0.002 a, the cut-off 0.001 (2 a) of
   Zhang, Noda & Horio (2005) (ehdfem.dem.reduced.lubrication);
 - the same with Nijssen, Ottens & Padding's (2022) EHD film h_eps as the minimum gap
@@ -30,6 +30,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ehdfem import collide
+from ehdfem.collision import with_tangential
 from ehdfem.dem.reduced.ehd_gap import ehd_gap_collision, ehd_minimum_gap
 from ehdfem.dem.reduced.lubrication import ReducedCollision, reduced_collision
 from ehdfem.inputs.presets import liquid, material
@@ -58,8 +59,10 @@ INTRODUCTION = [
     "Most collisions of a CFD-DEM simulation are between two particles, and the codes give them "
     "a reduced wet law rather than a film. `studies/pair_validation.py` runs two of these laws "
     "(ehdfem/dem/reduced/) beside the full model of the pair (the half-space theory with the "
-    'reduced radius and mass and the Couette film on both spheres, docs/tangential.md, "Two '
-    'spheres"), on the same pairs and groups: glass-glass and steel-steel, equal (a1 = a2) and '
+    "reduced radius and mass and the sliding film of two spheres, the Couette shear of the slip "
+    'and the mode-1 pressure of the surfaces\' entrainment, docs/tangential.md, "Two spheres";'
+    " the Couette film alone is in the CSV as `couette_*`), on the same pairs and groups: "
+    "glass-glass and steel-steel, equal (a1 = a2) and "
     "unequal (a1 = 2 a2), in water (a2 = 1 mm) and pure glycerol (a2 = 10 mm), St = 5, 20, 80 by "
     "the reduced mass (the normal impact speed chosen for it; v in the table), layers x0 = 0.01 a "
     "and 0.03 a (a the reduced radius; two eps per speed), angles 15, 45 and 75 degrees from the "
@@ -88,9 +91,9 @@ INTRODUCTION = [
     "structure of a minimum-gap model, not checked against the paper's details (for instance "
     "whether it keeps a damping in the contact or takes e_dry there).",
     "",
-    "Both reduced laws are checked against exact limits in tests/test_reduced_pair.py: the "
-    "resistances against Jeffrey & Onishi's logarithms for a2/a1 = 0.25-10, Goldman, Cox & "
-    "Brenner's at a wall and reciprocity (symmetric and positive); the approach "
+    "Both reduced laws are checked against exact limits in tests/test_reduced_pair.py: their "
+    "tangential forces are Jeffrey & Onishi's logarithmic resistances of the pair "
+    "(`ehdfem.exact.sphere_pair`, tested in tests/test_pair_resistance.py); the approach "
     "V(H) = -1 + ln(1/H)/St, so e_n = 1 - 2 ln(1/H_min)/St or a stop (1e-11); Hertz's compression "
     "(2e-11) and contact time (Johnson's three digits); the energy over both spheres (3e-10); "
     "Coulomb's impulse law (1e-14) and the rolling exit 5/7 of a sticking equal pair; and H_eps "
@@ -192,16 +195,22 @@ def pair_at(name: str, fluid: str, ratio: float, St: float, layer: float, angle:
 
 
 def full_model(pair: PhysicalPair) -> dict:
-    """e_n, e_t and both spin changes of the full model, and its thinnest film (by x0)."""
-    result = collide(pair.dimensionless(), **pair.lower_settings())
-    tangential = result.tangential
-    return dict(
-        e_n=result.normal.e_n,
-        e_t=tangential.e_t,
-        upper_spin_change=tangential.spin_change,
-        lower_spin_change=tangential.pair.lower_spin_change,
-        film=result.normal.min_film_thickness,
-    )
+    """e_n, e_t and both spin changes of the full model with the sliding film ("full_") and
+    with the Couette film ("couette_"), and its thinnest film (by x0)."""
+    result = collide(pair.dimensionless(), tangential="lubrication", **pair.lower_settings())
+    couette = with_tangential(result, "couette")
+    outcome = dict(full_film=result.normal.min_film_thickness)
+    for name, run in (("full", result), ("couette", couette)):
+        tangential = run.tangential
+        outcome.update(
+            {
+                f"{name}_e_n": run.normal.e_n,
+                f"{name}_e_t": tangential.e_t,
+                f"{name}_upper_spin_change": tangential.spin_change,
+                f"{name}_lower_spin_change": tangential.pair.lower_spin_change,
+            }
+        )
+    return outcome
 
 
 def reduced_models(pair: PhysicalPair) -> dict:
@@ -242,10 +251,10 @@ def point(name, fluid, ratio, St, layer, angle) -> dict:
     full = full_model(pair)
     row = dict(
         material=name, liquid=fluid, radius_ratio=ratio, St=St, layer=layer, angle=angle,
-        speed=pair.speed, eps=params.eps, full_film=full["film"],
+        speed=pair.speed, eps=params.eps, full_film=full.pop("full_film"),
         fixed_gap=FIXED_GAP / layer, ehd_gap=ehd_minimum_gap(params.eps),
     )  # fmt: skip
-    row.update({f"full_{key}": full[key] for key in OUTPUTS})
+    row.update(full)
     for model, outcome in reduced_models(pair).items():
         row.update({f"{model}_{key}": getattr(outcome, key) for key in OUTPUTS})
     return row

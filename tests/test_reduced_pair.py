@@ -1,8 +1,8 @@
 """The reduced CFD-DEM models of a pair (ehdfem.dem.reduced; docs/validation.md, "Two spheres
 obliquely: the reduced CFD-DEM models") against exact results:
-- the lubrication resistances against Jeffrey & Onishi's (1984) logarithmic terms of two
-  spheres of any size ratio, Goldman, Cox & Brenner's (1967) of a sphere near a wall, and
-  Lorentz reciprocity (a symmetric, positive resistance);
+- the tangential lubrication forces as Jeffrey & Onishi's (1984) logarithmic resistances of
+  the pair (ehdfem.exact.sphere_pair, tested in tests/test_pair_resistance.py), the torques
+  as forces at the contact point;
 - the approach and the rebound through the lubrication force against their closed forms
   V(H) = -1 + ln(1/H)/St and V_exit = V_r - ln(1/H_min)/St, the stop when St < ln(1/H_min);
 - the touch against Hertz's compression and contact time;
@@ -21,9 +21,9 @@ import pytest
 from ehdfem.checks import InputError
 from ehdfem.dem.reduced.ehd_gap import ehd_film_thickness, ehd_gap_collision, ehd_minimum_gap
 from ehdfem.dem.reduced.lubrication import ReducedCollision, reduced_collision
-from ehdfem.dem.reduced.resistances import entrainment_factor, tangential_forces
+from ehdfem.dem.reduced.resistances import tangential_forces
 from ehdfem.exact.hertz import contact_time, max_compression
-from ehdfem.exact.sliding_sphere import LOGARITHMIC
+from ehdfem.exact.sphere_pair import pair_logarithmic
 from ehdfem.inputs.presets import liquid, material
 from ehdfem.inputs.scales import PhysicalPair
 from ehdfem.tangential.pair import SpherePair
@@ -34,41 +34,25 @@ UNEQUAL = dict(radius_ratio=0.5, pair=SpherePair(mass_ratio=0.5**3 / 1.3, upper_
                                                  lower_inertia=2 / 3, lower_spin=0.2))  # fmt: skip
 
 
-def resistance(radius_ratio: float, delta=0.01, gap=0.1) -> np.ndarray:
-    """The matrix R with (F_1, -G_1, G_2) = -R (U, s1, s2) by delta ln(a/h), column by column
-    (the generalised forces conjugate to U, s1, s2: their power is F_1 U - G_1 s1 + G_2 s2)."""
-    b, scale = entrainment_factor(radius_ratio), delta * math.log(1.0 / (delta * gap))
-    columns = []
-    for unit in np.eye(3):
-        f = tangential_forces(gap, delta, b, *unit)
-        columns.append(-np.array([f.upper, -f.upper_turning, f.lower_turning]) / scale)
-    return np.array(columns).T
-
-
-@pytest.mark.parametrize("beta", [0.25, 1.0, 3.0, 10.0])
-def test_resistances_are_jeffrey_and_onishis_logarithms(beta):
-    """Sphere 1 moving or spinning, sphere 2 (a2 = beta a1) at rest: the log coefficients of
-    Y^A_11 = 4 beta (2 + beta + 2 beta^2) / (15 (1 + beta)^3) (force by 6 pi mu a1 U),
-    Y^B_11 = beta (4 + beta) / (5 (1 + beta)^2) (torque by 4 pi mu a1^2 U) and
-    Y^C_11 = (2/5) beta / (1 + beta) (torque by 8 pi mu a1^3 Omega1), with a = a1 beta/(1 +
-    beta); the resistance is symmetric (reciprocity) and positive semi-definite."""
-    R = resistance(1.0 / beta)
-    reduced = beta / (1.0 + beta)  # a / a1
-    translation = 4.0 * beta * (2.0 + beta + 2.0 * beta**2) / (15.0 * (1.0 + beta) ** 3)
-    coupling = beta * (4.0 + beta) / (5.0 * (1.0 + beta) ** 2)
-    rotation = 0.4 * beta / (1.0 + beta)
-    assert R[0, 0] * reduced == pytest.approx(translation, rel=ROUNDING)
-    assert abs(R[1, 0]) * reduced * 1.5 == pytest.approx(coupling, rel=ROUNDING)
-    assert R[1, 1] * reduced * 0.75 == pytest.approx(rotation, rel=ROUNDING)
-    assert R == pytest.approx(R.T, abs=ROUNDING)
-    assert np.linalg.eigvalsh(R).min() > -ROUNDING
-
-
-def test_resistances_tend_to_goldman_cox_brenner_at_a_wall():
-    """a2/a1 -> inf: on (U, s1) the resistance is Goldman, Cox & Brenner's ln(a/h) M (the
-    torque over a, ehdfem.exact.sliding_sphere), to first order in a1/a2 (1e-9 at 1e-9)."""
-    R = resistance(1e-9)
-    assert R[:2, :2] == pytest.approx(LOGARITHMIC, abs=1e-8)
+def test_tangential_forces_are_the_pairs_resistances_at_the_contact():
+    """The forces on (U, s1, s2) are -delta ln(1/(delta H)) R v, R Jeffrey & Onishi's
+    (ehdfem.exact.sphere_pair), the torques as forces at the contact point (G_1 = -T_1/a1,
+    G_2 = T_2/a2) and the power v.R v; for equal spheres that turn alike (w = 0) every force
+    is the Couette shear of the slip at the contact point: F_1 = G_1 = -G_2."""
+    velocities = np.array([0.7, -0.2, 0.4])
+    R = pair_logarithmic(0.5)
+    forces = tangential_forces(0.1, 0.01, R, velocities)
+    scale = 0.01 * math.log(1.0 / 0.001)
+    generalised = -scale * R @ velocities
+    assert forces.upper == pytest.approx(generalised[0], rel=ROUNDING)
+    assert forces.upper_turning == pytest.approx(-generalised[1], rel=ROUNDING)
+    assert forces.lower_turning == pytest.approx(generalised[2], rel=ROUNDING)
+    assert forces.dissipation == pytest.approx(scale * velocities @ R @ velocities, rel=ROUNDING)
+    equal = tangential_forces(0.1, 0.01, pair_logarithmic(1.0), np.array([0.7, 0.3, 0.3]))
+    couette = -scale * (0.7 - 0.6) / 3.0
+    assert equal.upper == pytest.approx(couette, rel=ROUNDING)
+    assert equal.upper_turning == pytest.approx(couette, rel=ROUNDING)
+    assert equal.lower_turning == pytest.approx(-couette, rel=ROUNDING)
 
 
 def test_approach_and_rebound_follow_the_lubrication_logarithm():

@@ -527,7 +527,9 @@ class PhysicalPair:
     lower material (docs/tangential.md, "Two spheres"): :meth:`equivalent` is that sphere's
     :class:`PhysicalCollision` (theta of both materials, so that 1/E* = pi theta), and
     :meth:`lower_settings` the lower sphere's run settings (``lower="sphere"``, a1/a2,
-    rho2/rho1, k2), for :func:`ehdfem.collision.collide` with :meth:`dimensionless`."""
+    rho2/rho1, k2), for :func:`ehdfem.collision.collide` with :meth:`dimensionless`. Two
+    materials enter the groups through theta alone; the sliding film's mode-1 elasticity takes
+    the pair's half-spaces as identical solids (docs/tangential.md, "Two spheres")."""
 
     upper_radius: float
     lower_radius: float

@@ -36,8 +36,9 @@ import scipy.integrate
 
 from ... import checks
 from ...exact.hertz import compression_force
+from ...exact.sphere_pair import pair_logarithmic
 from ...tangential.pair import SpherePair
-from .resistances import entrainment_factor, normal_force, tangential_forces
+from .resistances import normal_force, tangential_forces
 
 TOLERANCES = dict(rtol=1e-10, atol=1e-13)  # DOP853 on every phase
 STALL = 1e-7  # |V| below which the normal motion has stopped in the layer (by V0)
@@ -118,7 +119,7 @@ class _Pair:
 
     def __init__(self, inputs: ReducedCollision):
         self.inputs = inputs
-        self.b = entrainment_factor(inputs.radius_ratio)
+        self.resistance = pair_logarithmic(inputs.radius_ratio)
         self.weights = inputs.pair.spin_weights
 
     def forces(self, y):
@@ -130,7 +131,7 @@ class _Pair:
         if H < p.minimum_gap:
             hertz = compression_force(p.eps, p.minimum_gap - H)
             return hertz, 0.0, (0.0, 0.0), 0.0, hertz, slip
-        tangential = tangential_forces(H, p.delta, self.b, U, s1, s2)
+        tangential = tangential_forces(H, p.delta, self.resistance, np.array([U, s1, s2]))
         lubrication = V**2 / H + tangential.dissipation
         turning = (tangential.upper_turning, tangential.lower_turning)
         return normal_force(H, V), tangential.upper, turning, lubrication, 0.0, slip

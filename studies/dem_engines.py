@@ -38,7 +38,8 @@ TABLE = ROOT / "studies/results/dem_engines.json"
 RUNS = ROOT / "out/dem_engines"
 REPORT = ROOT / "docs/validation.md"
 SECTION = "## DEM engines: Yade and LIGGGHTS against the full model"
-PAIR_SECTION = "## Two spheres obliquely"  # studies/pair_validation.py's section, kept after ours
+# studies/pair_validation.py's section, kept after ours
+PAIR_SECTION = "## Two spheres obliquely: the reduced CFD-DEM models beside the full model"
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s
 RADIUS = 2e-3  # m
 CASES = {  # name: (sphere, Yade's wall (LIGGGHTS: a second sphere alike), liquid, layer [m])

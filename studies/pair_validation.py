@@ -18,7 +18,7 @@ again without friction.
 Writes studies/results/pair_validation.csv (every point), studies/results/pair_validation.md
 (the table at 45 deg and the largest differences over all angles) and the section "Two spheres
 obliquely" at the end of docs/validation.md (replacing an earlier one). Run: .venv/bin/python
-studies/pair_validation.py (about four minutes on one core); with the CSV present it only
+studies/pair_validation.py (171 s CPU measured); with the CSV present it only
 rewrites the tables and the section from it, ``--rerun`` computes every point again.
 """
 
@@ -86,7 +86,7 @@ INTRODUCTION = [
     "normal impact speed, 1/E* = sum (1 - nu^2)/E; scaled, H_eps = 0.37 (pi eps/4)^(2/5), the "
     "Davis, Serayssol & Hinch (1986) scaling x0 eps^(2/5) of the thinnest film. The paper's own "
     "text could not be obtained here: the formula is the one the project already compares with "
-    'its thinnest film (docs/studies.md, "Roughness"), and the law around it (the lubrication '
+    'its thinnest film (docs/studies.md, "Rough surfaces"), and the law around it (the lubrication '
     "cut off at h_eps, an elastic Hertz contact and Coulomb friction below it) is the standard "
     "structure of a minimum-gap model, not checked against the paper's details (for instance "
     "whether it keeps a damping in the contact or takes e_dry there).",
@@ -140,28 +140,30 @@ ANALYSIS = [
     "cavitation) and stores energy in the solids through the film without any touch.",
     "- **The tangential outcome is the dry contact's, not the film's.** A smooth EHD film never "
     "lets the solids touch, so the full model's e_t is 0.987-1.000 and its spin changes "
-    "4e-5 to 0.028 (the film's Couette shear, of order delta ln): only the stopped steel pairs in "
-    "glycerol turn more (e_t 0.895-0.93). Both reduced laws touch at every rebound and the "
+    "4e-5 to 0.028 (the film's shear, of order delta ln): only the stopped steel pairs in "
+    "glycerol turn more (e_t 0.89-0.93). Both reduced laws touch at every rebound and the "
     "friction sets e_t: 1 - e_t = mu (1 + e) |V_c| / tan(angle) while the contact slides, capped "
     "at the rolling exit 1 - 1/(1 + k) (e_t = 5/7 for solid spheres, reached at 15 degrees), so "
     "e_t = 0.71-0.96 and spin changes of 0.01-0.63 against the full model's 1e-3: a difference "
     "of up to 0.36 in e_t and 0.63 in the small sphere's spin change. That is right for rough "
     "surfaces whose asperities touch (the full model with roughness and friction, "
-    'docs/tangential.md, "Friction"), and wrong for a smooth film.',
+    'docs/tangential.md, "Coulomb friction of the solid contact"), and wrong for a smooth film.',
     "- **The tangential lubrication itself is of the right order.** Without friction "
     "(`*_frictionless` in the CSV) the reduced laws' 1 - e_t (4e-4 to 3e-2 when they rebound) is "
-    "within a factor of 0.1-10 of the full model's film shear: close in water at St 80 (4e-4 "
-    "against 2e-4), larger for the EHD gap at St 20 (the rigid approach lingers at gaps near "
-    "h_eps: 1 - e_t 4e-3-3e-2 against 6e-4-2e-3) and ten times smaller in glycerol at St 80 (4e-4 "
+    "within a factor of 0.1-10 of the full model's film shear: close in water at St 80 "
+    "(4e-4-1.4e-3 against 1e-4-4e-4), larger for the EHD gap at St 20 (the rigid approach "
+    "lingers at gaps near h_eps: 1 - e_t 4e-3-3e-2 against 6e-4-2e-3) and ten times smaller in "
+    "glycerol at St 80 (4e-4 "
     "against 4.6e-3), where the full film stays thin and flat over the long contact while the "
     "reduced laws switch the lubrication off during the touch. How the turning is split "
-    "between unequal spheres differs: the full model's Couette film and the reduced laws' "
-    "friction act at the contact point on the slip, so each sphere takes its inertia share (the "
-    "smaller sphere of a1 = 2 a2 turns 8 times more); the reduced laws' lubrication also has the "
-    "pressure of the entrainment (Jeffrey & Onishi's w/5 terms), which turns the spheres "
-    "unequally (ratios 3.1-7.8 in the frictionless runs). The full pair model leaves that "
-    'pressure out, since its sliding film is not built for a pair (docs/tangential.md, "Two '
-    'spheres"): on this point the reduced laws carry a term the full model lacks.',
+    "between unequal spheres: the Couette film and the reduced laws' friction act at the contact "
+    "point on the slip, so each sphere takes its inertia share (the smaller sphere of "
+    "a1 = 2 a2 turns 8 times more; the CSV's `couette_*`); the sliding film and the reduced "
+    "laws' lubrication also carry the pressure of the surfaces' entrainment (Jeffrey & Onishi's "
+    "w/5 terms), which turns the spheres unequally: 6.4-7.6 times more in the full model (its "
+    "pressure spread over the flattened film), 5.1-5.3 in the frictionless reduced laws (the "
+    "rigid logarithm's weights). The entrainment moves the full model's e_t by at most 2e-3 "
+    "from the Couette film's.",
     "- **Stopped pairs** (e_n = 0) are not compared tangentially: the full model's tangential "
     "motion ends at its stop, the reduced laws run until the normal motion has stalled in the "
     "layer (|V| < 1e-7 V0), still shearing at small gaps (the fixed gap's 1 - e_t of 0.21-0.26 at "
@@ -172,7 +174,8 @@ ANALYSIS = [
     "not its shape, so it dissipates too much at moderate St and misses the elastic rebounds at "
     "small St; and both put a dry, frictional touch into every collision, which sets their e_t "
     "and spins, where a smooth EHD film has none. LIGGGHTS's two-sphere law was not run "
-    'obliquely here (its comparison stays head-on, "DEM engines" above).',
+    "beside these laws; its oblique comparison with the full model of rough pairs is the "
+    'section "Two spheres obliquely: LIGGGHTS" above.',
     "",
 ]
 

@@ -225,8 +225,8 @@ def reduced_models(pair: PhysicalPair) -> dict:
     inputs = ReducedCollision(
         St=params.St, eps=params.eps, delta=params.delta, angle=params.angle,
         minimum_gap=FIXED_GAP / params.delta, friction_coefficient=FRICTION,
-        radius_ratio=pair.upper_radius / pair.lower_radius,
-        pair=SpherePair(m1 / m2, pair.upper_inertia_factor, pair.lower_inertia_factor),
+        pair=SpherePair(m1 / m2, pair.upper_inertia_factor, pair.lower_inertia_factor,
+                        radius_ratio=pair.upper_radius / pair.lower_radius),
     )  # fmt: skip
     frictionless = replace(inputs, friction_coefficient=0.0)
     return dict(

@@ -30,8 +30,8 @@ from ehdfem.tangential.pair import SpherePair
 
 ROUNDING = 1e-12
 INTEGRATION = 1e-9  # DOP853 at rtol 1e-10 over a collision: measured errors below 2e-10
-UNEQUAL = dict(radius_ratio=0.5, pair=SpherePair(mass_ratio=0.5**3 / 1.3, upper_inertia=0.4,
-                                                 lower_inertia=2 / 3, lower_spin=0.2))  # fmt: skip
+UNEQUAL = dict(pair=SpherePair(mass_ratio=0.5**3 / 1.3, upper_inertia=0.4, lower_inertia=2 / 3,
+                                lower_spin=0.2, radius_ratio=0.5))  # fmt: skip
 
 
 def test_tangential_forces_are_the_pairs_resistances_at_the_contact():

@@ -52,9 +52,9 @@ class ReducedCollision:
     ``eps`` 4 theta mu V0 a^(3/2) / x0^(5/2) by the reduced radius a and mass m (> 0),
     ``delta`` x0/a in (0, 1), ``angle`` of the relative impact velocity from the line of
     centres in (0, 90) deg, ``minimum_gap`` H_min = h_min/x0 in (0, 1), the solids'
-    ``friction_coefficient`` mu >= 0, ``radius_ratio`` a1/a2 > 0, the partner ``pair``
-    (:class:`ehdfem.tangential.pair.SpherePair`: m1/m2, k1, k2, s2(0) = a2 Omega2 / V0) and
-    the upper sphere's initial ``spin`` s1(0) = a1 Omega1 / V0."""
+    ``friction_coefficient`` mu >= 0, the partner ``pair``
+    (:class:`ehdfem.tangential.pair.SpherePair`: m1/m2, k1, k2, s2(0) = a2 Omega2 / V0, a1/a2)
+    and the upper sphere's initial ``spin`` s1(0) = a1 Omega1 / V0."""
 
     St: float
     eps: float
@@ -62,7 +62,6 @@ class ReducedCollision:
     angle: float
     minimum_gap: float
     friction_coefficient: float = 0.0
-    radius_ratio: float = 1.0
     pair: SpherePair = field(default_factory=lambda: SpherePair(1.0, 0.4, 0.4))
     spin: float = 0.0
 
@@ -75,7 +74,6 @@ class ReducedCollision:
             "minimum_gap", self.minimum_gap, lower=0.0, upper=1.0, lower_open=True, upper_open=True
         )
         checks.number("friction_coefficient", self.friction_coefficient, lower=0.0)
-        checks.positive("radius_ratio", self.radius_ratio)
         checks.number("spin", self.spin)
         if not isinstance(self.pair, SpherePair):
             raise checks.InputError(f"pair must be a SpherePair, got {self.pair!r}", "pair")
@@ -119,7 +117,7 @@ class _Pair:
 
     def __init__(self, inputs: ReducedCollision):
         self.inputs = inputs
-        self.resistance = pair_logarithmic(inputs.radius_ratio)
+        self.resistance = pair_logarithmic(inputs.pair.radius_ratio)
         self.weights = inputs.pair.spin_weights
 
     def forces(self, y):

@@ -31,6 +31,7 @@ from ehdfem.dem.engines.compare import (  # noqa: E402
     engine_law,
     full_model_collision,
 )
+from ehdfem.study.report import replace_section  # noqa: E402
 from ehdfem.study.sweep import write_atomic  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -38,8 +39,8 @@ TABLE = ROOT / "studies/results/dem_engines.json"
 RUNS = ROOT / "out/dem_engines"
 REPORT = ROOT / "docs/validation.md"
 SECTION = "## DEM engines: Yade and LIGGGHTS against the full model"
+LITERATURE_END = "## Sources whose numbers could not be obtained"  # studies/validation.py's last
 # studies/pair_validation.py's section, kept after ours
-PAIR_SECTION = "## Two spheres obliquely: the reduced CFD-DEM models beside the full model"
 SPEEDS = (0.15, 0.3, 0.6, 1.2, 2.4)  # m/s
 RADIUS = 2e-3  # m
 CASES = {  # name: (sphere, Yade's wall (LIGGGHTS: a second sphere alike), liquid, layer [m])
@@ -492,13 +493,9 @@ def rough_figure(table):
 
 
 def write_section(table):
-    """The section "DEM engines" of docs/validation.md (replacing an earlier one, keeping the
-    pair's section after it): the tables of errors, the figures, and what a DEM user should
-    set."""
-    text = REPORT.read_text()
-    head = text.partition(SECTION)[0].rstrip("\n")
-    pair = "".join(text.partition(PAIR_SECTION)[1:])
-    lines = [head, "", SECTION, "", *INTRODUCTION, ""]
+    """The section "DEM engines" of docs/validation.md (replacing an earlier one, the other
+    sections kept): the tables of errors, the figures, and what a DEM user should set."""
+    lines = [*INTRODUCTION, ""]
     for engine in ENGINES:
         lines += [f"### {engine}", "", *error_table(table, engine), ""]
         lines += [f"![{engine}](figures/dem_engines_{engine}.png)", ""]
@@ -519,7 +516,7 @@ def write_section(table):
         "",
     ]
     lines += [*ROUGH_OBLIQUE_TEXT, "", *CONCLUSIONS, ""]
-    REPORT.write_text("\n".join(lines) + ("\n" + pair if pair else ""))
+    replace_section(REPORT, SECTION, lines, after=LITERATURE_END)
     print(f"wrote {REPORT}")
 
 

@@ -21,6 +21,7 @@ from pathlib import Path
 
 from ehdfem import collide, from_presets
 from ehdfem.dem.engines.compare import compare, engine_law, full_model_collision
+from ehdfem.study.report import replace_section
 from ehdfem.study.sweep import write_atomic
 from ehdfem.tangential.compliant_contact import mindlin_stiffness_ratio
 
@@ -29,7 +30,7 @@ TABLE = ROOT / "studies/results/liggghts_oblique.json"
 RUNS = ROOT / "out/liggghts_oblique"
 REPORT = ROOT / "docs/validation.md"
 SECTION = "## Two spheres obliquely: LIGGGHTS"
-NEXT = "## DEM engines: Yade and LIGGGHTS against the full model"  # the section that follows
+AFTER = "## Two spheres obliquely: the reduced CFD-DEM models beside the full model"
 RADIUS, LAYER, ROUGHNESS, FRICTION = 2e-3, 2e-5, 0.5e-6, 0.1  # m, m, m (each sphere), -
 MATERIALS = ("glass", "steel")
 LIQUIDS = ("water", "glycerol_80")
@@ -107,7 +108,7 @@ TEXT = [
     'compliance kappa = 4 G*/E* ("compliant", Mindlin-Deresiewicz by the method of '
     "dimensionality reduction, docs/tangential.md; 0.87 for glass, 0.84 for steel); LIGGGHTS's "
     "smallest gap is 3 sigma (the setting `ehdfem dem` takes from the roughness, docs "
-    '"DEM engines" below). e_t is the relative tangential velocity '
+    '"DEM engines" above). e_t is the relative tangential velocity '
     "of the centres at exit over its value at first touch, the spin change sphere 1's "
     'a (Omega - Omega0) / U0 (sphere 2 takes the same: docs/tangential.md, "Two spheres"). '
     "LIGGGHTS's velocities are split along the line of centres as it stands at exit (it turns "
@@ -118,16 +119,9 @@ TEXT = [
 
 
 def write_section(table) -> None:
-    """The section of docs/validation.md (replacing an earlier one), placed before NEXT."""
-    text = REPORT.read_text()
-    if SECTION in text:
-        head, _, rest = text.partition(SECTION)
-        rest = rest[rest.index(NEXT) :]
-    else:
-        head, _, rest = text.partition(NEXT)
-        rest = NEXT + rest
-    lines = [SECTION, "", *TEXT, "", *rows(table), "", *FINDINGS, "", ""]
-    write_atomic(REPORT, head + "\n".join(lines) + rest)
+    """The section of docs/validation.md after the reduced pair models' (replacing an earlier
+    one, the other sections kept)."""
+    replace_section(REPORT, SECTION, [*TEXT, "", *rows(table), "", *FINDINGS], after=AFTER)
     print(f"wrote {REPORT}")
 
 

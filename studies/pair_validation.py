@@ -35,6 +35,7 @@ from ehdfem.dem.reduced.ehd_gap import ehd_gap_collision, ehd_minimum_gap
 from ehdfem.dem.reduced.lubrication import ReducedCollision, reduced_collision
 from ehdfem.inputs.presets import liquid, material
 from ehdfem.inputs.scales import PhysicalPair, reduced_mass, reduced_radius
+from ehdfem.study.report import replace_section
 from ehdfem.study.sweep import write_atomic
 from ehdfem.tangential.pair import SpherePair
 
@@ -43,6 +44,7 @@ CSV = ROOT / "studies/results/pair_validation.csv"
 MARKDOWN = ROOT / "studies/results/pair_validation.md"
 REPORT = ROOT / "docs/validation.md"
 SECTION = "## Two spheres obliquely: the reduced CFD-DEM models beside the full model"
+DEM_ENGINES = "## DEM engines: Yade and LIGGGHTS against the full model"  # the section before
 MATERIALS = ("glass", "steel")
 RATIOS = (1.0, 2.0)  # a1/a2
 LOWER_RADII = {"water": 1e-3, "glycerol": 10e-3}  # a2 [m]: St of order 10 at speeds below 10 m/s
@@ -176,7 +178,7 @@ ANALYSIS = [
     "small St; and both put a dry, frictional touch into every collision, which sets their e_t "
     "and spins, where a smooth EHD film has none. LIGGGHTS's two-sphere law was not run "
     "beside these laws; its oblique comparison with the full model of rough pairs is the "
-    'section "Two spheres obliquely: LIGGGHTS" above.',
+    'section "Two spheres obliquely: LIGGGHTS" below.',
     "",
 ]
 
@@ -330,10 +332,10 @@ def read() -> list[dict]:
 
 
 def write_section(tables: str) -> None:
-    """The section SECTION at the end of docs/validation.md (replacing an earlier one)."""
-    head = REPORT.read_text().partition(SECTION)[0].rstrip("\n")
-    lines = [head, "", SECTION, "", *INTRODUCTION, "", tables, *ANALYSIS]
-    REPORT.write_text("\n".join(lines))
+    """The section SECTION of docs/validation.md after the DEM engines' (replacing an earlier
+    one, the other sections kept)."""
+    lines = [*INTRODUCTION, "", tables, *ANALYSIS]
+    replace_section(REPORT, SECTION, lines, after=DEM_ENGINES)
     print(f"wrote {REPORT}")
 
 

@@ -10,6 +10,10 @@ import ast
 import re
 from pathlib import Path
 
+import pytest
+
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
 
 # Bottom to top. A module may import from its own package and from the layers below.

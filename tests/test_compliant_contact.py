@@ -33,6 +33,8 @@ from ehdfem.tangential.compliant_contact import (
     mindlin_stiffness_ratio,
 )
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 SPHERE_NU = 0.3
 KAPPA = 2 * (1 - SPHERE_NU) / (2 - SPHERE_NU)  # identical solids, nu = 0.3: 0.8235
 K = 0.4  # a solid sphere

@@ -19,6 +19,8 @@ from ehdfem.bounce.unsteady import (
     wall_added_mass,
 )
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 # a 3 mm sphere in a 10 cSt oil: a^2 / nu = 0.233 s
 RADIUS, VISCOSITY, DENSITY = 1.5e-3, 9.35e-3, 935.0
 NU = VISCOSITY / DENSITY

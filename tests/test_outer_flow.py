@@ -33,6 +33,8 @@ from ehdfem.outputs.plausibility import ResultRangeWarning
 from ehdfem.solids.compliance import RigidSolids
 from ehdfem.tangential.motion import solve_tangential
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 IMMERSED = dict(St=20.0, eps=1e-3, delta=0.01, layer="immersed", angle=30.0, p_cav=-10.0)
 
 

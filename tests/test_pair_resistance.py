@@ -21,6 +21,8 @@ from ehdfem.exact.sphere_pair import (
     translation_log,
 )
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 ROUNDING = 1e-14  # O(1) numbers from a few operations
 RATIOS = [1.0, 0.8, 1.25, 3.0, 0.05, 40.0]  # a1/a2
 

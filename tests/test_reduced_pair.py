@@ -28,6 +28,8 @@ from ehdfem.inputs.presets import liquid, material
 from ehdfem.inputs.scales import PhysicalPair
 from ehdfem.tangential.pair import SpherePair
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 ROUNDING = 1e-12
 INTEGRATION = 1e-9  # DOP853 at rtol 1e-10 over a collision: measured errors below 2e-10
 UNEQUAL = dict(pair=SpherePair(mass_ratio=0.5**3 / 1.3, upper_inertia=0.4, lower_inertia=2 / 3,

@@ -20,6 +20,8 @@ from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.solids.halfspace import IDENTICAL_SOLIDS, HalfSpaceCompliance, shear_coefficient
 
+pytestmark = pytest.mark.serial  # no parallel path: the MPI pass leaves it out
+
 
 def _integral(function, gap):
     return quad(function, gap, 1.0, epsabs=1e-13, epsrel=1e-12)[0]

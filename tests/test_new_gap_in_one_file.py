@@ -16,10 +16,10 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import pytest
+from small_collision import COMMAND, RUN, SMALL, collide_small
 
 from ehdfem.cli.main import main
-from ehdfem.collision import collide
-from ehdfem.config import RunConfig, read_inputs
+from ehdfem.config import read_inputs
 from ehdfem.exact import rigid_film
 from ehdfem.film import gap
 from ehdfem.film.grid import radial_grid
@@ -82,16 +82,6 @@ def registered():
     gap.GAPS.unregister(SHARPER)
 
 
-SMALL = {"St": 4.0, "eps": 1e-3, "angle": 30.0}
-RUN = ["--nodes", "60"]
-
-
-def collide_small(**values):
-    return collide(
-        CollisionParameters.from_settings(**SMALL, **values), RunConfig.from_settings(nodes=60)
-    )
-
-
 @pytest.mark.slow
 def test_the_new_gap_stops_a_rigid_sphere_at_the_scaled_exact_gap():
     """rho = 1/2, St = 1: the rigid sphere stops at the paraboloid's stopping gap of St = 4
@@ -128,7 +118,7 @@ def test_flag_and_from_round_trip(tmp_path):
     bit."""
     first, again = tmp_path / "first.json", tmp_path / "again.json"
     flags = ["--gap", SHARPER, "--gap-radius-ratio", "0.7"]
-    command = ["collide", "--St", "4", "--eps", "1e-3", "--angle", "30", *flags, *RUN]
+    command = [*COMMAND, *flags, *RUN]
     assert main([*command, "--json", str(first)]) == 0
     written = json.loads(first.read_text())
     direct = collide_small(gap=SHARPER, gap_radius_ratio=0.7)

@@ -14,10 +14,10 @@ from typing import ClassVar
 import numpy as np
 import pytest
 from scipy.integrate import quad
+from small_collision import COMMAND, RUN, collide_small
 
 from ehdfem.cli.main import main
-from ehdfem.collision import collide
-from ehdfem.config import RunConfig, read_inputs
+from ehdfem.config import read_inputs
 from ehdfem.film import cavitation, viscosity
 from ehdfem.film.cavitation import NO_LIMIT, Truncation, Unlimited
 from ehdfem.film.grid import radial_grid
@@ -125,16 +125,6 @@ def registered():
     cavitation.MODELS.unregister(SUCTION)
 
 
-SMALL = {"St": 4.0, "eps": 1e-3, "angle": 30.0}
-RUN = ["--nodes", "60"]
-
-
-def collide_small(**values):
-    return collide(
-        CollisionParameters.from_settings(**SMALL, **values), RunConfig.from_settings(nodes=60)
-    )
-
-
 def exact_linear_force(gap, velocity, beta):
     """Thin-layer rigid sphere: the reduced pressure q = int_0^P mu0/mu dp = ln(1 + beta P) /
     beta obeys the constant-viscosity film, q = -3 V (1/H^2 - 1), so P = (exp(beta q) - 1) /
@@ -212,7 +202,7 @@ def test_flags_and_from_round_trip(flags, values, tmp_path, capsys):
     bit, its JSON names the component and its constant, `collide --from` on that JSON runs it
     again bit for bit, and a constant of the new component with another one is warned of."""
     first, again = tmp_path / "first.json", tmp_path / "again.json"
-    command = ["collide", "--St", "4", "--eps", "1e-3", "--angle", "30", *flags, *RUN]
+    command = [*COMMAND, *flags, *RUN]
     assert main([*command, "--json", str(first)]) == 0
     written = json.loads(first.read_text())
     direct = collide_small(**values)

@@ -135,7 +135,7 @@ def script(collision: PhysicalCollision, law: LiggghtsLaw) -> str:
     """The LIGGGHTS input of ``collision`` with ``law`` (SI)."""
     check_equal_spheres(collision)
     r, x0, v0 = collision.radius, collision.layer_thickness, collision.normal_speed
-    u0 = collision.normal_speed * math.tan(math.radians(collision.angle))
+    u0 = collision.tangential_speed
     material = collision.sphere
     dt = law.liggghts_time_step * hertz_contact_time(collision)
     duration = LAYER_TIMES * x0 / v0 + 10.0 * hertz_contact_time(collision)
@@ -203,7 +203,7 @@ def rebound_of_history(history: np.ndarray, collision: PhysicalCollision) -> dic
     out = np.flatnonzero((gap[touched:] >= x0) & (velocity[touched:] > 0.0))
     rebounded = out.size > 0
     end = touched + out[0] if rebounded else len(gap) - 1
-    u0 = v0 * math.tan(math.radians(collision.angle))
+    u0 = collision.tangential_speed
     oblique = u0 > 0.0
     spin = history[:, 5]
     return {

@@ -44,7 +44,7 @@ displacement and of the shear opening is left out.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import partial
+from functools import cache, partial
 
 import numpy as np
 
@@ -317,13 +317,7 @@ class ImplicitStep:
     def _newton_update(self, it: _Iterate, step, a0, fill):
         """(dP, d theta, dX, dV) from the (possibly reused) factorisation; the rows and columns
         that changed since it are the iterate's Newton matrix's, formed once if needed."""
-        formed = []
-
-        def matrix():
-            if not formed:
-                formed.append(self._newton_matrix(it, step, a0, fill))
-            return formed[0]
-
+        matrix = cache(partial(self._newton_matrix, it, step, a0, fill))
         try:
             update = self.factor.solve(
                 it.rhs,

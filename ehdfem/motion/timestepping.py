@@ -10,6 +10,7 @@ values and the scale of each error.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -99,8 +100,8 @@ def derivative_weights(nodes):
     weights[0] = sum(1.0 / (t0 - tk) for tk in nodes[1:])
     for j in range(1, len(nodes)):
         others = [tk for k, tk in enumerate(nodes) if k != j]
-        weights[j] = np.prod([t0 - tk for tk in others[1:]]) / np.prod(
-            [nodes[j] - tk for tk in others]
+        weights[j] = math.prod(t0 - tk for tk in others[1:]) / math.prod(
+            nodes[j] - tk for tk in others
         )
     return weights
 
@@ -125,8 +126,13 @@ def interpolation_weights(nodes, t) -> list:
 
 def extrapolate(nodes, values, t):
     """Value at t of the polynomial through (nodes[j], values[j]) (scalars or arrays)."""
+    return combine(interpolation_weights(nodes, t), values)
+
+
+def combine(weights, values):
+    """sum_j weights[j] values[j], summed in order (scalars or arrays)."""
     total = 0.0
-    for weight, value in zip(interpolation_weights(nodes, t), values, strict=True):
+    for weight, value in zip(weights, values, strict=True):
         total = total + weight * value
     return total
 
@@ -199,6 +205,7 @@ class BDFStepper:
         self.options, self.times = options, times
         self.step = options.first_step
         self.first = 0  # the index of the first accepted time the history may use
+        self._kept_weights = (None, None)  # (key, weights) of _predictor_weights
 
     def restart(self, step: float) -> None:
         """Start a new history at the latest accepted time, whose values are a new initial
@@ -232,10 +239,8 @@ class BDFStepper:
         solution; a quartic overshoots where a cavity's edge or the wetted edge passes a node
         (a kink in that node's pressure), which cost a truncated cavity 15 % more steps."""
         known = min(self._known(), min(order, PREDICTOR_DEGREE) + 1)
-        return [
-            extrapolate(latest(self.times, known), latest(values, known), t_new)
-            for values in histories
-        ]
+        weights = self._predictor_weights(t_new, known)
+        return [combine(weights, latest(values, known)) for values in histories]
 
     def error_share(self, t_new, order) -> float | None:
         """The share of (corrector - predictor) that is the local error of the step to t_new
@@ -249,8 +254,18 @@ class BDFStepper:
         """corrector - predictor: ``new`` (a scalar or an array), the value at t_new of the
         unknown whose accepted values are ``history``, minus the extrapolation of its order + 1
         latest values."""
-        nodes = latest(self.times, order + 1)
-        return np.asarray(new) - extrapolate(nodes, latest(history, order + 1), t_new)
+        return np.asarray(new) - combine(
+            self._predictor_weights(t_new, order + 1), latest(history, order + 1)
+        )
+
+    def _predictor_weights(self, t_new, count) -> list:
+        """The Lagrange weights at t_new through the ``count`` latest accepted times, kept for
+        the step's (t_new, count): the guesses of P, X and V and the errors of X, V and H ask
+        for the same ones."""
+        key = (t_new, count, len(self.times))
+        if self._kept_weights[0] != key:
+            self._kept_weights = (key, interpolation_weights(latest(self.times, count), t_new))
+        return self._kept_weights[1]
 
     def reject(self, error: float, order: int) -> None:
         """Shrink the step after a rejected one (error > 1)."""

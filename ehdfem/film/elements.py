@@ -215,6 +215,21 @@ def tridiagonal_rows(bands, matrix, rows) -> np.ndarray:
 
 
 @njit(cache=True)
+def add_band_rows(bands, rows, out):
+    """out[j, i-1..i+1] += the bands' row i = rows[j] (lower[0] and upper[-1] unused): the rows
+    ``rows`` of a tridiagonal matrix added to the first n columns of ``out``."""
+    lower, diagonal, upper = bands
+    n = len(diagonal)
+    for j in range(len(rows)):
+        i = rows[j]
+        if i > 0:
+            out[j, i - 1] += lower[i]
+        out[j, i] += diagonal[i]
+        if i < n - 1:
+            out[j, i + 1] += upper[i]
+
+
+@njit(cache=True)
 def _add_bands(bands, out):
     """out[i, i-1..i+1] += the bands' row i (at the ends, where lower[0] and upper[-1] are
     unused, onto the diagonal)."""

@@ -16,6 +16,7 @@ from .reynolds import (
     _cell_hat_weights,
     _Elements,
     _hat_weights,
+    _node_sums,
 )
 
 
@@ -41,7 +42,8 @@ class ModeOneFilm:
 
     and q = 0 elsewhere: on the axis, at dry nodes, at the immersed end and at cavitated nodes
     (where P0 sits at the cavitation limit, the linearised limit P0 + q cos phi >= P_cav holds
-    for every phi only with q = 0). ``conductance`` is the symmetric form
+    for every phi only with q = 0). The three matrices are tridiagonal and kept as their
+    bands (lower, diagonal, upper). ``conductance`` is the symmetric form
     (1/12) int phi H0^3 (q' v' + q v / R^2) R dR; q . conductance q is the Poiseuille
     dissipation of the mode-1 flow. ``drive`` is int H0' v R dR. ``torque_weights`` give
     int q R^2 dR. ``shear_weights`` j_i = int phi_i theta (mu/mu0) R dR / H0 give the
@@ -69,7 +71,7 @@ class ModeOneFilm:
         problem (1/R)(R H^3 Pi')' - H^3 Pi / R^2 = -H')."""
         q = np.zeros_like(self.drive)
         free = self.free
-        operator = self.conductance + self.pressure_coupling
+        operator = _dense(band_sum(self.conductance, self.pressure_coupling))
         q[free] = np.linalg.solve(operator[np.ix_(free, free)], 0.5 * self.drive[free])
         return q
 
@@ -96,9 +98,10 @@ class ModeOneFilm:
 
 
 def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
-    """The mode-1 film's P1 matrices on the elements ``el`` (n nodes), by Gauss quadrature with
-    ``weight`` = R dR at the Gauss points, H0 ``thickness`` there and the fluidity mu0/mu with
-    its pressure derivative (``fluidities``):
+    """The mode-1 film's P1 matrices on the elements ``el`` (n nodes), as the bands (lower,
+    diagonal, upper) of the tridiagonal matrices (:func:`ehdfem.film.reynolds.tridiagonal_product`),
+    by Gauss quadrature with ``weight`` = R dR at the Gauss points, H0 ``thickness`` there and
+    the fluidity mu0/mu with its pressure derivative (``fluidities``):
 
         conductance_ab        = (1/12) int (mu0/mu) H0^3 (phi_a' phi_b' + phi_a phi_b / R^2) R dR,
         thickness_coupling_ab = (1/4)  int (mu0/mu) H0^2 dP0/dR phi_a' phi_b R dR,
@@ -113,28 +116,42 @@ def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
     nodes = (el.left, np.where(regular, el.right, el.left))
     live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
     cube = fluidity * thickness**3
-    conductance = np.zeros((n, n))
-    thickness_coupling = np.zeros((n, n))
-    pressure_coupling = np.zeros((n, n))
+    entries = {"conductance": {}, "thickness_coupling": {}, "pressure_coupling": {}}
     for a in range(2):
-        ia, va, sa = nodes[a], live[a], hat_slopes[a]
+        va, sa = live[a], hat_slopes[a]
         for b in range(2):
-            ib, on = nodes[b], va * live[b]
+            on = va * live[b]
             stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
             hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
-            np.add.at(conductance, (ia, ib), on * (stiff + hoop) / 12.0)
             grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
-            np.add.at(
-                thickness_coupling,
-                (ia, ib),
-                on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0,
+            entries["conductance"][a, b] = on * (stiff + hoop) / 12.0
+            entries["thickness_coupling"][a, b] = (
+                on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0
             )
-            np.add.at(
-                pressure_coupling,
-                (ia, ib),
-                on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0,
+            entries["pressure_coupling"][a, b] = (
+                on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0
             )
-    return conductance, thickness_coupling, pressure_coupling
+    return tuple(_bands(nodes, values, n) for values in entries.values())
+
+
+def _bands(nodes, values, n):
+    """(lower, diagonal, upper) of the tridiagonal matrix with the element entries
+    values[a, b] at (nodes[a], nodes[b]) (a, b = 0 the left, 1 the right end), summed in the
+    order a, b, element."""
+    left, right = nodes
+    diagonal = _node_sums(left, values[0, 0], n) + _node_sums(right, values[1, 1], n)
+    return _node_sums(right, values[1, 0], n), diagonal, _node_sums(left, values[0, 1], n)
+
+
+def _dense(bands) -> np.ndarray:
+    """The n x n matrix of the bands (lower, diagonal, upper)."""
+    lower, diagonal, upper = bands
+    return np.diag(diagonal) + np.diag(lower[1:], -1) + np.diag(upper[:-1], 1)
+
+
+def band_sum(first, second) -> tuple:
+    """The bands of the sum of two tridiagonal matrices given by their bands."""
+    return tuple(x + y for x, y in zip(first, second, strict=True))
 
 
 def mode_one_operators(

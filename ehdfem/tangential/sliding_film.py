@@ -15,9 +15,9 @@ import numpy as np
 import scipy.integrate
 from scipy.linalg import lapack
 
-from ..film.elements import tridiagonal_rows
-from ..film.mode_one import ModeOneFilm
-from ..film.reynolds import Film
+from ..film.elements import add_band_rows, tridiagonal_rows
+from ..film.mode_one import ModeOneFilm, band_sum
+from ..film.reynolds import Film, tridiagonal_product
 from ..motion.normal import NormalSolverError
 from ..solids.compliance import ModeOneCompliance
 from .friction import CoulombContact
@@ -332,15 +332,8 @@ class SlidingFilm:
         matrix, rhs = np.zeros((size, size)), np.zeros(size)
         free = np.flatnonzero(mf.free)
         gap = ops["gap"]
-        film = (mf.conductance + mf.pressure_coupling)[free]
-        coupling = mf.thickness_coupling  # tridiagonal: its bands times the rows of gap
-        bands = (
-            np.r_[0.0, np.diagonal(coupling, -1)],
-            np.diagonal(coupling).copy(),
-            np.r_[np.diagonal(coupling, 1), 0.0],
-        )
-        rows = tridiagonal_rows(bands, gap, free)
-        rows[:, :n] += film
+        rows = tridiagonal_rows(mf.thickness_coupling, gap, free)
+        add_band_rows(band_sum(mf.conductance, mf.pressure_coupling), free, rows)
         rows += rate * mf.mass[free, None] * gap[free]
         rows -= 0.5 * np.outer(mf.drive[free], ops["rolling"])
         matrix[free] = rows
@@ -371,7 +364,7 @@ class SlidingFilm:
         h1 = displacements["gap"][i]
         sigma1 = ops["sum"] @ z
         dissipation = (delta / 6.0) * (
-            mf.shear_weights @ (v_r**2 + v_phi**2) + q @ mf.conductance @ q
+            mf.shear_weights @ (v_r**2 + v_phi**2) + q @ tridiagonal_product(mf.conductance, q)
         )
         dissipation += delta * mf.tail * (u_s**2 / 3.0 + w**2 / 5.0)
         if self.outer is not None:
@@ -382,7 +375,10 @@ class SlidingFilm:
         )
         rho = self.bodies.rho  # the power of the pressure on the spheres (docs/tangential.md)
         exchange = u_s * (pressure_force + rho * (delta / 12.0) * (mf.torque_weights @ q))
-        exchange -= (delta / 6.0) * (q @ mf.thickness_coupling @ h1 + q @ mf.pressure_coupling @ q)
+        exchange -= (delta / 6.0) * (
+            q @ tridiagonal_product(mf.thickness_coupling, h1)
+            + q @ tridiagonal_product(mf.pressure_coupling, q)
+        )
         exchange += (delta / 12.0) * w * ((mf.drive - mf.torque_weights) @ q)
         work = self.mass_full @ (q * h1)
         if self.deformation == "full":

@@ -43,7 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
-from ..film.reynolds import Film
+from ..film.mode_one import band_sum
+from ..film.reynolds import Film, tridiagonal_product
 from .normal_film import cavitated_nodes, mode_one_film, normal_film
 from .result import TangentialResult
 from .sliding_film import gap_tilt, sliding_amplitude, viscosity_tilt
@@ -253,7 +254,9 @@ def _check_step(result, validity, step, element_size, comm) -> SuperpositionChec
     rate0[holds] = -state.flux(pressure)[holds] / state.mass[holds]
     rate1 = np.gradient(tangential.mode_one_gap, hist.time, axis=0)[step]
     free = mf.free
-    film_rows = (mf.conductance + mf.pressure_coupling) @ q + mf.thickness_coupling @ gap1
+    film_rows = tridiagonal_product(
+        band_sum(mf.conductance, mf.pressure_coupling), q
+    ) + tridiagonal_product(mf.thickness_coupling, gap1)
     rate1[free] = (0.5 * rolling * mf.drive[free] - film_rows[free]) / mf.mass[free]
     compliance_sum = getattr(result.compliance, "surface_sum_matrix", None)
     compliance_sum = None if compliance_sum is None else compliance_sum @ pressure

@@ -55,6 +55,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 from scipy.integrate import cumulative_trapezoid
 from scipy.special import ellipkm1
 
@@ -103,31 +104,65 @@ def hat_integrals(radii, kernel, size):
     """M[p, i, j] = int phi_j(S) kernel(R_i, S - R_i)[p] dS for the hat functions phi_j on
     ``radii`` (by sqrt(a x0); the last hat a half hat, zero beyond). Each cell is integrated by
     8-point Gauss-Legendre, or by the graded rule when it is closer to R_i than its length
-    (module docstring); ``kernel(radius, offset)`` returns ``size`` values along its first
-    axis."""
+    (module docstring); ``kernel(radius, offset)`` takes the 1-D arrays of every quadrature
+    point's R_i and S - R_i and returns ``size`` values per point, (size, points)."""
     r = np.asarray(radii, dtype=float)
+    rules = (_REGULAR_X, _REGULAR_W, _GRADED_X, _GRADED_W)
+    node, cell, radius, offset, weight, to_right = _quadrature_points(r, *rules)
+    values = np.asarray(kernel(radius, offset)).reshape(size, len(radius))
+    return _accumulated(values, node, cell, weight, to_right, len(r))
+
+
+@njit(cache=True)
+def _quadrature_points(r, regular_x, regular_w, graded_x, graded_w):
+    """Every quadrature point of :func:`hat_integrals`: its node i and cell j, R_i, the offset
+    S - R_i (from the cell's nearer end where the graded rule is used, so that the points next
+    to R_i keep their relative accuracy), its weight (times the cell length) and the share of
+    the cell's right hat."""
     n = len(r)
-    left, right = r[:-1], r[1:]
-    length = right - left
-    dist = np.maximum(left[None, :] - r[:, None], r[:, None] - right[None, :])
-    near_left = np.abs(r[:, None] - left[None, :]) <= np.abs(r[:, None] - right[None, :])
-    close = dist < length[None, :]
+    total = 0
+    for i in range(n):
+        for j in range(n - 1):
+            regular = max(r[j] - r[i], r[i] - r[j + 1]) >= r[j + 1] - r[j]
+            total += len(regular_x) if regular else len(graded_x)
+    node, cell = np.empty(total, np.int64), np.empty(total, np.int64)
+    radius, offset = np.empty(total), np.empty(total)
+    weight, to_right = np.empty(total), np.empty(total)
+    k = 0
+    for i in range(n):
+        for j in range(n - 1):
+            left, right = r[j], r[j + 1]
+            length = right - left
+            x, w, from_right = regular_x, regular_w, False
+            if max(left - r[i], r[i] - right) < length:
+                x, w = graded_x, graded_w
+                from_right = abs(r[i] - left) > abs(r[i] - right)
+            start = right if from_right else left
+            for q in range(len(x)):
+                node[k], cell[k], radius[k] = i, j, r[i]
+                if from_right:
+                    offset[k] = (start - r[i]) - length * x[q]
+                    to_right[k] = 1.0 - x[q]
+                else:
+                    offset[k] = (start - r[i]) + length * x[q]
+                    to_right[k] = x[q]
+                weight[k] = w[q] * length
+                k += 1
+    return node, cell, radius, offset, weight, to_right
+
+
+@njit(cache=True)
+def _accumulated(values, node, cell, weight, to_right, n):
+    """M[p, i, j] of :func:`hat_integrals` from the kernel's ``values`` (size, points) at the
+    quadrature points of :func:`_quadrature_points`."""
+    size = values.shape[0]
     matrix = np.zeros((size, n, n))
-    rules = (
-        (~close, _REGULAR_X, _REGULAR_W, False),
-        (close & near_left, _GRADED_X, _GRADED_W, False),
-        (close & ~near_left, _GRADED_X, _GRADED_W, True),
-    )
-    for pairs, u, w, from_right in rules:
-        node, cell = np.nonzero(pairs)
-        cell_length = length[cell][:, None]
-        radius = r[node][:, None]
-        start = (right if from_right else left)[cell][:, None]
-        offset = (start - radius) + (-cell_length if from_right else cell_length) * u
-        to_right = 1.0 - u if from_right else u  # weight of the hat of the cell's right node
-        values = kernel(radius, offset).reshape(size, *offset.shape) * w * cell_length
-        matrix[:, node, cell] += (values * (1.0 - to_right)).sum(axis=-1)
-        matrix[:, node, cell + 1] += (values * to_right).sum(axis=-1)
+    for k in range(len(node)):
+        i, j = node[k], cell[k]
+        for p in range(size):
+            value = values[p, k] * weight[k]
+            matrix[p, i, j] += value * (1.0 - to_right[k])
+            matrix[p, i, j + 1] += value * to_right[k]
     return matrix
 
 

@@ -58,7 +58,7 @@ from .compliance import ModeOneCompliance
 from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, theta_shares
 
 _CLOSED_FORM_RATIO = 0.25  # min(R, S)/max(R, S) from which the elliptic closed forms are used
-_TRAPEZOID_ANGLES = np.linspace(0.0, np.pi, 17)  # half a period: the integrands are even
+_TRAPEZOID_COSINES = np.cos(np.linspace(0.0, np.pi, 17))  # half a period: the integrands are even
 _TRAPEZOID_WEIGHTS = np.full(17, 2.0 * np.pi / 16) * np.r_[0.5, np.ones(15), 0.5]
 
 
@@ -75,22 +75,93 @@ def _nonzero_parts(radius, offset) -> np.ndarray:
     being zero (the 1/rho and d d/rho^3 parts act within the plane and on the normal alone,
     the d/rho^2 part couples the two)."""
     r, off = np.broadcast_arrays(np.asarray(radius, dtype=float), np.asarray(offset, dtype=float))
+    r, off = r.ravel(), off.ravel()
     s = r + off
-    parts = np.zeros((len(_NONZERO),) + r.shape)
     closed = np.minimum(r, s) >= _CLOSED_FORM_RATIO * np.maximum(r, s)
-    for mask, integrals in ((closed, _elliptic_integrals), (~closed, _trapezoid_integrals)):
-        if np.any(mask):
-            ring, beta_part = integrals(r[mask], off[mask])
-            for row, (part, a, b) in enumerate(_NONZERO[:9]):
-                parts[row, ...][mask] = (ring if part == 0 else beta_part)[a, b]
-    below = off < 0  # rings inside R
-    ratio = np.where(below, s / np.where(below, r, 1.0), r / s)  # min(R, S)/max(R, S)
+    complement = (off[closed] / (r[closed] + s[closed])) ** 2  # 1 - m
+    elliptic = np.zeros((2, len(r)))
+    elliptic[:, closed] = ellipkm1(complement), ellipe(1.0 - complement)
+    flat = _nonzero_values(r, off, closed, elliptic, _TRAPEZOID_COSINES, _TRAPEZOID_WEIGHTS)
+    return flat.reshape((len(_NONZERO),) + np.shape(np.broadcast(radius, offset)))
+
+
+@njit(cache=True)
+def _nonzero_values(r, off, closed, elliptic, cosines, weights):
+    """:func:`_nonzero_parts` on 1-D arrays, one pass over the points: the closed forms
+    (:func:`_elliptic_entries`, with K(m) and E(m) in ``elliptic``) where ``closed``
+    (min(R, S)/max(R, S) >= 1/4), else the trapezoidal sums (:func:`_trapezoid_entries`), and
+    the elementary k_gamma entries."""
+    parts = np.empty((13, len(r)))
     quarter_pi = np.pi / 4
-    parts[9] = quarter_pi * np.where(below, ratio**2, -1.0)
-    parts[10] = -quarter_pi * np.where(below, ratio**2, 1.0)
-    parts[11] = -quarter_pi * np.where(below, ratio, -ratio)
-    parts[12] = -quarter_pi * ratio
+    for i in range(len(r)):
+        s = r[i] + off[i]
+        if closed[i]:
+            entries = _elliptic_entries(r[i], off[i], elliptic[0, i], elliptic[1, i])
+        else:
+            entries = _trapezoid_entries(r[i], off[i], cosines, weights)
+        cos2, sin2, normal, beta00, beta01, beta10, beta11 = entries
+        parts[0, i] = parts[1, i] = cos2  # the 1/rho part: (U_r, A), (U_phi, B)
+        parts[2, i] = parts[3, i] = sin2  # (U_r, B), (U_phi, A)
+        parts[4, i] = normal  # (U_z, Z)
+        parts[5, i], parts[6, i], parts[7, i], parts[8, i] = beta00, beta01, beta10, beta11
+        if off[i] < 0:  # a ring inside R; ratio min(R, S)/max(R, S)
+            ratio = s / r[i]
+            parts[9, i] = quarter_pi * ratio**2
+            parts[10, i] = -quarter_pi * ratio**2
+            parts[11, i] = -quarter_pi * ratio
+        else:
+            ratio = r[i] / s
+            parts[9, i] = -quarter_pi
+            parts[10, i] = -quarter_pi
+            parts[11, i] = quarter_pi * ratio
+        parts[12, i] = -quarter_pi * ratio
     return parts
+
+
+@njit(cache=True)
+def _elliptic_entries(r, off, k, e):
+    """S (1/4) int dpsi of the 1/rho and d d/rho^3 parts, in K(m) = ``k`` and E(m) = ``e``
+    (R, S comparable): (cos2, sin2, normal, beta_00, beta_01, beta_10, beta_11), the ring
+    part's S/4 int (cos^2, sin^2, cos) psi / rho and the beta part's four entries (the 1/rho
+    part's (U_r, A) = (U_phi, B) = cos2, (U_r, B) = (U_phi, A) = sin2, (U_z, Z) = normal;
+    beta_00 = sin2)."""
+    s = r + off
+    t, q, rs = r + s, r**2 + s**2, r * s
+    sixth = s / (6 * rs**2)
+    cos2 = sixth * ((q**2 + 2 * rs**2) / t * k - t * q * e)
+    sin2 = sixth * (t * q * e - off**2 * t * k)
+    normal = s / (2 * rs) * (q / t * k - t * e)
+    beta01 = sixth * (-off * (r**2 + 2 * s**2) * k - t * (r**2 - 2 * s**2) * e)
+    beta10 = sixth * (off * (2 * r**2 + s**2) * k + t * (2 * r**2 - s**2) * e)
+    beta11 = 2 * sixth * ((q**2 - rs**2) / t * k - t * q * e)
+    return cos2, sin2, normal, sin2, beta01, beta10, beta11
+
+
+@njit(cache=True)
+def _trapezoid_entries(radius, off, cosines, weights):
+    """The same integrals as :func:`_elliptic_entries` by the periodic trapezoidal rule over
+    psi at the points of cos psi = ``cosines`` (min(R, S)/max(R, S) < 1/4: the integrand is
+    analytic and smooth in psi): (S/4) (cos^2, sin^2, cos) / rho and the d d/rho^3 parts
+    (along across cos, R along sin^2, -S across sin^2, R S sin^2 cos) / rho^3, d = (along,
+    across) the offset along the field's and the ring's radial directions."""
+    ring_radius = radius + off
+    offset_squared, quarter_ring = off * off, ring_radius / 4
+    cos2 = sin2 = normal = beta00 = beta01 = beta10 = beta11 = 0.0
+    for j in range(len(cosines)):
+        c = cosines[j]
+        sine2 = 1.0 - c * c
+        inverse = 1.0 / math.sqrt(offset_squared + 2 * radius * ring_radius * (1 - c))  # 1/rho
+        w = weights[j] * quarter_ring * inverse
+        along, across = radius - ring_radius * c, radius * c - ring_radius
+        cos2 += w * c * c
+        sin2 += w * sine2
+        normal += w * c
+        w3 = w * inverse * inverse
+        beta00 += w3 * along * across * c
+        beta01 += w3 * radius * along * sine2
+        beta10 += w3 * -ring_radius * across * sine2
+        beta11 += w3 * radius * ring_radius * sine2 * c
+    return cos2, sin2, normal, beta00, beta01, beta10, beta11
 
 
 def _expanded(nonzero: np.ndarray) -> np.ndarray:
@@ -121,65 +192,6 @@ def ring_kernel(radius, offset, poisson: float) -> np.ndarray:
 def _nu_weights(nu):
     """(1, beta, gamma) of the module docstring."""
     return np.array([1.0, nu / (1 - nu), (1 - 2 * nu) / (2 * (1 - nu))])
-
-
-def _elliptic_integrals(r, off):
-    """S (1/4) int dpsi of the 1/rho and d d/rho^3 parts, in K(m) and E(m) (R, S comparable).
-    Returns the (3, 3, M) ring part and the (2, 2, M) beta part."""
-    s = r + off
-    t, q, rs = r + s, r**2 + s**2, r * s
-    k = ellipkm1((off / t) ** 2)
-    e = ellipe(1.0 - (off / t) ** 2)
-    sixth = s / (6 * rs**2)
-    cos2 = sixth * ((q**2 + 2 * rs**2) / t * k - t * q * e)  # S/4 int cos^2 psi / rho
-    sin2 = sixth * (t * q * e - off**2 * t * k)  # S/4 int sin^2 psi / rho
-    ring = np.zeros((3, 3) + r.shape)
-    ring[0, 0] = ring[1, 1] = cos2
-    ring[0, 1] = ring[1, 0] = sin2
-    ring[2, 2] = s / (2 * rs) * (q / t * k - t * e)  # S/4 int cos psi / rho
-    beta = np.empty((2, 2) + r.shape)
-    beta[0, 0] = sin2
-    beta[0, 1] = sixth * (-off * (r**2 + 2 * s**2) * k - t * (r**2 - 2 * s**2) * e)
-    beta[1, 0] = sixth * (off * (2 * r**2 + s**2) * k + t * (2 * r**2 - s**2) * e)
-    beta[1, 1] = 2 * sixth * ((q**2 - rs**2) / t * k - t * q * e)
-    return ring, beta
-
-
-def _trapezoid_integrals(r, off):
-    """The same integrals as :func:`_elliptic_integrals` by the periodic trapezoidal rule
-    (min(R, S)/max(R, S) < 1/4: the integrand is analytic and smooth in psi)."""
-    sums = _trapezoid_sums(r, off, _TRAPEZOID_ANGLES, _TRAPEZOID_WEIGHTS)
-    ring = np.zeros((3, 3, len(r)))
-    ring[0, 0] = ring[1, 1] = sums[0]
-    ring[0, 1] = ring[1, 0] = sums[1]
-    ring[2, 2] = sums[2]
-    return ring, sums[3:].reshape(2, 2, len(r))
-
-
-@njit(cache=True)
-def _trapezoid_sums(r, off, angles, weights):
-    """(7, M): the trapezoidal sums over psi of (S/4) (cos^2, sin^2, cos) / rho and of the
-    d d/rho^3 parts (along across cos, R along sin^2, -S across sin^2, R S sin^2 cos) / rho^3,
-    d = (along, across) the offset along the field's and the ring's radial directions, for
-    each (R, S = R + offset), one pass without temporaries."""
-    sums = np.zeros((7, len(r)))
-    for i in range(len(r)):
-        radius, ring_radius = r[i], r[i] + off[i]
-        for j in range(len(angles)):
-            c = math.cos(angles[j])
-            sin2 = 1.0 - c * c
-            rho = math.sqrt((radius - ring_radius) ** 2 + 2 * radius * ring_radius * (1 - c))
-            w = weights[j] * ring_radius / 4
-            along, across = radius - ring_radius * c, radius * c - ring_radius
-            sums[0, i] += w * c * c / rho
-            sums[1, i] += w * sin2 / rho
-            sums[2, i] += w * c / rho
-            w3 = w / rho**3
-            sums[3, i] += w3 * along * across * c
-            sums[4, i] += w3 * radius * along * sin2
-            sums[5, i] += w3 * -ring_radius * across * sin2
-            sums[6, i] += w3 * radius * ring_radius * sin2 * c
-    return sums
 
 
 def _stacked(blocks):

@@ -13,6 +13,10 @@ steps, Newton iterations, e_n, the thinnest film and the contact time of both, t
 times, the BLAS share) and prints a line per case.
 
 Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]   (about 2 minutes at 5)
+With --oblique it times the oblique cases of OBLIQUE_CASES instead (the tangential models: Couette,
+the sliding film with its mode-1 build, and with the full mode-1 deformation), writing
+benchmarks/results/against_commit_oblique.json (commits since the run settings became keywords
+of ``collide``).
 
 The commit's code is imported as it stood (its own ``ehdfem`` package), so the cases use only
 the API every version has had: ``collide(CollisionParameters(St=..., eps=..., layer=...,
@@ -42,43 +46,64 @@ CASES = {  # name: CollisionParameters keywords (scaled inputs, DSH 1986)
     "thin St=1000 eps=1e-6": dict(St=1000.0, eps=1e-6, layer="thin"),
     "immersed St=20 eps=1e-3 P_cav=-2": dict(St=20.0, eps=1e-3, layer="immersed", p_cav=-2.0),
 }
-TIMER = """
+OBLIQUE_CASES = {  # name: (CollisionParameters keywords, run settings): the tangential models
+    "thin St=20 eps=1e-3 30 deg Couette": (
+        dict(St=20.0, eps=1e-3, layer="thin", angle=30.0),
+        dict(tangential="couette"),
+    ),
+    "thin St=20 eps=1e-3 30 deg sliding film": (
+        dict(St=20.0, eps=1e-3, layer="thin", angle=30.0),
+        dict(tangential="lubrication"),
+    ),
+    "immersed St=20 eps=1e-3 30 deg sliding film, full": (
+        dict(St=20.0, eps=1e-3, layer="immersed", angle=30.0),
+        dict(tangential="lubrication", deformation="full"),
+    ),
+}
+SETUP = """
 import json, sys, time
 from ehdfem import CollisionParameters, collide
 build = getattr(CollisionParameters, "from_settings", CollisionParameters)
-params = build(**json.loads(sys.argv[1]))
-collide(params)  # the first run pays for imports and caches
+params, settings = build(**json.loads(sys.argv[1])), json.loads(sys.argv[2])
+"""
+TIMER = (
+    SETUP
+    + """
+collide(params, **settings)  # the first run pays for imports and caches
 start = time.perf_counter()
-normal = collide(params).normal
-print(json.dumps({"seconds": time.perf_counter() - start, "steps": normal.steps,
+result = collide(params, **settings)
+seconds, normal = time.perf_counter() - start, result.normal
+print(json.dumps({"seconds": seconds, "steps": normal.steps,
                   "newton_iterations": getattr(normal, "newton_iterations", None),
                   "e_n": normal.e_n, "min_film_thickness": normal.min_film_thickness,
-                  "contact_time": normal.contact_time}))
+                  "contact_time": normal.contact_time,
+                  "e_t": result.tangential.e_t if result.tangential else None}))
 """
-SAMPLED = """
-import json, sys
-from ehdfem import CollisionParameters, collide
-build = getattr(CollisionParameters, "from_settings", CollisionParameters)
-params = build(**json.loads(sys.argv[1]))
-for _ in range(int(sys.argv[2])):
-    collide(params)
+)
+SAMPLED = (
+    SETUP
+    + """
+for _ in range(int(sys.argv[3])):
+    collide(params, **settings)
 """
+)
 LINEAR_ALGEBRA = ("blas", "lapack")  # the shared objects that count as dense kernels
 
 
-def run(source: Path, case: dict) -> dict:
-    """One timed collision with the ``ehdfem`` package of ``source``, in its own process."""
-    return run_json(source, [sys.executable, "-c", TIMER, json.dumps(case)])
+def run(source: Path, case: tuple) -> dict:
+    """One timed collision (``case``: inputs and run settings) with the ``ehdfem`` package of
+    ``source``, in its own process."""
+    return run_json(source, [sys.executable, "-c", TIMER, *map(json.dumps, case)])
 
 
-def _samples_by_library(case: dict, runs: int, tmp: str) -> dict[str, int]:
+def _samples_by_library(case: tuple, runs: int, tmp: str) -> dict[str, int]:
     """``perf record``'s samples of one process that imports ehdfem and runs ``runs``
     collisions of the current code, by shared object."""
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
     data = str(Path(tmp) / f"perf{runs}.data")
     subprocess.run(
         ["perf", "record", "-q", "-F", "2000", "-o", data, "--"]
-        + [sys.executable, "-c", SAMPLED, json.dumps(case), str(runs)],
+        + [sys.executable, "-c", SAMPLED, *map(json.dumps, case), str(runs)],
         env=env,
         cwd=ROOT,
         capture_output=True,
@@ -94,7 +119,7 @@ def _samples_by_library(case: dict, runs: int, tmp: str) -> dict[str, int]:
     return {row[2] if len(row) > 2 else "?": int(row[1]) for row in rows}
 
 
-def blas_share(case: dict, runs: int = 10) -> float | None:
+def blas_share(case: tuple, runs: int = 10) -> float | None:
     """The share of the collisions' ``perf record`` samples that fall in a BLAS or LAPACK
     library (None without perf): the samples of a process that runs 1 + ``runs`` collisions
     less those of one that runs 1, so that the import, numba's cache load and the first
@@ -126,10 +151,11 @@ def blas_libraries() -> list[str]:
     )
 
 
-def main(commit: str, repeats: int = 5):
+def main(commit: str, repeats: int = 5, oblique: bool = False):
     rows = {}
+    cases = OBLIQUE_CASES if oblique else {name: (case, {}) for name, case in CASES.items()}
     with tempfile.TemporaryDirectory() as tmp, commit_checkout(commit, Path(tmp) / "old") as old:
-        for name, case in CASES.items():
+        for name, case in cases.items():
             best = {"current": None, "old": None}
             for _ in range(repeats):
                 for label, source in (("current", ROOT), ("old", old)):
@@ -149,7 +175,7 @@ def main(commit: str, repeats: int = 5):
             )
     current = head()
     RESULTS.mkdir(exist_ok=True)
-    out = RESULTS / "against_commit.json"
+    out = RESULTS / ("against_commit_oblique.json" if oblique else "against_commit.json")
     blas = blas_libraries()
     out.write_text(
         json.dumps(
@@ -168,6 +194,7 @@ def main(commit: str, repeats: int = 5):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 2:
-        sys.exit("usage: against_commit.py COMMIT [REPEATS]")
-    main(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 5)
+    arguments = [a for a in sys.argv[1:] if a != "--oblique"]
+    if not arguments:
+        sys.exit("usage: against_commit.py COMMIT [REPEATS] [--oblique]")
+    main(arguments[0], int(arguments[1]) if len(arguments) > 1 else 5, "--oblique" in sys.argv)

@@ -16,10 +16,16 @@ the solution, passes them on: between Debian's reference BLAS/LAPACK and OpenBLA
 differ by at most 3.1e-10 (relative; the thinnest film of thin-rtol) and the energy error,
 itself a difference of energies of relative size 1e-3, by 1.1e-10 (absolute, thin-roelands).
 So outputs are compared to RELATIVE = 1e-8 and the energy error to ENERGY = 1e-9, margins of 30
-and 9. Every case
-is hard in the sense of the time-step control: inputs moved by 1e-12 move no output by more than
-6e-11 (the step sequence does not change), so no case needs the control's accuracy instead
-(a soft case, where the last bits choose another step sequence, would be compared at rtol).
+and 9. A case is hard in the sense of the time-step control when inputs moved by 1e-12 move no
+output by more than 6e-11 (the step sequence does not change); a soft case, where the last bits
+choose another step sequence, is compared at the control's accuracy instead (SOFT). thin-barus
+is soft: St moved by 1e-12 (either way) moves e_n by 1.6e-4 and the contact time by 1.8e-5,
+the thinnest film and the largest force by no more than 1e-12. The two step sequences part at
+T = 2.07 in the rebound (the table's old control, rtol 5e-5 on X and V alone, rejects 88 of
+its 422 steps in this cavitating piezoviscous film) and meet the exit 1.6e-4 apart in the
+velocity, three times rtol: so its outputs are compared at 1e-3, a margin of 6. It had passed
+on both BLAS builds by chance until the half-space kernel's last bits changed (its
+quadrature compiled), which put the reference build on the other sequence.
 On one machine results are bit-identical (tests/test_threads.py, the rank-independence tests);
 test_the_table_holds_on_the_reference_blas runs the table on the other BLAS build.
 """
@@ -37,7 +43,7 @@ HERE = Path(__file__).parent
 STORED = json.loads((HERE / "data" / "regression.json").read_text())
 RELATIVE = 1e-8  # outputs, relative (module docstring)
 ENERGY = 1e-9  # the energy error (already by the impact energy), absolute
-SOFT = {"physical-masscons-roelands": 1e-2}  # soft cases: every output at this tolerance
+SOFT = {"physical-masscons-roelands": 1e-2, "thin-barus": 1e-3}  # every output at this tolerance
 REFERENCE_BLAS = ("/usr/lib/x86_64-linux-gnu/blas", "/usr/lib/x86_64-linux-gnu/lapack")
 
 

@@ -22,7 +22,8 @@ from .film.grid import AXIS_SPACING, OUTLET_RADIUS, RIM_SPACING, contact_grid
 from .film.viscosity import ViscosityRangeWarning, barus_range_warning
 from .inputs.scales import CollisionParameters, PhysicalCollision
 from .motion.forces import SphereForce
-from .motion.normal import FilmClosedError, NormalResult, solve_normal
+from .motion.normal import FilmClosedError, NormalResult, NormalSolverError, solve_normal
+from .motion.normal_problem import normal_problem
 from .outputs import plausibility, provenance
 from .outputs import registry as outputs
 from .outputs.plausibility import ResultRangeWarning
@@ -257,12 +258,72 @@ class CollisionResult:
         }
 
 
+class SharedNormals:
+    """Normal motions solved once per normal problem, for collisions that differ only in what
+    the normal integration does not read (the angle, the spin; delta on half-spaces under a
+    thin layer): :meth:`solve` stands for :func:`ehdfem.motion.normal.solve_normal` and keeps
+    each result under the digest of its :class:`ehdfem.motion.normal_problem.NormalProblem`
+    (the film nodes, the solids' matrices, the gap, the film's laws, the sphere, the time-step
+    options: what the integration reads, whatever inputs they came from). A later collision
+    with an equal digest gets that normal motion with its own inputs as ``params``; the
+    normal motion holds nothing else of them, so the collision is the one a new solve gives,
+    bit for bit. A failed integration (a closed film on one grid of the refinement, a
+    solver error) is kept too and raised again for each collision of that problem; each grid
+    of the refinement is a problem of its own (its nodes are in the digest). ``solved``: the
+    normal motions integrated. Hold one for a group of collisions (its results keep their
+    histories in memory)."""
+
+    def __init__(self):
+        self.solved = 0
+        self._results: dict[str, NormalResult | Exception] = {}
+
+    def solve(self, params, compliance, options=None, forces=()) -> NormalResult:
+        """The normal motion of ``params`` on ``compliance`` (arguments of
+        :func:`ehdfem.motion.normal.solve_normal`), integrated only if its problem is new."""
+        key = normal_problem(params, compliance, options, forces).digest()
+        if key is not None and key in self._results:
+            found = self._results[key]
+            if isinstance(found, Exception):
+                raise found
+            return replace(found, params=params)
+        self.solved += 1
+        try:
+            normal = solve_normal(params, compliance, options, forces)
+        except (NormalSolverError, np.linalg.LinAlgError) as err:
+            if key is not None:
+                self._results[key] = err
+            raise
+        if key is not None:
+            self._results[key] = normal
+        return normal
+
+
+def normal_key(
+    params: CollisionParameters | PhysicalCollision, config: RunConfig | None = None
+) -> str | None:
+    """The digest of the first normal problem :func:`collide` solves for ``params`` and
+    ``config`` (:meth:`ehdfem.motion.normal_problem.NormalProblem.digest`): on the film grid of
+    ``config.numerics.nodes``, before any refinement, with the solids built as :func:`collide`
+    builds them (for the FE model that is the whole cost of its solids). Collisions with equal
+    keys share that normal motion in :class:`SharedNormals`; None: a problem without a digest,
+    shared with none."""
+    physical = params if isinstance(params, PhysicalCollision) else None
+    params = params if physical is None else physical.dimensionless()
+    config = RunConfig() if config is None else config
+    solids = elasticity(params, film_radii(params, config.numerics.nodes), config, physical)
+    try:
+        return normal_problem(params, solids, config.options).digest()
+    finally:
+        solids.close()
+
+
 def collide(
     params: CollisionParameters | PhysicalCollision,
     config: RunConfig | None = None,
     compliance: Compliance | None = None,
     mode_one: ModeOneCompliance | None = None,
     forces: tuple[SphereForce, ...] = (),
+    normals: SharedNormals | None = None,
     **settings,
 ) -> CollisionResult:
     """Simulate one collision with dimensionless (or physical) inputs, computed as ``config``
@@ -314,13 +375,13 @@ def collide(
     with one_blas_thread():
         if compliance is not None:
             eps_compliance = compliance.with_eps(params.eps)
-            return _collide_on(params, eps_compliance, config, physical, mode_one, forces)
+            return _collide_on(params, eps_compliance, config, physical, mode_one, forces, normals)
         numerics = config.numerics
         for attempt in range(numerics.refinements + 1):
             radii = film_radii(params, numerics.nodes * 2**attempt)
             try:
                 solids = elasticity(params, radii, config, physical)
-                return _collide_on(params, solids, config, physical, forces=forces)
+                return _collide_on(params, solids, config, physical, None, forces, normals)
             except FilmClosedError:
                 if attempt == numerics.refinements:
                     raise
@@ -367,12 +428,14 @@ def _mode_one_at(mode_one, compliance, eps):
     return mode_one.with_eps(eps)
 
 
-def _collide_on(params, compliance, config, physical, given_mode_one=None, forces=()):
+def _collide_on(params, compliance, config, physical, given_mode_one, forces, normals):
     """The normal and (oblique impacts) tangential motion on a given compliance, with the
     tangential model, mode-1 deformation and time integration of ``config``;
     ``given_mode_one``: a mode-1 compliance at params.eps that is not closed here (None: built
-    here when needed, and closed); ``forces``: the further forces on the sphere."""
-    normal = solve_normal(params, compliance, config.options, forces)
+    here when needed, and closed); ``forces``: the further forces on the sphere; ``normals``:
+    the normal motions solved before (:class:`SharedNormals`; None: solved here)."""
+    solve = solve_normal if normals is None else normals.solve
+    normal = solve(params, compliance, config.options, forces)
     result = CollisionResult(
         params, compliance.model, normal, physical=physical, compliance=compliance, config=config
     )

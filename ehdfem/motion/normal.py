@@ -60,14 +60,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import checks
 from ..film.asperity_obstacle import AsperityObstacle
-from ..film.gap import Paraboloid, default_gap
+from ..film.gap import Paraboloid
 from ..film.reynolds import Film, FilmError
 from .forces import LAYER_SURFACE, SphereForce, SphereState
 from .history import NormalHistory
-from .implicit_step import ImplicitStep, StepFailed, SurfaceMotion
-from .sphere import IMPACT_VELOCITY, Sphere
+from .implicit_step import ImplicitStep, StepFailed
+from .normal_problem import NormalProblem, normal_problem
+from .sphere import IMPACT_VELOCITY
 from .timestepping import (
     BDFStepper,
     IntegratorOptions,
@@ -181,15 +181,6 @@ class NormalResult:
         return max(self.max_compression, 0.0) * self.params.delta
 
 
-def _surface_motion(compliance, delta) -> SurfaceMotion | None:
-    """The faces' mean radial displacement the film's flux carries, from the compliance's
-    ``surface_radial_matrix``; None if it has none."""
-    radial = getattr(compliance, "surface_radial_matrix", None)
-    if radial is None:
-        return None
-    return SurfaceMotion(radial, float(np.sqrt(delta)))
-
-
 def solve_normal(
     params: CollisionParameters,
     compliance: Compliance,
@@ -206,47 +197,45 @@ def solve_normal(
     ``forces``: forces on the sphere besides those of ``params`` (the external force, the
     buoyant weight), such as the history force of the liquid around the film
     (:class:`ehdfem.motion.forces.HistoryForce`), advanced at every accepted step.
-    Returns a :class:`NormalResult`.
+    Returns a :class:`NormalResult`. The integration reads these inputs only through their
+    :class:`ehdfem.motion.normal_problem.NormalProblem` (:func:`normal_problem`), and ``params``
+    is kept in the result.
     """
-    options = options or IntegratorOptions()
-    integration = _NormalIntegration(params, compliance, options, forces)
-    return integration.run()
+    problem = normal_problem(params, compliance, options, forces)
+    return _NormalIntegration(params, problem).run()
 
 
 class _NormalIntegration:
     """The time loop of :func:`solve_normal`: steps, events and the result."""
 
-    def __init__(self, params, compliance, options, forces=()):
-        if options.exit_gap > LAYER_SURFACE and params.layer != "immersed":
-            raise checks.InputError(
-                f"exit_gap = {options.exit_gap!r} needs an immersed layer: a sphere leaves a "
-                f"{params.layer} layer at its surface (the allowed value is 1)"
-            )
-        self.params, self.options = params, options
-        law = params.asperities.pressure_law(params.eps, params.delta)
-        self.touch = params.asperities.touch()
+    def __init__(self, params, problem: NormalProblem):
+        """``params``: the collision's inputs, kept in the result only; every input of the
+        integration is in ``problem`` (:mod:`ehdfem.motion.normal_problem`), so that equal
+        problems integrate alike."""
+        self.params, self.options = params, problem.options
+        self.problem = problem
+        self.touch = problem.touch
         self.impact, self.restart = None, 0  # the solid impact; the history's first usable step
         # the asperity obstacle takes the touches no impact takes, on elastic solids only (a
         # rigid sphere's film thins only while it approaches)
-        self.yielding = bool(np.diag(compliance.matrix).min() > 0.0)
-        self.radii = np.asarray(compliance.radii, dtype=float)
-        gap = params.gap or default_gap(compliance.model, params.layer)
-        self.shape = gap.shape(params.delta, compliance.surface_radii)
-        self.film = Film(self.radii, params.layer, params.viscosity_law(), self.shape)
-        self.cavitation = params.cavitation_model()
-        self.sphere = Sphere.of(params, forces)
+        self.yielding = bool(np.diag(problem.matrix).min() > 0.0)
+        self.radii = problem.radii
+        self.shape = problem.shape
+        self.film = Film(self.radii, problem.layer, problem.viscosity, self.shape)
+        self.cavitation = problem.cavitation.solver()
+        self.sphere = problem.sphere
         self.step_solver = ImplicitStep(
             self.film,
-            compliance.matrix,
+            problem.matrix,
             self.cavitation,
             self.sphere,
-            options,
-            compliance.shear_matrix,
-            _surface_motion(compliance, params.delta),
-            law,
+            problem.options,
+            problem.shear_matrix,
+            problem.surface_motion,
+            problem.asperity_law,
         )
         self.hist = NormalHistory()
-        self.stepper = BDFStepper(options, self.hist.time)
+        self.stepper = BDFStepper(self.options, self.hist.time)
         n = len(self.radii)
         self.pressure, self.gap, self.velocity = np.zeros(n), LAYER_SURFACE, IMPACT_VELOCITY
         self.cavitated = np.zeros(n, bool)
@@ -394,7 +383,7 @@ class _NormalIntegration:
         force = float(solution.state.force_weights @ solution.pressure)
         if solution.velocity >= 0.0 or force <= 0.0:
             return 0.0
-        return self.params.St * min(1.0, -solution.velocity / (force * h_min))
+        return self.sphere.St * min(1.0, -solution.velocity / (force * h_min))
 
     def _full(self, pressure, state):
         """Nodes whose film is full: wet and above the cavitation pressure."""
@@ -509,7 +498,7 @@ class _NormalIntegration:
     def _solid_impact(self, t_new) -> float:
         """The asperities' solid collision at the latest state: V_c -> -e_dry V_c; returns the
         kinetic energy lost, (1 - e_dry^2) St V_c^2 / 2."""
-        e_dry, approach = self.params.e_dry, self.velocity
+        e_dry, approach = self.problem.e_dry, self.velocity
         impulse = self.sphere.St * (1.0 + e_dry) * abs(approach)
         self.impact = SolidImpact(len(self.hist.time), t_new, approach, impulse)
         self.velocity = -e_dry * approach
@@ -541,7 +530,7 @@ class _NormalIntegration:
         kinetic0 = self.sphere.kinetic_energy(IMPACT_VELOCITY)
         stored = hist.elastic[-1] - hist.elastic[0]  # from first touch (asperities at X = 1)
         balance = hist.kinetic[-1] + stored + hist.dissipated[-1] - hist.work[-1]
-        restitution = 1.0 if self.impact is not None else params.e_dry  # e_dry acts once
+        restitution = 1.0 if self.impact is not None else self.problem.e_dry  # e_dry acts once
         return NormalResult(
             params=params,
             radii=self.radii,

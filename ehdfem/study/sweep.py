@@ -34,8 +34,11 @@ PhysicalCollision fields (plus run settings):
 Every row gives the point's run settings (:meth:`ehdfem.config.RunConfig.settings`)
 and the outputs of :mod:`ehdfem.outputs.registry`; those of a physical study also give St, eps,
 delta, P_cav and the SI results (``*_m``, ``*_N``, ...).
-Points are claimed dynamically by the ranks (an exclusive file per point), so ranks that draw
-cheap points take more of them. Each finished point is written atomically as its own JSON file
+Points are claimed dynamically by the ranks, in groups that share their normal motion
+(:func:`normal_groups`: an exclusive file per group; a point alone where nothing is shared), so
+ranks that draw cheap groups take more of them; a group's rank integrates each of its normal
+motions once and solves each point's tangential motion on it (docs/studies.md, "Shared normal
+motions"). Each finished point is written atomically as its own JSON file
 next to the table (``<table>.points/``); a run that is killed and started again skips the
 points already there, so nothing finished is lost or duplicated. The table (CSV, one row per
 point with inputs, outputs, status, seconds, code version and git commit) is rewritten
@@ -64,7 +67,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import checks
-from ..collision import collide, elasticity, film_radii
+from ..collision import SharedNormals, collide, elasticity, film_radii, normal_key
 from ..config import Numerics, RunConfig, setting_names
 from ..console.progress import Counter
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
@@ -241,13 +244,18 @@ def write_atomic(path: Path, text: str) -> None:
     os.replace(tmp, path)
 
 
-def run_point(study: Study, point: dict) -> dict:
-    """One collision; failures are recorded with their reason instead of stopping the study."""
+def run_point(study: Study, point: dict, normals: SharedNormals | None = None) -> dict:
+    """One collision; failures are recorded with their reason instead of stopping the study.
+    ``normals``: the normal motions its group solved before
+    (:class:`ehdfem.collision.SharedNormals`; None: solved here); the row is the same either
+    way. ``seconds``: the wall time of this point's collision (its solids, its tangential
+    motion, and its normal motion where it was integrated for this point, not where it was
+    shared)."""
     start = time.perf_counter()
     config = study.config(point)
     row = {**point, **{k: v for k, v in config.settings().items() if k not in point}}
     try:
-        result = collide(study.inputs(point), config)
+        result = collide(study.inputs(point), config, normals=normals)
         summary = result.summary()
         if study.physical is not None:
             row.update({name: summary.get(name) for name in SCALED_GROUPS})
@@ -275,10 +283,12 @@ def _output_columns(study: Study, summary: dict) -> dict:
 def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     """Run every point not yet in the study's point folder, spread over the ranks of ``comm``
     (mpi4py communicator or None), then write the table. Returns the rows (on every rank).
+    The points run in the groups of :func:`normal_groups`, each group on one rank, which
+    integrates each of its normal motions once (:class:`ehdfem.collision.SharedNormals`).
     ``progress(line)`` reports each finished point (:func:`progress_line`);
     on a terminal, rank 0 also draws a bar of the points done with rate and time left
     (:mod:`ehdfem.console.progress`)."""
-    rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
+    rank = comm.rank if comm is not None else 0
     points_dir = study.point_dir
     claims = points_dir / "claims"
     if rank == 0:
@@ -287,18 +297,18 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
             stale.unlink()
     if comm is not None:
         comm.Barrier()
-    order = sorted(range(len(study.points)), key=lambda i: -study.stokes_numbers[i])  # costly 1st
+    groups = normal_groups(study, comm)
     total, keys = len(study.points), {study.key(point) for point in study.points}
     with Counter(total, f"sweep {study.name}", _finished(points_dir, keys), unit="point") as bar:
-        for i in order:
-            row = _claim_and_run(study, study.points[i], claims)
-            if row is None:
-                continue
-            finished = _finished(points_dir, keys)
-            bar.advance_to(finished)
-            if progress is not None:
-                with bar.paused():
-                    progress(progress_line(finished, total, rank, study.points[i], row))
+        for name, members in groups:
+            normals = SharedNormals()
+            for i, row, shared in _claim_and_run(study, name, members, claims, normals):
+                finished = _finished(points_dir, keys)
+                bar.advance_to(finished)
+                if progress is not None:
+                    with bar.paused():
+                        line = progress_line(finished, total, rank, study.points[i], row, shared)
+                        progress(line)
     if comm is not None:
         comm.Barrier()
     rows = collect(study)
@@ -307,23 +317,72 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
     return rows
 
 
-def _claim_and_run(study: Study, point: dict, claims: Path) -> dict | None:
-    """Run ``point`` and write its result file, unless it is finished or claimed by another
-    rank (then None): the claim is an exclusive file in ``claims``, removed when done."""
-    key = study.key(point)
-    done = study.point_dir / f"{key}.json"
-    if done.exists():
+def normal_groups(study: Study, comm=None) -> list[tuple[str, list[int]]]:
+    """The unfinished points (indices into ``study.points``) in groups of equal
+    :func:`ehdfem.collision.normal_key` (the digest of the first normal problem their
+    collisions solve), as (name, indices): the name, the key's first 16 digits, names the
+    group's claim file; each group's points in the study's order, the groups by their
+    largest St, largest first (the costly ones first). A point of the FE model, or whose key
+    is None or fails, is a group of its own named by its point key (:meth:`Study.key`): its
+    key would cost a build of its solids, as much as its own collision's. The keys, of a
+    half-space compliance each (some 25 ms at 240 nodes), are computed by the ranks of
+    ``comm`` in turn and gathered, for the points rank 0 found unfinished."""
+    rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
+    pending = [i for i, point in enumerate(study.points) if not _result_file(study, point).exists()]
+    if comm is not None:
+        pending = comm.bcast(pending)
+    keys = {i: _normal_key(study, study.points[i]) for i in pending[rank::size]}
+    if comm is not None:
+        keys = {i: key for part in comm.allgather(keys) for i, key in part.items()}
+    groups: dict[str, list[int]] = {}
+    for i in pending:
+        name = keys[i][:16] if keys[i] is not None else study.key(study.points[i])
+        groups.setdefault(name, []).append(i)
+    return sorted(groups.items(), key=lambda g: -max(study.stokes_numbers[i] for i in g[1]))
+
+
+def _normal_key(study: Study, point: dict) -> str | None:
+    """:func:`ehdfem.collision.normal_key` of a half-space point; None for the FE model and
+    where it fails (the point's collision then records the failure)."""
+    config = study.config(point)
+    if config.model != "halfspace":
         return None
     try:
-        fd = os.open(claims / key, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
-    except FileExistsError:
+        return normal_key(study.inputs(point), config)
+    except (NormalSolverError, checks.InputError, np.linalg.LinAlgError):
         return None
+
+
+def _result_file(study: Study, point: dict) -> Path:
+    """The result file of a finished point: <table>.points/<point key>.json."""
+    return study.point_dir / f"{study.key(point)}.json"
+
+
+def _claim_and_run(study: Study, name: str, members: list[int], claims: Path, normals):
+    """Run the unfinished points ``members`` of the group ``name`` (:func:`normal_groups`) with
+    the shared normal motions ``normals``, writing each result file as it finishes, unless the
+    group is finished or claimed by another rank (then nothing): the claim is an exclusive
+    file in ``claims``, removed when done. Yields (index, row, whether its normal motion was
+    shared) for each point run."""
+    if all(_result_file(study, study.points[i]).exists() for i in members):
+        return
+    try:
+        fd = os.open(claims / name, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+    except FileExistsError:
+        return
     os.write(fd, f"{socket.gethostname()}:{os.getpid()}".encode())
     os.close(fd)
-    row = run_point(study, point)
-    write_atomic(done, json.dumps(row))
-    (claims / key).unlink(missing_ok=True)
-    return row
+    try:
+        for i in members:
+            done = _result_file(study, study.points[i])
+            if done.exists():
+                continue
+            solved = normals.solved
+            row = run_point(study, study.points[i], normals)
+            write_atomic(done, json.dumps(row))
+            yield i, row, normals.solved == solved
+    finally:
+        (claims / name).unlink(missing_ok=True)
 
 
 def _finished(points_dir: Path, keys: set[str]) -> int:
@@ -333,13 +392,17 @@ def _finished(points_dir: Path, keys: set[str]) -> int:
     return len(keys.intersection(path.stem for path in points_dir.glob("*.json")))
 
 
-def progress_line(finished: int, total: int, rank: int, point: dict, row: dict) -> str:
+def progress_line(
+    finished: int, total: int, rank: int, point: dict, row: dict, shared: bool = False
+) -> str:
     """``[done/total] rank r: St=3.16, eps=0.001 -> ok:rebound e_n=0.5432 (1.2 s)``: numbers to
-    four significant digits."""
+    four significant digits; ``(0.03 s, normal shared)`` where the point's normal motion was
+    that of an earlier point of its group."""
     inputs = ", ".join(f"{k}={_short(v)}" for k, v in point.items())
+    note = ", normal shared" if shared else ""
     return (
         f"[{finished}/{total}] rank {rank}: {inputs} -> {row['status']} "
-        f"e_n={_short(row['e_n'])} ({row['seconds']:.3g} s)"
+        f"e_n={_short(row['e_n'])} ({row['seconds']:.3g} s{note})"
     )
 
 
@@ -352,7 +415,7 @@ def collect(study: Study) -> list[dict]:
     """The finished rows, in the order of the study's points (missing points are skipped)."""
     rows = []
     for point in study.points:
-        path = study.point_dir / f"{study.key(point)}.json"
+        path = _result_file(study, point)
         if path.exists():
             rows.append(json.loads(path.read_text()))
     return rows

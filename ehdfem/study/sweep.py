@@ -70,6 +70,7 @@ from .. import checks
 from ..collision import SharedNormals, collide, elasticity, film_radii, normal_key
 from ..config import Numerics, RunConfig, setting_names
 from ..console.progress import Counter
+from ..console.progress import progress as progress_bar
 from ..inputs.scales import CollisionParameters, PhysicalCollision, from_presets
 from ..motion.normal import NormalSolverError
 from ..motion.timestepping import IntegratorOptions
@@ -326,12 +327,14 @@ def normal_groups(study: Study, comm=None) -> list[tuple[str, list[int]]]:
     is None or fails, is a group of its own named by its point key (:meth:`Study.key`): its
     key would cost a build of its solids, as much as its own collision's. The keys, of a
     half-space compliance each (some 25 ms at 240 nodes), are computed by the ranks of
-    ``comm`` in turn and gathered, for the points rank 0 found unfinished."""
+    ``comm`` in turn and gathered, for the points rank 0 found unfinished (on a terminal rank
+    0 shows a bar over its share: the DEM table's 2912 keys take some 40 s on 2 ranks)."""
     rank, size = (comm.rank, comm.size) if comm is not None else (0, 1)
     pending = [i for i, point in enumerate(study.points) if not _result_file(study, point).exists()]
     if comm is not None:
         pending = comm.bcast(pending)
-    keys = {i: _normal_key(study, study.points[i]) for i in pending[rank::size]}
+    mine = progress_bar(pending[rank::size], desc=f"sweep {study.name}: normal problems")
+    keys = {i: _normal_key(study, study.points[i]) for i in mine}
     if comm is not None:
         keys = {i: key for part in comm.allgather(keys) for i, key in part.items()}
     groups: dict[str, list[int]] = {}

@@ -427,10 +427,12 @@ def test_a_touch_during_the_rebound_is_carried_by_the_asperity_obstacle():
     No impact: the asperity obstacle takes the touch from there on, the film stays at sigma
     within the obstacle's penalty (overlap 1e-3 of the free one: the film's thinnest 1e-4 of
     sigma below it at most), it carries a load (2 % of the largest), e_dry acts once, at exit
-    (e_n = e_dry V_exit), and the energy balance closes to the time steps' error (below 6e-4
-    at rtol 2e-5: measured 1.7e-4 on Debian's stack and 3.9e-4 on the wheel stack, whose last
-    bits give another step sequence through the contact's kink, a first-order error in the
-    step; 1.5e-3 at the default rtol, 3.2e-5 at 2e-6)."""
+    (e_n = e_dry V_exit), and the energy balance closes to the time steps' error. The error is
+    of first order in the step that crosses the contact's kink, so the last bits, which choose
+    the step sequence there, move it: at rtol 2e-5 inputs moved by 1e-12 and 1e-11 gave
+    3.5e-4 to 9.2e-4 (six runs; 1.7e-4 and 3.9e-4 measured once on the two stacks before the
+    half-space kernel's last bits changed; 1.5e-3 at the default rtol, 1.5e-5 to 5.4e-4 at
+    1e-5), so it is held below 2e-3."""
     params = CollisionParameters.from_settings(
         St=50.0, eps=1e-2, layer="thin", e_dry=0.9, roughness=0.06
     )
@@ -442,7 +444,7 @@ def test_a_touch_during_the_rebound_is_carried_by_the_asperity_obstacle():
     assert 0.0 < 0.06 - normal.min_film_thickness < 1e-4 * 0.06
     assert out["max_asperity_share"] > 0.01
     assert normal.e_n == 0.9 * normal.exit_velocity
-    assert normal.energy_error < 6e-4
+    assert normal.energy_error < 2e-3
     assert result.summary()["notes"] == []
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .. import checks
-from ..study.sweep import Study, run_study
+from ..study.sweep import Study, finished_points, run_study
 from . import paths
 
 HELP = "run a study file (TOML) over the MPI ranks; resumable"
@@ -31,7 +31,7 @@ def sweep_command(args) -> int:
         run_study(study, comm, progress=print if comm.rank == 0 else None)
     except KeyboardInterrupt:
         keys = {study.key(point) for point in study.points}
-        saved = len(keys.intersection(p.stem for p in study.point_dir.glob("*.json")))
+        saved = finished_points(study.point_dir, keys)
         raise KeyboardInterrupt(
             f"stopped by Ctrl-C; {saved} of {len(keys)} points are saved in "
             f"{study.point_dir}; run the same command again to compute the other "

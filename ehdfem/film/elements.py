@@ -217,7 +217,8 @@ def tridiagonal_rows(bands, matrix, rows) -> np.ndarray:
 @njit(cache=True)
 def add_band_rows(bands, rows, out):
     """out[j, i-1..i+1] += the bands' row i = rows[j] (lower[0] and upper[-1] unused): the rows
-    ``rows`` of a tridiagonal matrix added to the first n columns of ``out``."""
+    ``rows`` of a tridiagonal matrix added to the first n columns of ``out`` (its whole n x n
+    part for every row)."""
     lower, diagonal, upper = bands
     n = len(diagonal)
     for j in range(len(rows)):
@@ -227,18 +228,6 @@ def add_band_rows(bands, rows, out):
         out[j, i] += diagonal[i]
         if i < n - 1:
             out[j, i + 1] += upper[i]
-
-
-@njit(cache=True)
-def _add_bands(bands, out):
-    """out[i, i-1..i+1] += the bands' row i (at the ends, where lower[0] and upper[-1] are
-    unused, onto the diagonal)."""
-    lower, diagonal, upper = bands
-    n = len(diagonal)
-    for i in range(n):
-        out[i, i] += diagonal[i]
-        out[i, max(i - 1, 0)] += lower[i]
-        out[i, min(i + 1, n - 1)] += upper[i]
 
 
 @njit(cache=True)
@@ -264,5 +253,6 @@ def film_jacobian(squeeze, compliance, by_gap, flux_bands, viscous_bands, out):
     for k in range(n):
         _banded_product(squeeze, compliance[:, k], out, k)
     _banded_product(squeeze, by_gap, out, n)
-    _add_bands(flux_bands, out)
-    _add_bands(viscous_bands, out)
+    every_row = np.arange(n)
+    add_band_rows(flux_bands, every_row, out)
+    add_band_rows(viscous_bands, every_row, out)

@@ -300,11 +300,13 @@ def run_study(study: Study, comm=None, progress=print) -> list[dict]:
         comm.Barrier()
     groups = normal_groups(study, comm)
     total, keys = len(study.points), {study.key(point) for point in study.points}
-    with Counter(total, f"sweep {study.name}", _finished(points_dir, keys), unit="point") as bar:
+    with Counter(
+        total, f"sweep {study.name}", finished_points(points_dir, keys), unit="point"
+    ) as bar:
         for name, members in groups:
             normals = SharedNormals()
             for i, row, shared in _claim_and_run(study, name, members, claims, normals):
-                finished = _finished(points_dir, keys)
+                finished = finished_points(points_dir, keys)
                 bar.advance_to(finished)
                 if progress is not None:
                     with bar.paused():
@@ -388,7 +390,7 @@ def _claim_and_run(study: Study, name: str, members: list[int], claims: Path, no
         (claims / name).unlink(missing_ok=True)
 
 
-def _finished(points_dir: Path, keys: set[str]) -> int:
+def finished_points(points_dir: Path, keys: set[str]) -> int:
     """How many of the points named ``keys`` are finished (have their result file in
     ``points_dir``, which may also hold the points of an earlier grid or earlier fixed
     settings: those are not counted)."""

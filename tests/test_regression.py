@@ -25,7 +25,11 @@ T = 2.07 in the rebound (the table's old control, rtol 5e-5 on X and V alone, re
 its 422 steps in this cavitating piezoviscous film) and meet the exit 1.6e-4 apart in the
 velocity, three times rtol: so its outputs are compared at 1e-3, a margin of 6. It had passed
 on both BLAS builds by chance until the half-space kernel's last bits changed (its
-quadrature compiled), which put the reference build on the other sequence.
+quadrature compiled), which put the reference build on the other sequence. thin-roelands is
+soft in the same way: St moved by 1e-12 one way moves e_n by 9.4e-5 and the contact time by
+1.9e-5 (the other way by 1e-10), before and after the Newton matrix's LU became that of its
+free block alone, whose last bits put it on the other sequence; compared at 1e-3, a margin of
+10.
 On one machine results are bit-identical (tests/test_threads.py, the rank-independence tests);
 test_the_table_holds_on_the_reference_blas runs the table on the other BLAS build.
 """
@@ -43,7 +47,7 @@ HERE = Path(__file__).parent
 STORED = json.loads((HERE / "data" / "regression.json").read_text())
 RELATIVE = 1e-8  # outputs, relative (module docstring)
 ENERGY = 1e-9  # the energy error (already by the impact energy), absolute
-SOFT = {"physical-masscons-roelands": 1e-2, "thin-barus": 1e-3}  # every output at this tolerance
+SOFT = {"physical-masscons-roelands": 1e-2, "thin-barus": 1e-3, "thin-roelands": 1e-3}  # every output at this tolerance
 REFERENCE_BLAS = ("/usr/lib/x86_64-linux-gnu/blas", "/usr/lib/x86_64-linux-gnu/lapack")
 
 

@@ -25,6 +25,7 @@ def test_changed_rows_and_columns_solve_exactly():
     fixed, theta = np.zeros(N, bool), np.zeros(N, bool)
     fixed[[3, 4]] = True
     theta[[10, 11]] = True
+    matrix[[3, 4]] = np.eye(N)[[3, 4]]  # a fixed node's row is an identity
     lu = ReusableLU(matrix.copy(), fixed, theta)
     new_fixed, new_theta = fixed.copy(), theta.copy()
     new_fixed[[4, 7]] = [False, True]  # node 4 freed, node 7 fixed
@@ -47,3 +48,20 @@ def test_a_node_whose_row_and_column_both_change_asks_for_a_new_factorisation():
     changed[5] = True
     with pytest.raises(TooManyChanges):
         lu.solve(np.ones(N), changed, lambda i: other[i], changed, lambda j: other[:, j])
+
+
+@pytest.mark.parametrize("held", [0, 1, 15, 29])
+def test_only_the_free_block_is_factorised(held):
+    """With the identity rows of ``held`` fixed nodes (a dry or cavitated film), the LU is
+    that of the free rows and columns alone, and its solves (a vector and the columns of a
+    matrix) equal a dense solve of the whole matrix to 1e-12."""
+    matrix, _, rng = matrices(3)
+    fixed = np.zeros(N, bool)
+    fixed[rng.choice(N, held, replace=False)] = True
+    matrix[fixed] = np.eye(N)[fixed]
+    lu = ReusableLU(matrix.copy(), fixed, np.zeros(N, bool))
+    assert lu.lu.shape == (N - held, N - held)
+    rhs = rng.normal(size=(N, 3))
+    expected = np.linalg.solve(matrix, rhs)
+    assert np.allclose(lu.solve(rhs[:, 0], fixed, None), expected[:, 0], rtol=0, atol=1e-12)
+    assert np.allclose(lu._base_solve(rhs), expected, rtol=0, atol=1e-12)

@@ -47,7 +47,11 @@ HERE = Path(__file__).parent
 STORED = json.loads((HERE / "data" / "regression.json").read_text())
 RELATIVE = 1e-8  # outputs, relative (module docstring)
 ENERGY = 1e-9  # the energy error (already by the impact energy), absolute
-SOFT = {"physical-masscons-roelands": 1e-2, "thin-barus": 1e-3, "thin-roelands": 1e-3}  # every output at this tolerance
+SOFT = {  # every output at this tolerance
+    "physical-masscons-roelands": 1e-2,
+    "thin-barus": 1e-3,
+    "thin-roelands": 1e-3,
+}
 REFERENCE_BLAS = ("/usr/lib/x86_64-linux-gnu/blas", "/usr/lib/x86_64-linux-gnu/lapack")
 
 

@@ -12,11 +12,16 @@ numpy's small operations. Writes benchmarks/results/against_commit.json (seconds
 steps, Newton iterations, e_n, the thinnest film and the contact time of both, the ratio of the
 times, the BLAS share) and prints a line per case.
 
-Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]   (about 2 minutes at 5)
+Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS] [--oblique | --table]
+(the default cases about 2 minutes at 5 repeats; the table about 10 at 2)
 With --oblique it times the oblique cases of OBLIQUE_CASES instead (the tangential models: Couette,
 the sliding film with its mode-1 build, and with the full mode-1 deformation), writing
 benchmarks/results/against_commit_oblique.json (commits since the run settings became keywords
-of ``collide``).
+of ``collide``). With --table it times TABLE_CASES, the corners and the middle of the closed
+forms' DEM fit table (studies/dem_closed_forms.toml: St 10, 1e3, 1e4 x eps 1e-12, 1e-6, 1e-3 x
+P_cav -10 and none x both layers, delta 1e-3, 30 degrees, Couette), whose summed time stands for
+the table's, and writes benchmarks/results/against_commit_table.json (no BLAS share: the
+default cases give it).
 
 The commit's code is imported as it stood (its own ``ehdfem`` package), so the cases use only
 the API every version has had: ``collide(CollisionParameters(St=..., eps=..., layer=...,
@@ -59,6 +64,17 @@ OBLIQUE_CASES = {  # name: (CollisionParameters keywords, run settings): the tan
         dict(St=20.0, eps=1e-3, layer="immersed", angle=30.0),
         dict(tangential="lubrication", deformation="full"),
     ),
+}
+TABLE_CASES = {  # name: (CollisionParameters keywords, run settings): the DEM fit table's box
+    f"{layer} St={St:g} eps={eps:g} P_cav={p_cav}": (
+        dict(St=St, eps=eps, layer=layer, angle=30.0, delta=1e-3)
+        | ({} if p_cav == "none" else {"p_cav": p_cav}),
+        dict(tangential="couette"),
+    )
+    for St in (10.0, 1e3, 1e4)
+    for eps in (1e-12, 1e-6, 1e-3)
+    for p_cav in (-10.0, "none")
+    for layer in ("thin", "immersed")
 }
 SETUP = """
 import json, sys, time
@@ -151,9 +167,13 @@ def blas_libraries() -> list[str]:
     )
 
 
-def main(commit: str, repeats: int = 5, oblique: bool = False):
+def main(commit: str, repeats: int = 5, kind: str = "default"):
     rows = {}
-    cases = OBLIQUE_CASES if oblique else {name: (case, {}) for name, case in CASES.items()}
+    cases = {
+        "default": {name: (case, {}) for name, case in CASES.items()},
+        "oblique": OBLIQUE_CASES,
+        "table": TABLE_CASES,
+    }[kind]
     with tempfile.TemporaryDirectory() as tmp, commit_checkout(commit, Path(tmp) / "old") as old:
         for name, case in cases.items():
             best = {"current": None, "old": None}
@@ -163,7 +183,7 @@ def main(commit: str, repeats: int = 5, oblique: bool = False):
                     if best[label] is None or result["seconds"] < best[label]["seconds"]:
                         best[label] = result
             ratio = best["current"]["seconds"] / best["old"]["seconds"]
-            share = blas_share(case)
+            share = None if kind == "table" else blas_share(case)
             rows[name] = {**best, "time_ratio": ratio, "blas_lapack_share": share}
             print(
                 f"{name:42s} current {best['current']['seconds']:.3f} s "
@@ -175,8 +195,12 @@ def main(commit: str, repeats: int = 5, oblique: bool = False):
             )
     current = head()
     RESULTS.mkdir(exist_ok=True)
-    out = RESULTS / ("against_commit_oblique.json" if oblique else "against_commit.json")
+    out = RESULTS / ("against_commit.json" if kind == "default" else f"against_commit_{kind}.json")
     blas = blas_libraries()
+    summed = {
+        label: sum(row[label]["seconds"] for row in rows.values()) for label in ("current", "old")
+    }
+    print(f"summed: current {summed['current']:.2f} s, {commit[:10]} {summed['old']:.2f} s")
     out.write_text(
         json.dumps(
             {
@@ -184,6 +208,7 @@ def main(commit: str, repeats: int = 5, oblique: bool = False):
                 "against": commit,
                 "repeats": repeats,
                 "blas_libraries": blas,
+                "summed_seconds": summed,
                 "cases": rows,
             },
             indent=2,
@@ -194,7 +219,8 @@ def main(commit: str, repeats: int = 5, oblique: bool = False):
 
 
 if __name__ == "__main__":
-    arguments = [a for a in sys.argv[1:] if a != "--oblique"]
-    if not arguments:
-        sys.exit("usage: against_commit.py COMMIT [REPEATS] [--oblique]")
-    main(arguments[0], int(arguments[1]) if len(arguments) > 1 else 5, "--oblique" in sys.argv)
+    kinds = [a[2:] for a in sys.argv[1:] if a in ("--oblique", "--table")]
+    arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
+    if not arguments or len(kinds) > 1:
+        sys.exit("usage: against_commit.py COMMIT [REPEATS] [--oblique | --table]")
+    main(arguments[0], int(arguments[1]) if len(arguments) > 1 else 5, *kinds)

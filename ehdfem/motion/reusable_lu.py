@@ -9,11 +9,11 @@ the stored LU as a rank-k correction instead of a new factorisation: with A0 the
 matrix, R the changed rows and C the changed columns, the matrix is A0 + U V^T with
 U = [E_R, (new columns - A0 columns) off the rows R] and V^T = [new rows - A0 rows; E_C^T].
 
-The rows of fixed nodes are identities, so only the block of the other rows and columns is
-factorised: with F the free unknowns and X the fixed ones, x_X = b_X and
-A_FF x_F = b_F - A_FX b_X. Where the film is dry or cavitated over much of the grid (a thin
-layer's rebound, a hard impact under a cavitation limit) this LU is several times cheaper than
-the whole matrix's; with no fixed node the whole matrix is factorised as it is.
+The rows of fixed nodes are identities, so when there are enough of them (MIN_HELD_SHARE)
+only the block of the other rows and columns is factorised: with F the free unknowns and X the
+fixed ones, x_X = b_X and A_FF x_F = b_F - A_FX b_X. Where the film is dry or cavitated over
+much of the grid (a thin layer's rebound, a hard impact under a cavitation limit) this LU is
+several times cheaper than the whole matrix's; otherwise the whole matrix is factorised.
 
 The matrix is equilibrated (columns, then rows, scaled by powers of two to a largest entry in
 [1/2, 1), so the scaling itself rounds nothing) before the LU: its
@@ -34,6 +34,9 @@ from scipy.linalg import lapack
 _GETRF, _GETRS = lapack.get_lapack_funcs(("getrf", "getrs"), dtype=np.float64)
 
 
+_EXACT_MAXIMA = {"nnan", "ninf", "reassoc", "nsz"}  # fast math that leaves maxima exact
+
+
 @njit(cache=True)
 def _power_of_two(largest: float) -> float:
     """2^e with largest / 2^e in [0.5, 1) (1 for 0): a scale that divides exactly."""
@@ -42,35 +45,44 @@ def _power_of_two(largest: float) -> float:
     return math.ldexp(1.0, math.frexp(largest)[1])
 
 
-@njit(cache=True, fastmath={"nnan", "ninf", "reassoc", "nsz"})
-def _equilibrated(matrix):
-    """(S, c, r): S = diag(1/r) A diag(1/c), c the powers of two of the columns' largest
-    absolute entries and then r those of the scaled rows' (:func:`_power_of_two`): the
-    scaling is exact. Columns outer: S is in LAPACK's column order (getrf takes it without a
-    copy), read best from A in the same. The fast-math flags let the compiler vectorise the
-    largest-entry searches (a maximum is exact in any order) on a finite A (checked by the
-    caller); the products are single roundings, the same in any order."""
-    n, m = matrix.shape
-    scaled = np.empty((m, n)).T
+@njit(cache=True, fastmath=_EXACT_MAXIMA, inline="always")
+def _entry(matrix, index, i, j):
+    """A[index[i], index[j]], or A[i, j] when ``index`` is None (the branch is compiled out)."""
+    if index is None:
+        return matrix[i, j]
+    return matrix[index[i], index[j]]
+
+
+@njit(cache=True, fastmath=_EXACT_MAXIMA)
+def _equilibrated(matrix, index):
+    """(S, c, r): S = diag(1/r) B diag(1/c) for the square block B = A[index][:, index] (the
+    whole A when ``index`` is None), c the powers of two of B's columns' largest absolute
+    entries and then r those of the scaled rows' (:func:`_power_of_two`): the scaling is exact.
+    Columns outer: S is in LAPACK's column order (getrf takes it without a copy), read best from
+    A in the same. The fast-math flags let the compiler vectorise the largest-entry searches (a
+    maximum is exact in any order) on a finite A (checked by the caller); the products are
+    single roundings, the same in any order."""
+    m = len(matrix) if index is None else len(index)
+    scaled = np.empty((m, m)).T
     col = np.empty(m)
-    row = np.zeros(n)
+    row = np.zeros(m)
     for j in range(m):
         largest = 0.0
-        for i in range(n):
-            largest = max(largest, abs(matrix[i, j]))
+        for i in range(m):
+            largest = max(largest, abs(_entry(matrix, index, i, j)))
         col[j] = _power_of_two(largest)
     for j in range(m):
         inverse = 1.0 / col[j]
-        for i in range(n):
-            value = matrix[i, j] * inverse
+        for i in range(m):
+            value = _entry(matrix, index, i, j) * inverse
             scaled[i, j] = value
             row[i] = max(row[i], abs(value))
-    inverse_row = np.empty(n)
-    for i in range(n):
+    inverse_row = np.empty(m)
+    for i in range(m):
         row[i] = _power_of_two(row[i])
         inverse_row[i] = 1.0 / row[i]
     for j in range(m):
-        for i in range(n):
+        for i in range(m):
             scaled[i, j] *= inverse_row[i]
     return scaled, col, row
 
@@ -91,6 +103,10 @@ class ReusableLU:
     """
 
     MAX_CHANGES = 12
+    # the share of identity rows from which the free block alone is factorised: gathering it
+    # costs some 40 % more than equilibrating the whole matrix, which a few identity rows do
+    # not save in the LU (at 240 nodes the break-even is near 10 of them)
+    MIN_HELD_SHARE = 1 / 16
 
     def __init__(self, matrix, fixed, theta):
         self.matrix, self.fixed, self.theta = matrix, fixed.copy(), theta.copy()
@@ -99,12 +115,10 @@ class ReusableLU:
         identity = np.zeros(len(matrix), dtype=bool)
         identity[: len(fixed)] = fixed & ~theta
         self.free = self.coupling = None
-        block = matrix
-        if identity.any():  # factorise A_FF, keep A_FX (module docstring)
+        if identity.sum() >= self.MIN_HELD_SHARE * len(matrix):  # A_FF, and A_FX kept
             self.free, self.held = np.flatnonzero(~identity), np.flatnonzero(identity)
-            block = matrix[np.ix_(self.free, self.free)]
             self.coupling = matrix[np.ix_(self.free, self.held)]
-        scaled, self.col, self.row = _equilibrated(block)
+        scaled, self.col, self.row = _equilibrated(matrix, self.free)
         self.lu, self.pivots, info = _GETRF(scaled, overwrite_a=True)
         if info != 0:
             raise SingularMatrix(f"singular Newton matrix (LAPACK getrf info {info})")

@@ -37,7 +37,7 @@ _GETRF, _GETRS = lapack.get_lapack_funcs(("getrf", "getrs"), dtype=np.float64)
 _EXACT_MAXIMA = {"nnan", "ninf", "reassoc", "nsz"}  # fast math that leaves maxima exact
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _power_of_two(largest: float) -> float:
     """2^e with largest / 2^e in [0.5, 1) (1 for 0): a scale that divides exactly."""
     if largest == 0.0:
@@ -45,7 +45,7 @@ def _power_of_two(largest: float) -> float:
     return math.ldexp(1.0, math.frexp(largest)[1])
 
 
-@njit(cache=True, fastmath=_EXACT_MAXIMA, inline="always")
+@njit(cache=True, fastmath=_EXACT_MAXIMA, inline="always", error_model="numpy")
 def _entry(matrix, index, i, j):
     """A[index[i], index[j]], or A[i, j] when ``index`` is None (the branch is compiled out)."""
     if index is None:
@@ -53,7 +53,7 @@ def _entry(matrix, index, i, j):
     return matrix[index[i], index[j]]
 
 
-@njit(cache=True, fastmath=_EXACT_MAXIMA)
+@njit(cache=True, fastmath=_EXACT_MAXIMA, error_model="numpy")
 def _equilibrated(matrix, index):
     """(S, c, r): S = diag(1/r) B diag(1/c) for the square block B = A[index][:, index] (the
     whole A when ``index`` is None), c the powers of two of B's columns' largest absolute

@@ -157,6 +157,11 @@ class ImplicitStep:
         self._loaded: LoadedThickness | None = None
         self.factor = None
         self.factorisations = 0
+        size = len(self.compliance) + 2
+        # two Newton matrices and LU workspaces, taken in turn: the one the kept LU holds
+        # and the one the next matrix is formed in (fresh arrays of this size each step cost
+        # more in the kernel's page faults than in their arithmetic)
+        self._slots = [(np.zeros((size, size), order="F"), np.empty(size**2)) for _ in range(2)]
         self._last_deflection = None
         self._last_thickness = None  # (X, loaded, P, thickness_parts) of the latest call
 
@@ -364,7 +369,8 @@ class ImplicitStep:
     def _factorise(self, matrix, it: _Iterate):
         """A new LU of the iterate's Newton ``matrix`` (:meth:`_newton_matrix`)."""
         try:
-            self.factor = ReusableLU(matrix, it.fixed, it.theta_nodes)
+            workspace = self._slots[0][1] if matrix is self._slots[0][0] else self._slots[1][1]
+            self.factor = ReusableLU(matrix, it.fixed, it.theta_nodes, workspace)
         except SingularMatrix as err:
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1
@@ -391,7 +397,9 @@ class ImplicitStep:
         """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the sphere's X and V
         rows (:meth:`ehdfem.motion.sphere.Sphere.jacobian_rows`)."""
         n = len(state.mass)
-        jac = np.zeros((n + 2, n + 2), order="F")  # LAPACK's order: no copy for the LU
+        held = None if self.factor is None else self.factor.matrix
+        jac = self._slots[1][0] if held is self._slots[0][0] else self._slots[0][0]
+        jac.fill(0.0)  # in LAPACK's order: no copy for the LU
         self._film_rows(state, step, a0, fill, jac)
         fixed_rows = np.flatnonzero(fixed)
         jac[fixed_rows, :] = 0.0

@@ -54,16 +54,17 @@ def _entry(matrix, index, i, j):
 
 
 @njit(cache=True, fastmath=_EXACT_MAXIMA, error_model="numpy")
-def _equilibrated(matrix, index):
+def _equilibrated(matrix, index, out):
     """(S, c, r): S = diag(1/r) B diag(1/c) for the square block B = A[index][:, index] (the
     whole A when ``index`` is None), c the powers of two of B's columns' largest absolute
     entries and then r those of the scaled rows' (:func:`_power_of_two`): the scaling is exact.
-    Columns outer: S is in LAPACK's column order (getrf takes it without a copy), read best from
-    A in the same. The fast-math flags let the compiler vectorise the largest-entry searches (a
-    maximum is exact in any order) on a finite A (checked by the caller); the products are
-    single roundings, the same in any order."""
+    S is written into the flat array ``out`` (at least m^2 long) in LAPACK's column order
+    (getrf takes it without a copy); columns outer, read best from A in the same order. The
+    fast-math flags let the compiler vectorise the largest-entry searches (a maximum is exact
+    in any order) on a finite A (checked by the caller); the products are single roundings,
+    the same in any order."""
     m = len(matrix) if index is None else len(index)
-    scaled = np.empty((m, m)).T
+    scaled = out[: m * m].reshape((m, m)).T
     col = np.empty(m)
     row = np.zeros(m)
     for j in range(m):
@@ -100,6 +101,9 @@ class ReusableLU:
     ``theta`` (boolean mask of the nodes whose columns hold the liquid fraction theta of
     mass-conserving cavities). The rows of the fixed nodes must be identity rows, as the
     Newton matrix's are: only the other rows and columns are factorised (module docstring).
+    ``workspace``: a flat float array of at least len(matrix)^2 entries that holds the factors
+    while this LU lives (a new one if None): a caller that alternates two of them allocates
+    no memory a factorisation.
     """
 
     MAX_CHANGES = 12
@@ -108,7 +112,7 @@ class ReusableLU:
     # not save in the LU (at 240 nodes the break-even is near 10 of them)
     MIN_HELD_SHARE = 1 / 16
 
-    def __init__(self, matrix, fixed, theta):
+    def __init__(self, matrix, fixed, theta, workspace=None):
         self.matrix, self.fixed, self.theta = matrix, fixed.copy(), theta.copy()
         if not np.isfinite(matrix).all():
             raise SingularMatrix("Newton matrix not finite")
@@ -118,7 +122,10 @@ class ReusableLU:
         if identity.sum() >= self.MIN_HELD_SHARE * len(matrix):  # A_FF, and A_FX kept
             self.free, self.held = np.flatnonzero(~identity), np.flatnonzero(identity)
             self.coupling = matrix[np.ix_(self.free, self.held)]
-        scaled, self.col, self.row = _equilibrated(matrix, self.free)
+        if workspace is None:
+            workspace = np.empty(len(matrix) ** 2)
+        self.workspace = workspace
+        scaled, self.col, self.row = _equilibrated(matrix, self.free, workspace)
         self.lu, self.pivots, info = _GETRF(scaled, overwrite_a=True)
         if info != 0:
             raise SingularMatrix(f"singular Newton matrix (LAPACK getrf info {info})")

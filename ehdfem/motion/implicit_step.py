@@ -159,8 +159,8 @@ class ImplicitStep:
         self.factorisations = 0
         size = len(self.compliance) + 2
         # two Newton matrices and LU workspaces, taken in turn: the one the kept LU holds
-        # and the one the next matrix is formed in (fresh arrays of this size each step cost
-        # more in the kernel's page faults than in their arithmetic)
+        # and the one the next matrix is formed in (fresh arrays of this size made some 8 000
+        # page faults a collision, docs/performance.md)
         self._slots = [(np.zeros((size, size), order="F"), np.empty(size**2)) for _ in range(2)]
         self._last_deflection = None
         self._last_thickness = None  # (X, loaded, P, thickness_parts) of the latest call

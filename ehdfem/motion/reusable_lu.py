@@ -109,7 +109,7 @@ class ReusableLU:
     MAX_CHANGES = 12
     # the share of identity rows from which the free block alone is factorised: gathering it
     # costs some 40 % more than equilibrating the whole matrix, which a few identity rows do
-    # not save in the LU (at 240 nodes the break-even is near 10 of them)
+    # not save in the LU (at 240 nodes the estimated break-even is near 10 of them, 1/16 is 15)
     MIN_HELD_SHARE = 1 / 16
 
     def __init__(self, matrix, fixed, theta, workspace=None):
@@ -124,7 +124,6 @@ class ReusableLU:
             self.coupling = matrix[np.ix_(self.free, self.held)]
         if workspace is None:
             workspace = np.empty(len(matrix) ** 2)
-        self.workspace = workspace
         scaled, self.col, self.row = _equilibrated(matrix, self.free, workspace)
         self.lu, self.pivots, info = _GETRF(scaled, overwrite_a=True)
         if info != 0:

@@ -1,6 +1,7 @@
 """The ehdfem command: :func:`main`, the entry point, and its commands (:mod:`ehdfem.cli.main`)."""
 
 import sys
+from contextlib import contextmanager
 
 INTERRUPTED_AT_START = "stopped by Ctrl-C before the command began; nothing was written"
 
@@ -30,3 +31,16 @@ def caused_by_interrupt(error: BaseException) -> bool:
             return True
         error = error.__cause__ or error.__context__
     return False
+
+
+@contextmanager
+def interrupt_says(message):
+    """Within the block, a Ctrl-C (a KeyboardInterrupt, or numba's SystemError caused by one)
+    becomes ``KeyboardInterrupt(message())``: the command's own line of what was saved and how
+    to go on."""
+    try:
+        yield
+    except (KeyboardInterrupt, SystemError) as err:
+        if not caused_by_interrupt(err):
+            raise
+        raise KeyboardInterrupt(message()) from None

@@ -8,7 +8,7 @@ from dataclasses import asdict
 from ..inputs.scales import CollisionParameters, PhysicalCollision
 from ..outputs import provenance
 from ..study.sweep import critical_speed, critical_stokes
-from . import paths
+from . import interrupt_says, paths
 from .arguments import add_fields, report_stream, write_json
 from .inputs import add_body_arguments, add_run_arguments, collision_inputs, run_config, shared
 
@@ -17,6 +17,10 @@ NOT_ASKED = ("St", "angle", "spin")  # St is searched; the bisection is on the n
 NOT_ASKED_PHYSICAL = ("speed", "angle", "spin")  # the speed is searched
 NO_EFFECT = ("tangential", "deformation")  # the tangential motion does not decide a rebound
 BRACKETS = {"St": (1.0, 1000.0), "speed": (0.01, 10.0)}  # starting brackets, St and m/s
+UNSAVED = (
+    "stopped by Ctrl-C; the search writes nothing until it ends, so nothing was saved: run the "
+    "command again to search anew"
+)
 
 
 def add_critical(parser) -> None:
@@ -58,13 +62,8 @@ def critical_command(args) -> int:
     kind = "speed" if isinstance(inputs, PhysicalCollision) else "St"
     bracket = BRACKETS[kind] if args.bracket is None else tuple(args.bracket)
     label = f"{'critical speed' if kind == 'speed' else 'St_c'} bisection"
-    try:
+    with interrupt_says(lambda: UNSAVED):
         found, given, where, unit = _search(args, inputs, kind, bracket, config, label)
-    except KeyboardInterrupt:
-        raise KeyboardInterrupt(
-            "stopped by Ctrl-C; the search writes nothing until it ends, so nothing was saved: "
-            "run the command again to search anew"
-        ) from None
     out = {
         **found,
         "provenance": provenance.record(args.command_line),

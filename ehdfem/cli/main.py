@@ -172,13 +172,12 @@ def main(argv=None) -> int:
         say(args.command, "solver failure", str(err))
         settle_ranks()
         return 3
-    except KeyboardInterrupt as err:  # a command may say what it saved and how to resume
-        say(args.command, "interrupted", str(err) or INTERRUPTED)
-        return 130
-    except SystemError as err:  # an interrupt that a compiled extension wrapped
+    except (KeyboardInterrupt, SystemError) as err:  # SystemError: numba wrapped the Ctrl-C
         if not caused_by_interrupt(err):
             raise
-        say(args.command, "interrupted", INTERRUPTED)
+        # a command may say what it saved and how to resume (cli.interrupt_says)
+        said = str(err) if isinstance(err, KeyboardInterrupt) else ""
+        say(args.command, "interrupted", said or INTERRUPTED)
         return 130
     except BrokenPipeError:  # the reader left (| head): no more output, and no message
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -4,7 +4,9 @@ Each case (a head-on collision at the default numerics, 240 film nodes, half-spa
 run in a fresh Python process on the current checkout and on a git worktree of COMMIT, in
 alternation, REPEATS times each; the fastest run of each counts (runs of about a second vary
 by 15 % on a busy machine, and the minimum is the least disturbed). One BLAS thread, as in every
-collision, on the machine's BLAS (both sides the same library). Then, where Linux's ``perf`` is
+collision, on the machine's BLAS (both sides the same library; but the Newton matrices' LU,
+which the code runs on the OpenBLAS the package installs, ehdfem.lapack, since that module
+came: a commit before it factorises with the machine's LAPACK). Then, where Linux's ``perf`` is
 installed, the current code's collisions are sampled by ``perf record`` and the share of the
 samples inside the BLAS and LAPACK libraries (OpenBLAS or the reference ones) is reported per
 case: the part of a collision's time that is arithmetic in the dense kernels, against Python and
@@ -156,17 +158,19 @@ def blas_share(case: tuple, runs: int = 10) -> float | None:
 
 
 def blas_libraries() -> list[str]:
-    """The BLAS and LAPACK libraries numpy and scipy load on this machine (both codes use
-    them)."""
+    """The BLAS and LAPACK libraries numpy, scipy and the current code load on this machine."""
     import numpy  # noqa: F401
     import scipy.linalg  # noqa: F401
+
+    import ehdfem.lapack  # noqa: F401
 
     maps = Path("/proc/self/maps").read_text().splitlines()
     return sorted(
         {
             line.split()[-1]
             for line in maps
-            if any(f"lib{name}" in line.split()[-1] for name in LINEAR_ALGEBRA)
+            if Path(line.split()[-1]).name.startswith("lib")
+            and any(name in Path(line.split()[-1]).name for name in LINEAR_ALGEBRA)
         }
     )
 

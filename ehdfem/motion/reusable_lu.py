@@ -27,12 +27,8 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.linalg import lapack
 
-# LAPACK's LU of a general matrix and its solve, called directly: scipy's wrappers check and
-# copy their arguments, which costs more than the solve at a few hundred unknowns
-_GETRF, _GETRS = lapack.get_lapack_funcs(("getrf", "getrs"), dtype=np.float64)
-
+from ..lapack import getrf, getrs
 
 _EXACT_MAXIMA = {"nnan", "ninf", "reassoc", "nsz"}  # fast math that leaves maxima exact
 
@@ -125,7 +121,8 @@ class ReusableLU:
         if workspace is None:
             workspace = np.empty(len(matrix) ** 2)
         scaled, self.col, self.row = _equilibrated(matrix, self.free, workspace)
-        self.lu, self.pivots, info = _GETRF(scaled, overwrite_a=True)
+        self.lu = scaled
+        self.pivots, info = getrf(scaled)
         if info != 0:
             raise SingularMatrix(f"singular Newton matrix (LAPACK getrf info {info})")
 
@@ -140,8 +137,7 @@ class ReusableLU:
 
     def _block_solve(self, rhs):
         """The factorised block's solve, scaled back."""
-        scaled = (rhs.T / self.row).T
-        solution, info = _GETRS(self.lu, self.pivots, scaled, overwrite_b=True)
+        solution = getrs(self.lu, self.pivots, (rhs.T / self.row).T)
         return solution / (self.col if rhs.ndim == 1 else self.col[:, None])
 
     def solve(self, rhs, fixed, film_rows, theta=None, columns=None):

@@ -13,20 +13,16 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.integrate
-from scipy.linalg import lapack
 
 from ..film.elements import add_band_rows, tridiagonal_rows
 from ..film.mode_one import ModeOneFilm, band_sum
 from ..film.reynolds import Film, tridiagonal_product
+from ..lapack import gesv
 from ..motion.normal import NormalSolverError
 from ..solids.compliance import ModeOneCompliance
 from .friction import CoulombContact
 from .normal_film import mode_one_films
 from .result import TangentialEnergy, TangentialResult, initial_spin, tangential_result
-
-# LAPACK's LU solve called directly: scipy.linalg.solve also checks its arguments and
-# estimates the condition number, which cost a third of the time at a few hundred unknowns
-_GESV = lapack.get_lapack_funcs("gesv", dtype=np.float64)
 
 _BDF2_GROWTH = 1.0 + np.sqrt(2.0)  # largest step ratio for which variable-step BDF2 is stable
 
@@ -404,7 +400,9 @@ def _solve_equilibrated(matrix, rhs, motion):
     transformed *= column_scale
     row_scale = 1.0 / np.abs(transformed).max(axis=1)
     scaled_rhs = (rhs.T * row_scale).T  # a vector, or one right-hand side per column
-    *_, y, info = _GESV(transformed * row_scale[:, None], scaled_rhs)
+    # LAPACK directly (ehdfem.lapack): scipy's solve also checked its arguments and estimated
+    # the condition number, a third of the time at a few hundred unknowns
+    y, info = gesv(transformed * row_scale[:, None], scaled_rhs)
     if info != 0:
         raise np.linalg.LinAlgError(f"singular sliding-film matrix (LAPACK gesv info {info})")
     z = (y.T * column_scale).T

@@ -1,0 +1,73 @@
+"""LAPACK from the packaged OpenBLAS (ehdfem.lapack): the LU solves exactly representable systems
+to rounding, pivots where it must, says when a matrix is singular, leaves its inputs alone, and
+runs on one thread whatever the environment asks."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from ehdfem.lapack import gesv, getrf, getrs
+
+
+def integer_system(size, seed):
+    """(A, X, B = A X): integer entries, so B is exact in floating point and X the exact
+    solution; a zero leading entry forces getrf to pivot."""
+    rng = np.random.default_rng(seed)
+    matrix = rng.integers(-9, 10, (size, size)).astype(float) + 10.0 * (size + 1) * np.eye(size)
+    if size > 1:  # the first two rows swapped, and a zero leading entry
+        matrix[[0, 1]] = matrix[[1, 0]]
+        matrix[0, 0] = 0.0
+    solution = rng.integers(-5, 6, (size, 3)).astype(float)
+    return matrix, solution, matrix @ solution
+
+
+@pytest.mark.parametrize("size", [1, 2, 17, 242])
+def test_the_lu_solves_an_exact_system_to_rounding(size):
+    """x of A x = b, one and several right-hand sides, within 1e-13 of the exact integers
+    (A is a diagonally dominant matrix with its first two rows swapped: a condition number
+    under 1.5)."""
+    matrix, solution, rhs = integer_system(size, seed=size)
+    factors = np.asfortranarray(matrix)
+    pivots, info = getrf(factors)
+    assert info == 0 and pivots.dtype == np.intc
+    for b, x in ((rhs[:, 0], solution[:, 0]), (rhs, solution)):
+        kept = b.copy()
+        assert np.abs(getrs(factors, pivots, b) - x).max() <= 1e-13 * np.abs(x).max()
+        assert np.array_equal(b, kept)
+    kept = matrix.copy()
+    x, info = gesv(matrix, rhs)
+    assert info == 0 and np.abs(x - solution).max() <= 1e-13 * np.abs(solution).max()
+    assert np.array_equal(matrix, kept)
+    if size > 1:
+        assert pivots[0] != 1  # the zero leading entry was pivoted away (1-based)
+
+
+def test_a_singular_matrix_is_reported_and_a_row_ordered_one_refused():
+    """A zero column gives info > 0 (U's zero diagonal entry, 1-based); getrf factorises in
+    place, so a matrix in row order (whose transpose it would factorise) is refused."""
+    matrix = np.asfortranarray(np.arange(1.0, 10.0).reshape(3, 3))
+    matrix[:, 1] = 0.0
+    assert getrf(matrix)[1] == 2
+    _, info = gesv(matrix, np.ones(3))
+    assert info > 0
+    with pytest.raises(ValueError, match="column order"):
+        getrf(np.ones((3, 3)))
+
+
+def test_the_library_runs_on_one_thread_whatever_the_environment_asks():
+    """With OPENBLAS_NUM_THREADS=2 (and the machine's BLAS then on two threads) the packaged
+    OpenBLAS is on one: its LU's last bits would otherwise depend on the thread count
+    (ehdfem.threads)."""
+    probe = (
+        "import ehdfem.lapack, scipy_openblas32, threadpoolctl\n"
+        "for i in threadpoolctl.threadpool_info():\n"
+        "    if i['filepath'].startswith(scipy_openblas32.get_lib_dir()):\n"
+        "        print(i['num_threads'])"
+    )
+    env = {"OPENBLAS_NUM_THREADS": "2", "PATH": "/usr/bin:/bin"}
+    out = subprocess.run(
+        [sys.executable, "-c", probe], env=env, capture_output=True, text=True, check=True
+    ).stdout
+    assert out.split() == ["1"]

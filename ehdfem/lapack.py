@@ -1,5 +1,5 @@
-"""LAPACK's dense LU (getrf), its solve (getrs) and the two at once (gesv), from the OpenBLAS
-the package installs (scipy-openblas32, a wheel of the package registry), on one thread.
+"""LAPACK's dense LU (getrf) from the OpenBLAS the package installs (scipy-openblas32, a wheel of
+the package registry), on one thread; its solve (getrs) and the two at once (gesv).
 
 A collision factorises a dense Newton matrix of a few hundred unknowns at nearly every step
 (:mod:`ehdfem.motion.reusable_lu`; the sliding film's (3N + 2)-square system every step), and
@@ -9,7 +9,7 @@ unknowns took 0.62 ms on the project's machine, the packaged OpenBLAS 0.3.34 0.3
 the packaged library both install stacks factorise with the same code, and nothing on the
 machine is changed. The library serves these calls alone and is held to one thread
 (:mod:`ehdfem.threads`: a thread count would change the last bits). Arrays are float64 in
-LAPACK's column order; LAPACK's 1-based pivots are kept as it returns them.
+LAPACK's column order; pivots are 0-based (scipy's wrappers' convention).
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import scipy_openblas32
+from scipy.linalg import lapack
 
 _INT = ctypes.c_int
 _POINTER = ctypes.c_void_p
@@ -32,46 +33,33 @@ def _library() -> ctypes.CDLL:
     library.scipy_openblas_set_num_threads(1)
     library.scipy_dgetrf_.argtypes = [_BY_REFERENCE] * 2 + [_POINTER, _BY_REFERENCE]
     library.scipy_dgetrf_.argtypes += [_POINTER, _BY_REFERENCE]
-    library.scipy_dgetrs_.argtypes = [ctypes.c_char_p, _BY_REFERENCE, _BY_REFERENCE, _POINTER]
-    library.scipy_dgetrs_.argtypes += [_BY_REFERENCE, _POINTER, _POINTER, _BY_REFERENCE]
-    library.scipy_dgetrs_.argtypes += [_BY_REFERENCE, ctypes.c_size_t]
     return library
 
 
 _LAPACK = _library()
+_GETRS = lapack.get_lapack_funcs("getrs", dtype=np.float64)
 
 
 def getrf(matrix: np.ndarray) -> tuple[np.ndarray, int]:
     """P L U = A for the square ``matrix`` A (float64, column order), factorised in place:
-    (pivots, info), info > 0 where U's diagonal entry info is zero."""
+    (pivots, 0-based, and info), info > 0 where U's diagonal entry info (1-based) is zero."""
     if not matrix.flags.f_contiguous or matrix.dtype != np.float64:
         raise ValueError("getrf takes a float64 matrix in column order")
     size = _INT(matrix.shape[0])
     pivots = np.empty(matrix.shape[0], dtype=np.intc)
     info = _INT(0)
     _LAPACK.scipy_dgetrf_(size, size, matrix.ctypes.data, size, pivots.ctypes.data, info)
+    pivots -= 1  # 0-based, as scipy's getrs wrapper takes them
     return pivots, info.value
 
 
-def getrs(factors: np.ndarray, pivots: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+def getrs(factors: np.ndarray, pivots: np.ndarray, rhs: np.ndarray, overwrite=False):
     """x with A x = ``rhs`` (a vector, or one right-hand side per column) from getrf's
-    ``factors`` and ``pivots`` of A; ``rhs`` is left as it is."""
-    solution = np.array(rhs, dtype=np.float64, order="F")
-    size = _INT(factors.shape[0])
-    columns = _INT(1 if solution.ndim == 1 else solution.shape[1])
-    info = _INT(0)
-    _LAPACK.scipy_dgetrs_(
-        b"N",
-        size,
-        columns,
-        factors.ctypes.data,
-        size,
-        pivots.ctypes.data,
-        solution.ctypes.data,
-        size,
-        info,
-        1,
-    )
+    ``factors`` and ``pivots`` of A; ``rhs`` is left as it is unless ``overwrite``. The
+    triangular solves are the machine's LAPACK's, through scipy: a call through ctypes costs
+    3 us, more than the packaged library gains on a solve of a few right-hand sides (about
+    9 us each at 200 unknowns)."""
+    solution, _ = _GETRS(factors, pivots, rhs, overwrite_b=overwrite)
     return solution
 
 

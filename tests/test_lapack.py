@@ -32,6 +32,7 @@ def test_the_lu_solves_an_exact_system_to_rounding(size):
     factors = np.asfortranarray(matrix)
     pivots, info = getrf(factors)
     assert info == 0 and pivots.dtype == np.intc
+    assert 0 <= pivots.min() and pivots.max() < size  # 0-based, as scipy's getrs takes them
     for b, x in ((rhs[:, 0], solution[:, 0]), (rhs, solution)):
         kept = b.copy()
         assert np.abs(getrs(factors, pivots, b) - x).max() <= 1e-13 * np.abs(x).max()
@@ -41,7 +42,7 @@ def test_the_lu_solves_an_exact_system_to_rounding(size):
     assert info == 0 and np.abs(x - solution).max() <= 1e-13 * np.abs(solution).max()
     assert np.array_equal(matrix, kept)
     if size > 1:
-        assert pivots[0] != 1  # the zero leading entry was pivoted away (1-based)
+        assert pivots[0] != 0  # the zero leading entry was pivoted away
 
 
 def test_a_singular_matrix_is_reported_and_a_row_ordered_one_refused():

@@ -137,7 +137,7 @@ class ReusableLU:
 
     def _block_solve(self, rhs):
         """The factorised block's solve, scaled back."""
-        solution = getrs(self.lu, self.pivots, (rhs.T / self.row).T)
+        solution = getrs(self.lu, self.pivots, (rhs.T / self.row).T, overwrite=True)
         return solution / (self.col if rhs.ndim == 1 else self.col[:, None])
 
     def solve(self, rhs, fixed, film_rows, theta=None, columns=None):

@@ -65,3 +65,28 @@ def test_only_the_free_block_is_factorised(held):
     expected = np.linalg.solve(matrix, rhs)
     assert np.allclose(lu.solve(rhs[:, 0], fixed, None), expected[:, 0], rtol=0, atol=1e-12)
     assert np.allclose(lu._base_solve(rhs), expected, rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("gathered", [False, True])
+def test_the_equilibration_is_exact_and_scales_every_row_and_column_to_one(gathered):
+    """S = diag(1/r) B diag(1/c) with c, r powers of two: S times them gives B back bit for bit
+    (B = A, or its block on the kept rows and columns); each column of B / c and each row of S
+    has its largest magnitude in [1/2, 1); a zero column keeps c = 1. Entries from 1e-100 to
+    1e100 (none scaled below the normal range, where a power of two would round), a zero
+    column and a row of -0.0."""
+    from ehdfem.motion.reusable_lu import _equilibrated
+
+    rng = np.random.default_rng(5)
+    n = 37
+    matrix = rng.standard_normal((n, n)) * np.exp(rng.uniform(-115, 115, (1, n)))
+    matrix = np.asfortranarray(matrix * np.exp(rng.uniform(-115, 115, (n, 1))))
+    matrix[:, 3], matrix[7] = 0.0, -0.0
+    index = np.flatnonzero(rng.random(n) < 0.6) if gathered else None
+    block = matrix if index is None else matrix[np.ix_(index, index)]
+    scaled, col, row = _equilibrated(matrix, index, np.empty(n * n))
+    assert np.array_equal(scaled * row[:, None] * col[None, :], block)
+    assert np.array_equal(np.frexp(np.concatenate([col, row]))[0], np.full(2 * len(col), 0.5))
+    by_column = np.abs(block / col).max(axis=0)
+    assert ((by_column >= 0.5) & (by_column < 1) | (by_column == 0) & (col == 1)).all()
+    by_row = np.abs(scaled).max(axis=1)
+    assert ((by_row >= 0.5) & (by_row < 1) | (by_row == 0) & (row == 1)).all()

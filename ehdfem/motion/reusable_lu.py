@@ -26,11 +26,28 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.core import cgutils
+from numba.core.extending import intrinsic
 
 from ..lapack import getrf, getrs
 
-_EXACT_MAXIMA = {"nnan", "ninf", "reassoc", "nsz"}  # fast math that leaves maxima exact
+
+@intrinsic
+def _larger(typingctx, a, b):
+    """The larger of two floats as LLVM's maxnum: one instruction, which the compiler
+    vectorises in a loop (numba's max, with Python's rules for NaN, kept the loops scalar:
+    53 against 11 us for a 242-square matrix's column maxima). Exact; a and b are finite."""
+
+    def codegen(context, builder, signature, args):
+        double = ir.DoubleType()
+        maxnum = ir.FunctionType(double, [double, double])
+        return builder.call(
+            cgutils.get_or_insert_function(builder.module, maxnum, "llvm.maxnum.f64"), args
+        )
+
+    return types.float64(types.float64, types.float64), codegen
 
 
 @njit(cache=True, error_model="numpy")
@@ -41,47 +58,45 @@ def _power_of_two(largest: float) -> float:
     return math.ldexp(1.0, math.frexp(largest)[1])
 
 
-@njit(cache=True, fastmath=_EXACT_MAXIMA, inline="always", error_model="numpy")
-def _entry(matrix, index, i, j):
-    """A[index[i], index[j]], or A[i, j] when ``index`` is None (the branch is compiled out)."""
-    if index is None:
-        return matrix[i, j]
-    return matrix[index[i], index[j]]
-
-
-@njit(cache=True, fastmath=_EXACT_MAXIMA, error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _equilibrated(matrix, index, out):
     """(S, c, r): S = diag(1/r) B diag(1/c) for the square block B = A[index][:, index] (the
     whole A when ``index`` is None), c the powers of two of B's columns' largest absolute
     entries and then r those of the scaled rows' (:func:`_power_of_two`): the scaling is exact.
     S is written into the flat array ``out`` (at least m^2 long) in LAPACK's column order
-    (getrf takes it without a copy); columns outer, read best from A in the same order. The
-    fast-math flags let the compiler vectorise the largest-entry searches (a maximum is exact
-    in any order) on a finite A (checked by the caller); the products are single roundings,
-    the same in any order."""
+    (getrf takes it without a copy): B is copied there and scaled in place. The largest entries
+    are found by :func:`_larger` on a finite A (checked by the caller); every loop runs down
+    one column of ``out`` and vectorises (0.11 -> 0.05 ms at 242 unknowns)."""
     m = len(matrix) if index is None else len(index)
-    scaled = out[: m * m].reshape((m, m)).T
+    for j in range(m):
+        start = j * m
+        if index is None:
+            for i in range(m):
+                out[start + i] = matrix[i, j]
+        else:
+            for i in range(m):
+                out[start + i] = matrix[index[i], index[j]]
     col = np.empty(m)
     row = np.zeros(m)
     for j in range(m):
-        largest = 0.0
+        start, largest = j * m, 0.0
         for i in range(m):
-            largest = max(largest, abs(_entry(matrix, index, i, j)))
+            largest = _larger(largest, abs(out[start + i]))
         col[j] = _power_of_two(largest)
-    for j in range(m):
         inverse = 1.0 / col[j]
         for i in range(m):
-            value = _entry(matrix, index, i, j) * inverse
-            scaled[i, j] = value
-            row[i] = max(row[i], abs(value))
+            out[start + i] *= inverse
+        for i in range(m):
+            row[i] = _larger(row[i], abs(out[start + i]))
     inverse_row = np.empty(m)
     for i in range(m):
         row[i] = _power_of_two(row[i])
         inverse_row[i] = 1.0 / row[i]
     for j in range(m):
+        start = j * m
         for i in range(m):
-            scaled[i, j] *= inverse_row[i]
-    return scaled, col, row
+            out[start + i] *= inverse_row[i]
+    return out[: m * m].reshape((m, m)).T, col, row
 
 
 class TooManyChanges(Exception):

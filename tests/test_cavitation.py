@@ -215,3 +215,29 @@ def test_every_model_name_gives_the_model_of_that_name():
         assert type(cavitation.MODELS[name].with_limit(NO_LIMIT).solver()) is Unlimited
     assert NoCavitation.with_limit(-1.0).p_cav == NO_LIMIT and not cavitation.has_limit("none")
     assert cavitation.has_limit("truncate") and cavitation.has_limit("mass-conserving")
+
+
+def test_the_newton_rows_formed_alone_are_the_whole_matrix_rows():
+    """The rows a kept LU's Woodbury update asks for, formed alone (ImplicitStep._newton_rows),
+    equal those of the whole Newton matrix bit for bit: free rows next to the wetted edge, a
+    mass-conserving cavity's rows (their unknown theta) and rows beside it, on a deformable
+    thin film with the half-space compliance (eps 1e-3) and a piezoviscous liquid (Barus,
+    alpha 0.1: the viscosity's own bands are not zero)."""
+    from ehdfem.film.viscosity import Barus
+    from ehdfem.solids.halfspace import influence_matrix
+
+    n = 60
+    radii = radial_grid(n, 0.5, 2.0)
+    compliance = 1e-3 * influence_matrix(radii)
+    film, cavitation = Film(radii, "thin", Barus(alpha=0.1)), MassConservingSolver(P_CAV)
+    step = ImplicitStep(film, compliance, cavitation, Sphere(10.0), IntegratorOptions())
+    pressure = np.where(radii < 0.8, 3.0 * (1 - radii**2 / 0.64), P_CAV)
+    cavitated = (radii > 0.9) & (radii < 1.1)
+    fill = np.where(cavitated, 0.7, 1.0)
+    past = (-(GAP + 0.5 * radii**2), -GAP, 0.3)
+    it, cavitated, fill = step._residual(pressure, GAP, -0.5, fill, cavitated, 0.01, 1.5, past, 0.0)
+    whole = step._newton_matrix(it, 0.01, 1.5, fill).copy()
+    free = np.flatnonzero(~it.fixed)
+    rows = np.concatenate([free[:2], free[-3:], np.flatnonzero(it.theta_nodes)[:3]])
+    assert it.theta_nodes[rows].any() and not it.fixed[rows].any()
+    assert np.array_equal(step._newton_rows(it, 0.01, 1.5, fill, rows), whole[rows])

@@ -49,7 +49,7 @@ from functools import cache, partial
 import numpy as np
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
-from ..film.elements import film_jacobian, tridiagonal_rows
+from ..film.elements import add_band_rows, film_jacobian, tridiagonal_rows
 from ..film.reynolds import Film, FilmState
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
@@ -320,14 +320,15 @@ class ImplicitStep:
         return _Iterate(rhs, state, motion, h, fixed, theta_nodes, sets), cavitated, fill
 
     def _newton_update(self, it: _Iterate, step, a0, fill):
-        """(dP, d theta, dX, dV) from the (possibly reused) factorisation; the rows and columns
-        that changed since it are the iterate's Newton matrix's, formed once if needed."""
+        """(dP, d theta, dX, dV) from the (possibly reused) factorisation; the rows that changed
+        since it are formed alone (:meth:`_newton_rows`), the columns that changed taken from
+        the iterate's Newton matrix, formed once if needed."""
         matrix = cache(partial(self._newton_matrix, it, step, a0, fill))
         try:
             update = self.factor.solve(
                 it.rhs,
                 it.fixed,
-                lambda rows: matrix()[rows],
+                partial(self._newton_rows, it, step, a0, fill),
                 it.theta_nodes,
                 lambda columns: matrix()[:, columns],
             )
@@ -375,22 +376,55 @@ class ImplicitStep:
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1
 
-    def _film_rows(self, state: FilmState, step, a0, fill, out):
-        """The film rows of the Jacobian into ``out`` (zeros, at least n x (n + 2)),
-        d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) = ((m theta a0/dt + D) C + K + E,
-        (m theta a0/dt + D) 1, 0) (E: the viscosity's d(K P)/dP - K)."""
-        n = len(state.mass)
+    def _squeeze(self, state: FilmState, step, a0, fill):
+        """(S, dH/dP, dH/dX): the bands of d(residual)/dH, S = m theta a0/dt + D, and the film
+        thickness's sensitivities, C and 1, or (I - C D)^-1 C and (I - C D)^-1 1 under the
+        asperities' load."""
         lower, diag, upper = state.dflux_dH
         squeeze = (lower, diag + state.mass * fill * a0 / step, upper)
         loaded = self.loaded()
-        c = self._compliance_columns if loaded is None else loaded.by_pressure
-        by_gap = self._no_load if loaded is None else loaded.by_gap  # dH/dX = (I - C D)^-1 1
+        if loaded is None:
+            return squeeze, self._compliance_columns, self._no_load
+        return squeeze, loaded.by_pressure, loaded.by_gap
+
+    def _film_rows(self, state: FilmState, step, a0, fill, out):
+        """The film rows of the Jacobian into ``out`` (at least n x (n + 2); their P and X
+        columns are overwritten, their V column, zero, is left as it is),
+        d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) = ((m theta a0/dt + D) C + K + E,
+        (m theta a0/dt + D) 1, 0) (E: the viscosity's d(K P)/dP - K)."""
+        n = len(state.mass)
+        squeeze, c, by_gap = self._squeeze(state, step, a0, fill)
         film_jacobian(squeeze, c, by_gap, state.conductance, state.dflux_dP, out)
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
-            motion = self.surface_motion
-            out[:n, :n] += tridiagonal_rows(state.transport, motion.matrix, self._nodes) * (
-                motion.sqrt_delta * a0 / step
-            )
+            out[:n, :n] += self._transport_rows(state, step, a0, self._nodes)
+        return out
+
+    def _transport_rows(self, state: FilmState, step, a0, rows):
+        """The rows ``rows`` of sqrt(delta) (a0/dt) B C_r: the liquid the faces' radial motion
+        carries (U = C_r P, T lagged)."""
+        motion = self.surface_motion
+        return tridiagonal_rows(state.transport, motion.matrix, rows) * (
+            motion.sqrt_delta * a0 / step
+        )
+
+    def _newton_rows(self, it: _Iterate, step, a0, fill, rows):
+        """The rows ``rows`` of :meth:`_newton_matrix` at nodes whose row is the film's (not
+        fixed), formed alone: the kept LU's Woodbury update asks for a few of them, and the
+        whole matrix costs some 0.1 ms. The same sums in the same order as the whole
+        matrix's (:func:`ehdfem.film.elements.film_jacobian`), so the same bits."""
+        state, n = it.state, len(it.film_thickness)
+        squeeze, c, by_gap = self._squeeze(state, step, a0, fill)
+        out = np.zeros((len(rows), n + 2))
+        out[:, :n] = tridiagonal_rows(squeeze, c, rows)
+        out[:, n] = tridiagonal_rows(squeeze, by_gap[:, None], rows)[:, 0]
+        add_band_rows(state.conductance, rows, out)
+        add_band_rows(state.dflux_dP, rows, out)
+        if state.transport is not None:
+            out[:, :n] += self._transport_rows(state, step, a0, rows)
+        out[:, np.flatnonzero(it.theta_nodes)] = 0.0
+        theta = it.theta_nodes[rows]
+        nodes = rows[theta]
+        out[theta, nodes] = state.mass[nodes] * a0 * it.film_thickness[nodes] / step
         return out
 
     def _jacobian(self, state: FilmState, motion: SphereState, fixed, step, a0, fill):
@@ -399,7 +433,9 @@ class ImplicitStep:
         n = len(state.mass)
         held = None if self.factor is None else self.factor.matrix
         jac = self._slots[1][0] if held is self._slots[0][0] else self._slots[0][0]
-        jac.fill(0.0)  # in LAPACK's order: no copy for the LU
+        # in LAPACK's order; the film rows' columns of P and X and the sphere's rows are
+        # written whole below, so only the film rows' V column is cleared
+        jac[:n, n + 1] = 0.0
         self._film_rows(state, step, a0, fill, jac)
         fixed_rows = np.flatnonzero(fixed)
         jac[fixed_rows, :] = 0.0

@@ -55,6 +55,11 @@ from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
 from .timestepping import IntegratorOptions
 
+# a step whose Newton updates would close the film (and are damped) at two iterates in a row
+# is retried shorter at once: at hard impacts such an iteration almost never converged and
+# took some ten iterates to fail (docs/performance.md, "Where the hard impacts lose steps")
+DAMPED_IN_A_ROW = 2
+
 
 def _remaining(norm: float, ratio: float | None) -> float:
     """The error left after a Newton update of size ``norm`` at the contraction rate ``ratio``
@@ -243,7 +248,7 @@ class ImplicitStep:
         pressure, gap, velocity, fill, cavitated = guess
         fill, cavitated = self.cavitation.start(fill, cavitated)
         previous_sets = previous_norm = None
-        refresh = False
+        refresh, damped = False, 0
         for iteration in range(1, self.options.max_newton + 1):
             it, cavitated, fill = self._residual(
                 pressure, gap, velocity, fill, cavitated, step, a0, past, time
@@ -254,6 +259,11 @@ class ImplicitStep:
                 refresh = False
             update = self._newton_update(it, step, a0, fill)
             damping = self._damping(pressure, gap, update, it.rhs)
+            damped = damped + 1 if damping < 1.0 else 0
+            if damped == DAMPED_IN_A_ROW:
+                raise StepFailed(
+                    "Newton updates closed the film twice in a row", np.abs(it.rhs).max()
+                )
             d_pressure, d_fill, d_gap, d_velocity = update
             pressure = pressure + damping * d_pressure
             fill = fill + damping * d_fill

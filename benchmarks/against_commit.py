@@ -164,14 +164,11 @@ def blas_libraries() -> list[str]:
 
     import ehdfem.lapack  # noqa: F401
 
-    maps = Path("/proc/self/maps").read_text().splitlines()
+    loaded = {Path(line.split()[-1]) for line in Path("/proc/self/maps").read_text().splitlines()}
     return sorted(
-        {
-            line.split()[-1]
-            for line in maps
-            if Path(line.split()[-1]).name.startswith("lib")
-            and any(name in Path(line.split()[-1]).name for name in LINEAR_ALGEBRA)
-        }
+        str(path)
+        for path in loaded
+        if path.name.startswith("lib") and any(name in path.name for name in LINEAR_ALGEBRA)
     )
 
 

@@ -880,8 +880,9 @@ def test_a_restitution_above_one_is_warned_of():
 def test_an_interrupt_wrapped_by_a_compiled_extension_is_an_interrupt(monkeypatch, capsys):
     """numba, interrupted while it loads a compiled loop from its cache, raises a SystemError
     caused by the KeyboardInterrupt: the command still ends in its own one line and status 130
-    (CI runs met a 90-line traceback, then the generic line in place of the search's). A
-    SystemError of another cause still propagates."""
+    (CI runs met a 90-line traceback, then the generic line in place of the search's), and
+    outside the part that has its own line, in the generic one. A SystemError of another cause
+    still propagates."""
     from ehdfem.cli import caused_by_interrupt, critical
 
     def interrupted_in_numba(*args):
@@ -894,5 +895,11 @@ def test_an_interrupt_wrapped_by_a_compiled_extension_is_an_interrupt(monkeypatc
     assert main(["critical", "--eps", "1e-3"]) == 130
     assert capsys.readouterr().err.strip().splitlines() == [
         f"ehdfem critical: interrupted: {critical.UNSAVED}"
+    ]
+    commands = sys.modules["ehdfem.cli.main"].COMMANDS  # outside a command's own message
+    monkeypatch.setitem(commands, "critical", (*commands["critical"][:2], interrupted_in_numba))
+    assert main(["critical", "--eps", "1e-3"]) == 130
+    assert capsys.readouterr().err.strip().splitlines() == [
+        "ehdfem critical: interrupted: stopped by Ctrl-C; files already written are kept"
     ]
     assert not caused_by_interrupt(SystemError("another cause"))

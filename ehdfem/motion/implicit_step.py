@@ -372,10 +372,20 @@ class ImplicitStep:
         """The Jacobian in the Newton unknowns: at mass-conserving cavities the unknown is
         theta, whose column is d(residual_i)/d(theta_i) = m_i a0 H_i / dt."""
         jacobian = self._jacobian(it.state, it.motion, it.fixed, step, a0, fill)
-        nodes = np.flatnonzero(it.theta_nodes)
-        jacobian[:, nodes] = 0.0
-        jacobian[nodes, nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
-        return jacobian
+        return self._theta_columns(it, step, a0, self._nodes, jacobian)
+
+    @staticmethod
+    def _theta_columns(it: _Iterate, step, a0, rows, out):
+        """``out``, the Newton matrix's rows ``rows`` (``out[k]`` is row ``rows[k]``), with the
+        columns of mass-conserving cavities' nodes set to theta's: m_i a0 H_i / dt on their
+        own row, 0 elsewhere."""
+        out[:, np.flatnonzero(it.theta_nodes)] = 0.0
+        theta = it.theta_nodes[rows]
+        nodes = rows[theta]
+        out[np.flatnonzero(theta), nodes] = (
+            it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
+        )
+        return out
 
     def _factorise(self, matrix, it: _Iterate):
         """A new LU of the iterate's Newton ``matrix`` (:meth:`_newton_matrix`)."""
@@ -431,11 +441,7 @@ class ImplicitStep:
         add_band_rows(state.dflux_dP, rows, out)
         if state.transport is not None:
             out[:, :n] += self._transport_rows(state, step, a0, rows)
-        out[:, np.flatnonzero(it.theta_nodes)] = 0.0
-        theta = it.theta_nodes[rows]
-        nodes = rows[theta]
-        out[theta, nodes] = state.mass[nodes] * a0 * it.film_thickness[nodes] / step
-        return out
+        return self._theta_columns(it, step, a0, rows, out)
 
     def _jacobian(self, state: FilmState, motion: SphereState, fixed, step, a0, fill):
         """d(residual)/d(P, X, V): film rows, identity rows at fixed nodes, the sphere's X and V

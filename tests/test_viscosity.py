@@ -159,11 +159,12 @@ def test_piezoviscous_collapse_spike_is_a_punch_on_the_axis():
     pocket frozen at impact collapses to the axis after the turn, a rigid punch that ends in a
     pressure spike within a few elements of the axis after the largest force, above twice the
     largest pressure at that force and lasting about 3e-3 x0/V0, while e_n moves by less than
-    1e-3 between 120 and 240 nodes. The spike's height is not an output that converges: it is
-    set by the element the pocket ends on and sampled at the accepted steps (eps P_max h was
-    3.8e-3 on 120 nodes, at the axis node, and 1.2e-3 on 240, at the third node, with the
-    current Newton path; 3.84e-3 and 3.12e-3 before its refresh rule changed;
-    docs/performance.md, "The piezoviscous collapse spike")."""
+    1.5e-3 between 120 and 240 nodes at the default rtol (1.0e-3 measured: the grid's 7e-4, at
+    rtol 2e-6, and the step control's time error at 120 nodes, 5e-4 of e_n). The spike's
+    height is not an output that converges: it is set by the element the pocket ends on and
+    sampled at the accepted steps (eps P_max h was 3.8e-3 on 120 nodes, at the axis node, and
+    1.2e-3 on 240, at the third node, with the current Newton path; 3.84e-3 and 3.12e-3 before
+    its refresh rule changed; docs/performance.md, "The piezoviscous collapse spike")."""
     inputs = {**EXAMPLE, "speed": 0.2, "angle": 0.0, "pressure_viscosity": 2e-8}
     physical = from_presets(**inputs, cavitation="mass-conserving", viscosity="roelands")
     restitution = []
@@ -175,4 +176,4 @@ def test_piezoviscous_collapse_spike_is_a_punch_on_the_axis():
         assert step > np.argmax(result.normal.history.force) and node <= 3
         assert pressure.max() > 2 * at_largest_force
         restitution.append(result.normal.e_n)
-    assert restitution[1] == pytest.approx(restitution[0], rel=1e-3)
+    assert restitution[1] == pytest.approx(restitution[0], rel=1.5e-3)

@@ -464,7 +464,8 @@ def _check_liquid(physical) -> None:
 def _check_result_range(params, physical, normal: NormalResult) -> None:
     """Warn (ResultRangeWarning) of each of the normal motion's plausibility notes
     (:func:`ehdfem.outputs.plausibility.result_notes`: e_n above 1, a rough contact the impact
-    model does not hold for, a nanometre film of physical inputs); the result keeps them."""
+    model does not hold for, a stuck sphere's unresolved stop, a nanometre film of physical
+    inputs); the result keeps them."""
     for note in plausibility.result_notes(params, physical, normal):
         warnings.warn(note, ResultRangeWarning, stacklevel=4)
 

@@ -18,7 +18,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "ehdfem"
 
 # Bottom to top. A module may import from its own package and from the layers below.
 LAYERS = (
-    ("checks", "version", "console", "threads", "lapack"),
+    ("checks", "version", "console", "threads", "lapack", "kept"),
     ("settings",),
     ("fenicsx",),
     ("exact",),

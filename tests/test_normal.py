@@ -11,6 +11,7 @@ from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
+from ehdfem.outputs.plausibility import ResultRangeWarning, unresolved_stop
 from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
@@ -209,3 +210,16 @@ def test_a_thin_rebound_suction_dip_converges_in_time():
     at = int(np.argmin(converged.history.min_film))  # on the axis, in the rebound
     assert converged.history.velocity[at] > 0 and converged.history.film_thickness[at].argmin() == 0
     assert abs(default.min_film_thickness / converged.min_film_thickness - 1) < 6e-3
+
+
+def test_a_stuck_sphere_whose_motion_dies_out_is_noted():
+    """A rigid sphere stopped by a thin film at St = 2 (eps = 1e-12) creeps to its stop as
+    exp(-T/tau), without a finite end: its contact time is 2.57 at the default rtol and 4.62
+    at 2e-6, so the collision notes (and warns) that its stop is not resolved. At St = 10 the
+    film turns the sphere back within about tau of its last resolved speed (contact time
+    1.0419 at both rtols): no note."""
+    params = CollisionParameters.from_settings(St=2.0, eps=1e-12, layer="thin")
+    with pytest.warns(ResultRangeWarning, match="died out without a finite end"):
+        creeping = collide(params).normal
+    assert unresolved_stop(creeping) > 0.4
+    assert unresolved_stop(collide(params.with_settings(St=10.0)).normal) is None

@@ -79,7 +79,9 @@ def test_a_restitution_above_one_is_a_note_of_the_result():
     from ehdfem.inputs.scales import CollisionParameters
     from ehdfem.outputs.plausibility import result_notes
 
-    normal = SimpleNamespace(e_n=1.01, energy_error=0.02, solid_impact=None, min_film_thickness=0.1)
+    normal = SimpleNamespace(
+        e_n=1.01, energy_error=0.02, solid_impact=None, min_film_thickness=0.1, status="rebound"
+    )
     notes = result_notes(CollisionParameters.from_settings(St=10.0, eps=1e-3), None, normal)
     assert len(notes) == 1 and notes[0].startswith("e_n = 1.01 is above 1")
     assert "energy error 0.02" in notes[0]

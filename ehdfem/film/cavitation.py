@@ -108,7 +108,7 @@ class Unlimited:
     def limit(self, residual, pressure, cavitated, dry, sensitivity):
         """The cavitated nodes for this iterate; may overwrite their rows of ``residual``.
         ``sensitivity()`` gives the residual's diagonal derivative by P at every node."""
-        return np.zeros_like(dry)
+        return np.zeros(len(dry), bool)
 
     def fixed_nodes(self, dry, cavitated):
         """Nodes whose Newton row is an identity (P prescribed)."""
@@ -116,7 +116,7 @@ class Unlimited:
 
     def theta_nodes(self, cavitated):
         """Nodes whose unknown is the liquid fraction theta instead of P."""
-        return np.zeros_like(cavitated)
+        return np.zeros(len(cavitated), bool)
 
     def switch(self, pressure, fill, cavitated, dry, stiffness):
         """(P, theta, cavitated) after a Newton update; ``stiffness()`` is the pressure that

@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import checks
+from ..kept import Kept
 from .elements import assemble_bands, squeeze_shear_load, surface_transport_bands
 from .gap import Paraboloid
 from .viscosity import ConstantViscosity, ViscosityLaw
@@ -196,8 +197,8 @@ class Film:
         self._full_mass = np.zeros_like(self.radii)
         self._full_mass[:-1] += _descending_mass(left, right)
         self._full_mass[1:] += _ascending_mass(left, right)
-        self._recent_elements = []  # (H, the wetted elements) of the two latest H
-        self._recent_edges = []  # (H, (wet nodes, R_edge)) of the two latest H
+        self._kept_elements = Kept(2)  # the wetted elements of the two latest H
+        self._kept_edges = Kept(2)  # (wet nodes, R_edge) of the two latest H
         # S at the nodes, and S minus its chord at the quadrature points of the whole cells (a
         # gap that has no value at a node, as a true sphere beyond its equator, refuses the
         # grid here)
@@ -223,12 +224,7 @@ class Film:
         n = len(self.radii)
         if self.layer == "immersed":
             return n, np.inf
-        for kept, result in self._recent_edges:
-            if np.array_equal(kept, film_thickness):
-                return result
-        result = self._wetted_edge(film_thickness)
-        self._recent_edges = [(film_thickness.copy(), result), *self._recent_edges[:1]]
-        return result
+        return self._kept_edges.get(lambda: self._wetted_edge(film_thickness), film_thickness)
 
     def _wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
         """:meth:`wetted_edge`, computed."""
@@ -270,10 +266,10 @@ class Film:
         cut at the edge: its ``right`` index is -1 and H = 1 there. Kept for the two latest H
         (an iterate's film and its surface transport ask for the same, and its shear traction
         for the film without the shear's opening)."""
-        for kept, result in self._recent_elements:
-            if np.array_equal(kept, film_thickness):
-                return result
-        previous = self._recent_elements
+        return self._kept_elements.get(lambda: self._cut_elements(film_thickness), film_thickness)
+
+    def _cut_elements(self, film_thickness: np.ndarray):
+        """:meth:`_elements`, computed."""
         h = film_thickness
         n_wet, edge = self.wetted_edge(h)
         n_elem = max(n_wet - 1, 0)
@@ -286,10 +282,7 @@ class Film:
             length[-1] = edge - self.radii[left[-1]]
             h_right[-1] = 1.0
         gauss_r = self.radii[left, None] + length[:, None] * _GAUSS_XI
-        result = n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
-        self._recent_elements = [(np.array(film_thickness, copy=True), result)]
-        self._recent_elements += previous[:1]
-        return result
+        return n_wet, edge, _Elements(left, right, length, gauss_r, h[left], h_right)
 
     def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
         """Assemble the film for thickness H and pressure P (both at the nodes, scaled): the

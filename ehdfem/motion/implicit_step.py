@@ -44,13 +44,14 @@ displacement and of the shear opening is left out.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import cache, partial
+from functools import partial
 
 import numpy as np
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
 from ..film.elements import add_band_rows, film_jacobian, tridiagonal_rows
 from ..film.reynolds import Film, FilmState
+from ..kept import Kept
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
 from .timestepping import IntegratorOptions
@@ -167,8 +168,8 @@ class ImplicitStep:
         # and the one the next matrix is formed in (fresh arrays of this size made some 8 000
         # page faults a collision, docs/performance.md)
         self._slots = [(np.zeros((size, size), order="F"), np.empty(size**2)) for _ in range(2)]
-        self._last_deflection = None
-        self._last_thickness = None  # (X, loaded, P, thickness_parts) of the latest call
+        self._kept_deflection = Kept()  # C P for the latest P
+        self._kept_thickness = Kept()  # thickness_parts for the latest (P, X, loaded)
 
     def thickness(self, pressure, gap):
         """H = X + S(R) + C P (+ C_T T) at the film nodes (by x0)."""
@@ -190,12 +191,9 @@ class ImplicitStep:
         latest (P, X): the damping's check of an update and the next iterate's residual ask
         for the same."""
         loaded = loaded and self.asperities is not None
-        last = self._last_thickness
-        if last is not None and last[:2] == (gap, loaded) and np.array_equal(last[2], pressure):
-            return last[3]
-        parts = self._thickness_parts(pressure, gap, loaded)
-        self._last_thickness = (gap, loaded, pressure.copy(), parts)
-        return parts
+        return self._kept_thickness.get(
+            lambda: self._thickness_parts(pressure, gap, loaded), pressure, (gap, loaded)
+        )
 
     def _thickness_parts(self, pressure, gap, loaded):
         """:meth:`thickness_parts`, computed."""
@@ -213,10 +211,7 @@ class ImplicitStep:
     def _deflection(self, pressure) -> np.ndarray:
         """C P (by x0), kept for the latest pressure: the damping's check of an update and the
         next iterate's residual ask for the same one."""
-        last = self._last_deflection
-        if last is None or not np.array_equal(last[0], pressure):
-            last = self._last_deflection = (pressure.copy(), self.compliance @ pressure)
-        return last[1]
+        return self._kept_deflection.get(lambda: self.compliance @ pressure, pressure)
 
     def loaded(self) -> LoadedThickness | None:
         """The latest iterate's thickness under the asperities' load with its sensitivities
@@ -231,7 +226,8 @@ class ImplicitStep:
         """Let the asperity pressure ``law`` act from the next step on (the impact model's
         obstacle, switched on at the asperities' touch; :mod:`ehdfem.film.asperity_obstacle`)."""
         self.asperities = law
-        self._loaded_at = self._loaded = self._last_thickness = None
+        self._loaded_at = self._loaded = None
+        self._kept_thickness.clear()
 
     def asperity_force(self, h) -> float:
         """The asperities' force on the sphere w.P_a(H) (by 6 pi mu V0 a^2 / x0; 0 without)."""
@@ -333,7 +329,13 @@ class ImplicitStep:
         """(dP, d theta, dX, dV) from the (possibly reused) factorisation; the rows that changed
         since it are formed alone (:meth:`_newton_rows`), the columns that changed taken from
         the iterate's Newton matrix, formed once if needed."""
-        matrix = cache(partial(self._newton_matrix, it, step, a0, fill))
+        formed = []  # the iterate's whole Newton matrix, once formed
+
+        def matrix():
+            if not formed:
+                formed.append(self._newton_matrix(it, step, a0, fill))
+            return formed[0]
+
         try:
             update = self.factor.solve(
                 it.rhs,
@@ -379,12 +381,10 @@ class ImplicitStep:
         """``out``, the Newton matrix's rows ``rows`` (``out[k]`` is row ``rows[k]``), with the
         columns of mass-conserving cavities' nodes set to theta's: m_i a0 H_i / dt on their
         own row, 0 elsewhere."""
-        out[:, np.flatnonzero(it.theta_nodes)] = 0.0
+        out[:, it.theta_nodes.nonzero()[0]] = 0.0
         theta = it.theta_nodes[rows]
         nodes = rows[theta]
-        out[np.flatnonzero(theta), nodes] = (
-            it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
-        )
+        out[theta.nonzero()[0], nodes] = it.state.mass[nodes] * a0 * it.film_thickness[nodes] / step
         return out
 
     def _factorise(self, matrix, it: _Iterate):
@@ -453,7 +453,7 @@ class ImplicitStep:
         # written whole below, so only the film rows' V column is cleared
         jac[:n, n + 1] = 0.0
         self._film_rows(state, step, a0, fill, jac)
-        fixed_rows = np.flatnonzero(fixed)
+        fixed_rows = fixed.nonzero()[0]
         jac[fixed_rows, :] = 0.0
         jac[fixed_rows, fixed_rows] = 1.0
         jac[n:] = self.sphere.jacobian_rows(step, a0, motion, state.force_weights)

@@ -247,8 +247,8 @@ class _NormalIntegration:
         thickness = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(thickness[0], self.pressure)
         # the full nodes of the latest accepted steps, as many as the widest BDF stencil holds
-        self.film_sets = deque(
-            [self._film_sets(self.pressure, state)], maxlen=self.options.order + 1
+        self.film_states = deque(
+            [self._film_states(self.pressure, state)], maxlen=self.options.order + 1
         )
         self.thinnest = float(np.min(thickness[0]))  # the thinnest film of the accepted steps
         self.surface_weights = np.zeros(n)
@@ -364,7 +364,7 @@ class _NormalIntegration:
             thinning = film_thickness[thinnest] < hist.min_film[-1]
             if near and (thinning or hist.min_film[-1] <= self.thinnest):
                 errors.append(abs(relative[thinnest]))
-            settled = self._settled(self._film_sets(solution.pressure, solution.state), order)
+            settled = self._settled(self._film_states(solution.pressure, solution.state), order)
             if settled.any():
                 errors.append(np.sqrt(np.mean(relative[settled] ** 2)))
         return share * max(errors) / self.options.rtol
@@ -386,16 +386,17 @@ class _NormalIntegration:
             return 0.0
         return self.sphere.St * min(1.0, -solution.velocity / (force * h_min))
 
-    def _film_sets(self, pressure, state) -> np.ndarray:
-        """(wet, full) at the nodes, a (2, nodes) boolean array; full is wet and above the
-        cavitation pressure."""
-        return np.stack([~state.dry, ~state.dry & (pressure > self.cavitation.p_cav)])
+    def _film_states(self, pressure, state) -> np.ndarray:
+        """The film's state at each node: 0 dry, 1 wet at or below the cavitation pressure,
+        2 full (wet and above it)."""
+        wet = ~state.dry
+        return wet.view(np.int8) + (wet & (pressure > self.cavitation.p_cav)).view(np.int8)
 
-    def _settled(self, sets, order) -> np.ndarray:
+    def _settled(self, states, order) -> np.ndarray:
         """The nodes the film's mean-square error is taken over: full at every value of the
-        step's BDF stencil (``sets`` of the new step and of the order + 1 latest accepted
-        ones, :meth:`_film_sets`) and no neighbour of a node the wetted edge passes within it;
-        none while a wet node cavitates or refills within it. The wetted edge moves
+        step's BDF stencil (``states`` of the new step and of the order + 1 latest accepted
+        ones, :meth:`_film_states`) and no neighbour of a node the wetted edge passes within
+        it; none while a wet node cavitates or refills within it. The wetted edge moves
         continuously (cut into its element, docs/model.md), so its passing a node kinks that
         node's film in time and, through the three-point rows, its neighbours'. A cavity's
         boundary moves node by node and kinks the film further (leaving out one to three
@@ -404,15 +405,15 @@ class _NormalIntegration:
         layer's rebound uncontrolled, as its wetted edge passes a node every few steps: the
         thinnest film of a suction dip there was 4 % off at the default rtol and did not
         converge with it (docs/performance.md)."""
-        settled, switching = sets[1].copy(), np.zeros(sets.shape[1], bool)
-        for before in list(self.film_sets)[-(order + 1) :]:
-            if np.any((before[1] != sets[1]) & before[0] & sets[0]):
-                return np.zeros_like(settled)
-            settled &= before[1]
-            switching |= before[0] != sets[0]
+        stencil = np.array(list(self.film_states)[-(order + 1) :])
+        switching = (stencil != states).any(axis=0)
+        if not switching.any():
+            return states == 2
+        if np.any(switching & (stencil > 0).all(axis=0) & (states > 0)):
+            return np.zeros(len(states), bool)  # a wet node cavitates or refills
         switching[1:] |= switching[:-1].copy()
         switching[:-1] |= switching[1:].copy()
-        return settled & ~switching
+        return (states == 2) & (stencil == 2).all(axis=0) & ~switching
 
     def _failed(self, failure, t_old):
         """A step whose Newton failed: the film closed, or retry with a quarter step."""
@@ -481,7 +482,7 @@ class _NormalIntegration:
         dissipated = self._dissipated(t_new, rate)
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
-        self.film_sets.append(self._film_sets(solution.pressure, solution.state))
+        self.film_states.append(self._film_states(solution.pressure, solution.state))
         thinnest = float(np.min(thickness[0]))
         self.thinnest = min(self.thinnest, thinnest)
         self._advance_sphere(t_new, thickness[0])

@@ -161,8 +161,8 @@ class ReusableLU:
         the nodes whose ``theta`` state changed replaced by ``columns(indices)`` (the current
         matrix's, (N, k); ``theta`` None: no column changes). A node whose row and column both
         change, or more than MAX_CHANGES changes, raise TooManyChanges."""
-        rows = np.flatnonzero(fixed != self.fixed)
-        cols = np.flatnonzero(theta != self.theta) if theta is not None else rows[:0]
+        rows = (fixed != self.fixed).nonzero()[0]
+        cols = (theta != self.theta).nonzero()[0] if theta is not None else rows[:0]
         y = self._base_solve(rhs)
         k = len(rows) + len(cols)
         if k == 0:

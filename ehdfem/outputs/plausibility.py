@@ -12,10 +12,13 @@ JSON (``notes``), so that a result read later still says what was questionable a
   carries, :mod:`ehdfem.film.asperity_obstacle`);
 - for an immersed oblique impact, the flow beyond the tangential integrals (which end at the
   sphere's radius) when left out and estimated to change 1 - e_t by more than
-  :data:`ehdfem.tangential.outer_film.OUTER_FILM_LIMIT` of it.
+  :data:`ehdfem.tangential.outer_film.OUTER_FILM_LIMIT` of it;
+- a stuck sphere whose motion died out without a finite end (:func:`unresolved_stop`).
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 from ..tangential.outer_film import unestimated_for_pair
 
@@ -23,6 +26,9 @@ SMOOTHEST_SURFACE = 1e-8  # m: a thinnest film below it is thinner than real sur
 NEWTONIAN_VISCOSITY = (1e-4, 1e3)  # Pa s: the liquids that are Newtonian at room temperature
 LOADED_IMPACT = 0.1  # stored elastic energy over the impact energy above which an impact is
 # not through unloaded solids, as the impact model assumes
+RESOLVED_SPEED = 100.0  # times rtol: a speed (by V0) the step control resolves
+UNRESOLVED_STOP = 0.01  # share of a stuck sphere's contact time in an unresolved decay, noted
+STUCK_STOP_NOTE = "the sphere sticks and its motion died out without a finite end"
 
 
 class ResultRangeWarning(UserWarning):
@@ -30,7 +36,7 @@ class ResultRangeWarning(UserWarning):
     error), a thinnest film thinner than any real surface is smooth, a viscosity outside the
     Newtonian liquids, an impact of the asperities through loaded solids (which the impact
     model does not hold for), an immersed tangential motion that leaves out a large flow beyond
-    the sphere's radius."""
+    the sphere's radius, a stuck sphere's stop the step control does not resolve."""
 
 
 def liquid_note(physical) -> str | None:
@@ -47,11 +53,36 @@ def liquid_note(physical) -> str | None:
     )
 
 
+def unresolved_stop(normal) -> float | None:
+    """The share of a stuck sphere's contact time that its motion spent decaying below the
+    speeds the step control resolves (RESOLVED_SPEED rtol, by V0), when that decay is
+    asymptotic and the share is above UNRESOLVED_STOP; None otherwise. The film's damping
+    takes up the last motion of a sphere it stops as V ~ exp(-T/tau), without a finite end, so
+    the stop (V back to 0, or |V| below 1e-10) comes where V reaches the integration's noise,
+    and the contact time grows by about 2 tau for each tenfold smaller rtol (thin, St 2,
+    eps 1e-12: 2.57 at rtol 2e-4, 4.62 at 2e-6). A decay counts as asymptotic when the time
+    from the last resolved speed V_j to the stop is over 3 tau, tau = |V_j / (dV/dT)|; a
+    sphere turned back by the film reaches V = 0 in about tau."""
+    if normal.status != "stick":
+        return None
+    times, velocity = normal.history.time, normal.history.velocity
+    resolved = np.flatnonzero(np.abs(velocity) > RESOLVED_SPEED * normal.rtol)
+    if len(resolved) == 0 or not 0 < resolved[-1] < len(times) - 1:
+        return None
+    j = resolved[-1]
+    slope = (velocity[j + 1] - velocity[j - 1]) / (times[j + 1] - times[j - 1])
+    decay = normal.contact_time - times[j]
+    share = decay / normal.contact_time
+    asymptotic = decay * abs(slope) > 3.0 * abs(velocity[j])
+    return float(share) if asymptotic and share > UNRESOLVED_STOP else None
+
+
 def result_notes(params, physical, normal) -> list[str]:
     """The notes on a normal motion ``normal`` (:class:`ehdfem.motion.normal.NormalResult`) of
     ``params`` (dimensionless), with the physical inputs ``physical`` (SI) or None: e_n above
-    1, an impact of the asperities through loaded solids, a smooth physical film thinner than
-    :data:`SMOOTHEST_SURFACE` (polished glass and steel have rms roughnesses of 1-100 nm)."""
+    1, an impact of the asperities through loaded solids, a stuck sphere's unresolved stop
+    (:func:`unresolved_stop`), a smooth physical film thinner than :data:`SMOOTHEST_SURFACE`
+    (polished glass and steel have rms roughnesses of 1-100 nm)."""
     notes = []
     if normal.e_n > 1.0:
         notes.append(
@@ -64,6 +95,14 @@ def result_notes(params, physical, normal) -> list[str]:
             f"the asperities' impact came through loaded solids: they held "
             f"{100 * impact.stored_share:.0f} % of the impact energy, where the impact model "
             "assumes them unloaded (its e_dry acts on the sphere's velocity alone)"
+        )
+    decay = unresolved_stop(normal)
+    if decay is not None:
+        notes.append(
+            f"{STUCK_STOP_NOTE}: the last {100 * decay:.0f} % of the contact time "
+            f"({normal.contact_time:.4g} x0/V0) is a decay below the speeds the step control "
+            "resolves, so the contact time, and e_t and the spin change taken at the stop, "
+            'depend on rtol (docs/performance.md, "The stuck sphere\'s stop")'
         )
     if physical is not None and params.roughness == 0.0:
         thinnest = normal.min_film_thickness * physical.layer_thickness

@@ -5,9 +5,11 @@ sticking to rebounding (the critical Stokes number, the critical speed), to a re
 from __future__ import annotations
 
 import math
+import warnings
 
 from .. import checks
 from ..console.progress import Counter
+from ..outputs.plausibility import STUCK_STOP_NOTE, ResultRangeWarning
 
 
 def bisections(low: float, high: float, rtol: float) -> int:
@@ -40,7 +42,9 @@ def threshold(rebounds, low, high, rtol, name, limits, progress_label=None):
         """The outcome at ``value``; ``more``: evaluations after this one besides the halvings
         of the current bracket (1 and 0 for the ends' checks, -1 for a halving itself)."""
         nonlocal evaluations
-        result = rebounds(value)
+        with warnings.catch_warnings():  # the search reports no stuck sphere's contact time
+            warnings.filterwarnings("ignore", STUCK_STOP_NOTE, ResultRangeWarning)
+            result = rebounds(value)
         evaluations += 1
         if bar is not None:
             bar.advance_to(evaluations, evaluations + more + bisections(low, high, rtol))

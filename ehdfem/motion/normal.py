@@ -246,7 +246,8 @@ class _NormalIntegration:
         self.end_time = self.exit_velocity = np.nan
         thickness = self.step_solver.thickness_parts(self.pressure, self.gap)
         state = self.film.assemble(thickness[0], self.pressure)
-        # the full nodes of the latest accepted steps, as many as the widest BDF stencil holds
+        # the film's states at the nodes of the latest accepted steps, as many as the widest BDF
+        # stencil holds (:meth:`_film_states`)
         self.film_states = deque(
             [self._film_states(self.pressure, state)], maxlen=self.options.order + 1
         )

@@ -181,7 +181,7 @@ def test_a_growing_cavity_costs_no_run_of_short_steps():
     out while a wet node cavitates or refills within the BDF stencil, where it measures the
     kink of the switch instead of the local error. Checked every step, it cost 4 times the
     steps (898 against 216 on the earlier order-3 control); leaving out only the switching
-    nodes and their neighbours, 7 times (722 against 129)."""
+    nodes and their neighbours, 5.6 times (722 against 129)."""
 
     def steps(**cavitation):
         params = CollisionParameters.from_settings(St=50.0, eps=0.1, layer="thin", **cavitation)

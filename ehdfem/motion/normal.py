@@ -401,7 +401,7 @@ class _NormalIntegration:
         continuously (cut into its element, docs/model.md), so its passing a node kinks that
         node's film in time and, through the three-point rows, its neighbours'. A cavity's
         boundary moves node by node and kinks the film further (leaving out one to three
-        neighbours still cost a mass-conserving cavity growing node by node 1.1 to 7 times
+        neighbours still cost a mass-conserving cavity growing node by node 1.05 to 7.4 times
         the steps). Leaving the mean square out at every switch of either kind left a thin
         layer's rebound uncontrolled, as its wetted edge passes a node every few steps: the
         thinnest film of a suction dip there was 4 % off at the default rtol and did not

@@ -24,7 +24,7 @@ class Kept:
 
     def get(self, compute: Callable[[], Any], array: np.ndarray, key: Any = None) -> Any:
         """The kept result for (``array``, ``key``), or ``compute()`` kept for them."""
-        bits = np.ascontiguousarray(array).tobytes()
+        bits = array.tobytes()  # in C order, whatever the array's strides
         for kept_key, kept_bits, result in self._entries:
             if kept_bits == bits and kept_key == key:
                 return result

@@ -160,17 +160,17 @@ def test_the_new_model_holds_the_film_at_its_limit():
     """The largest-suction model through collide: no wet node's pressure goes below -S (to
     1e-12 of S), the limit is reached, and the collision agrees with ehdfem's truncation at the
     same P_cav, which solves the same complementarity by another path of Newton iterates, to
-    1e-7 in e_n and e_t (measured 2.2e-9 and 5e-12: the steps' Newton tolerance, through the
-    adaptive steps); with a limit never reached no node is held: the unlimited film, bit for
-    bit."""
+    1e-6 in e_n and e_t (measured 1.1e-7 and 8e-11 at the default Newton tolerance, rtol/20 =
+    1e-5, through the adaptive steps; 2.2e-9 and 5e-12 at 1e-7); with a limit never reached no
+    node is held: the unlimited film, bit for bit."""
     suction = 2.0
     result = collide_small(cavitation=SUCTION, largest_suction=suction)
     pressure = result.normal.history.pressure
     assert pressure.min() >= -suction * (1 + 1e-12)
     assert pressure.min() == pytest.approx(-suction, rel=1e-12)
     truncated = collide_small(p_cav=-suction)
-    assert result.normal.e_n == pytest.approx(truncated.normal.e_n, rel=1e-7)
-    assert result.tangential.e_t == pytest.approx(truncated.tangential.e_t, rel=1e-7)
+    assert result.normal.e_n == pytest.approx(truncated.normal.e_n, rel=1e-6)
+    assert result.tangential.e_t == pytest.approx(truncated.tangential.e_t, rel=1e-6)
     free = collide_small(cavitation=SUCTION, largest_suction=1e6)
     unlimited = collide_small(p_cav=NO_LIMIT)
     assert free.normal.e_n == unlimited.normal.e_n  # no node held: the same film, bit for bit

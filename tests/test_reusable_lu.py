@@ -83,10 +83,33 @@ def test_the_equilibration_is_exact_and_scales_every_row_and_column_to_one(gathe
     matrix[:, 3], matrix[7] = 0.0, -0.0
     index = np.flatnonzero(rng.random(n) < 0.6) if gathered else None
     block = matrix if index is None else matrix[np.ix_(index, index)]
-    scaled, col, row = _equilibrated(matrix, index, np.empty(n * n))
+    scaled, col, row, finite = _equilibrated(matrix, index, np.empty(n * n))
+    assert finite
     assert np.array_equal(scaled * row[:, None] * col[None, :], block)
     assert np.array_equal(np.frexp(np.concatenate([col, row]))[0], np.full(2 * len(col), 0.5))
     by_column = np.abs(block / col).max(axis=0)
     assert ((by_column >= 0.5) & (by_column < 1) | (by_column == 0) & (col == 1)).all()
     by_row = np.abs(scaled).max(axis=1)
     assert ((by_row >= 0.5) & (by_row < 1) | (by_row == 0) & (row == 1)).all()
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+@pytest.mark.parametrize("where", ["factorised", "coupling"])
+def test_a_matrix_with_an_entry_that_is_not_finite_is_refused(bad, where):
+    """An entry that is not finite, in the factorised block or in its coupling to the fixed
+    nodes' columns, raises SingularMatrix before any LU; the same matrix with the entry finite
+    is factorised."""
+    from ehdfem.motion.reusable_lu import ReusableLU, SingularMatrix
+
+    rng = np.random.default_rng(11)
+    n = 40
+    matrix = np.asfortranarray(rng.standard_normal((n, n)) + n * np.eye(n))
+    fixed = np.zeros(n, bool)
+    fixed[30:] = True  # identity rows: their block is held, A_FX kept
+    matrix[30:] = 0.0
+    matrix[30:, 30:] = np.eye(10)
+    row, column = (5, 7) if where == "factorised" else (5, 33)
+    ReusableLU(matrix, fixed, np.zeros(n, bool))
+    matrix[row, column] = bad
+    with pytest.raises(SingularMatrix, match="not finite"):
+        ReusableLU(matrix, fixed, np.zeros(n, bool))

@@ -203,6 +203,15 @@ class Film:
         # gap that has no value at a node, as a true sphere beyond its equator, refuses the
         # grid here)
         self.undeformed = self.gap.height(self.radii)
+        # each cell's (left radius, length, S at its left, S's chord slope) as Python floats,
+        # for the wetted edge's scalar Newton (numpy's scalars cost more than its arithmetic)
+        chords = np.diff(self.undeformed) / self._length
+        self._cells = list(
+            zip(
+                *(a.tolist() for a in (left, self._length, self.undeformed[:-1], chords)),
+                strict=True,
+            )
+        )
         self._cell_between = {
             name: self.gap.between_nodes(left, self._length, xi) for name, xi in _POINTS.items()
         }
@@ -228,15 +237,14 @@ class Film:
 
     def _wetted_edge(self, film_thickness: np.ndarray) -> tuple[int, float]:
         """:meth:`wetted_edge`, computed."""
-        above = np.flatnonzero(film_thickness >= 1.0)
-        if len(above) == 0:
+        first_dry = int((film_thickness >= 1.0).argmax())
+        if not film_thickness[first_dry] >= 1.0:
             raise FilmError("the wetted edge left the film grid: enlarge outer_radius")
-        first_dry = above[0]
         if first_dry == 0:
             return 0, 0.0
         k = first_dry - 1
-        fraction = self._edge_fraction(k, film_thickness[k], film_thickness[first_dry])
-        edge = self.radii[k] + fraction * self._length[k]
+        fraction = self._edge_fraction(k, float(film_thickness[k]), float(film_thickness[k + 1]))
+        edge = self._cells[k][0] + fraction * self._cells[k][1]
         if fraction < 1e-3:
             return k, edge
         return first_dry, edge
@@ -245,9 +253,7 @@ class Film:
         """xi in [0, 1] where H = h_left (1 - xi) + h_right xi + (S - its chord) = 1 on element
         k (h_left < 1 <= h_right): Newton from the linear crossing, which lies left of the root
         (S lies below its chord) on a convex H, so the iterates bracket it after one step."""
-        left, length = float(self.radii[k]), float(self._length[k])
-        s_left, s_right = (float(value) for value in self.undeformed[k : k + 2])
-        chord = (s_right - s_left) / length
+        left, length, s_left, chord = self._cells[k]
         xi = (1.0 - h_left) / (h_right - h_left)
         for _ in range(6):
             height, gap_slope = self.gap.profile(left + xi * length)

@@ -279,14 +279,14 @@ class ImplicitStep:
             sets = (*it.sets[:2], self.cavitation.theta_nodes(cavitated).tobytes())
             same = sets == previous_sets
             ratio = norm / previous_norm if same and previous_norm else None
-            if damping == 1.0 and same and _remaining(norm, ratio) <= self.options.newton_tol:
+            if damping == 1.0 and same and _remaining(norm, ratio) <= self.options.newton_tolerance:
                 cavities = self.cavitation.theta_nodes(cavitated)
                 return StepSolution(pressure, gap, velocity, fill, cavities, it.state, iteration)
             if ratio is not None:
                 # refresh a stale factorisation that diverges or whose contraction would need
                 # > 6 more sweeps (not on a fresh one's first update, whose ratio to the stale
                 # one's update is no contraction rate)
-                tol = self.options.newton_tol
+                tol = self.options.newton_tolerance
                 slow = 0.1 < ratio < 1.0 and np.log(tol / norm) / np.log(ratio) > 6
                 refresh = not fresh and (ratio >= 1.0 or slow)
             previous_sets, previous_norm = sets, norm

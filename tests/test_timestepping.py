@@ -41,6 +41,19 @@ def test_peak_keeps_a_sample_at_the_end_or_a_kink():
     assert peak(times, np.array([0.0, 1.0, 1.0, 0.0]))[1] >= 1.0
 
 
+def test_peak_up_to_an_end_inside_the_last_step_reads_the_dense_output_there():
+    """A history still growing at the collision's end (y = 1 + t - t^2/4 on t < 2, the end at
+    0.93, inside the last step 0.8 -> 1.1): its largest value up to the end is y(0.93) on the
+    quadratic dense output (exact, 1e-14), not the last sample past the end; an end at or
+    after the last sample changes nothing."""
+    times = np.array([0.0, 0.3, 0.55, 0.8, 1.1])
+    values = 1 + times - times**2 / 4
+    time, value = peak(times, values, end=0.93)
+    assert time == 0.93 and value == pytest.approx(1 + 0.93 - 0.93**2 / 4, abs=1e-14)
+    assert value < values[-1] - 0.08
+    assert peak(times, values, end=1.1) == peak(times, values) == (1.1, values[-1])
+
+
 def test_crossing_is_the_root_of_the_interpolating_polynomial():
     """X(t) = 1 + (t - 0.73)(t + 0.2) crosses 1 at t = 0.73 between the two newest samples of
     three; the dense output finds it to rounding and reads V there from its own polynomial."""

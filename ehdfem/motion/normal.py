@@ -133,8 +133,9 @@ class NormalResult:
     exit_velocity without one (0 if it sticks).
     ``max_rebound_velocity``: the largest V > 0 reached (DSH 1986's restitution for immersed
     spheres). ``min_film_thickness``: min over R and T of H (by x0). ``max_force``: by
-    6 pi mu V0 a^2 / x0. ``contact_time``: from first touch of the layer to exit (or to the
-    stop for a sticking sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
+    6 pi mu V0 a^2 / x0 (extrema up to the contact time, on the dense output).
+    ``contact_time``: from first touch of the layer to exit (or to the stop for a sticking
+    sphere), by x0 / V0. ``max_compression``: -min X (by x0; positive once
     the undeformed surfaces overlap). ``energy_error``: |KE0 - KE - E_el - dissipation + work| /
     KE0 at the end, with the applied forces' work, E_el counted from first touch (the
     asperities' stored energy in it, a solid impact's loss in the dissipation; meaningful
@@ -582,13 +583,11 @@ class _NormalIntegration:
         )
 
     def _largest(self, values) -> float:
-        """The largest of a history on the dense output (:func:`peak`), on each side of a solid
-        impact's record separately (the velocity and the force jump there)."""
-        times = self.hist.time
-        if self.impact is None:
-            return peak(times, values)[1]
-        k = self.impact.index
-        return max(peak(times[: k + 1], values[: k + 1])[1], peak(times[k:], values[k:])[1])
+        """The largest of a history up to the end on the dense output (:func:`peak`), on each
+        side of a solid impact's record separately (the velocity and the force jump there)."""
+        times, k = self.hist.time, 0 if self.impact is None else self.impact.index
+        before = peak(times[: k + 1], values[: k + 1])[1] if k else -np.inf
+        return max(before, peak(times[k:], values[k:], self.end_time)[1])
 
     def _asperity_force(self) -> np.ndarray | None:
         """The asperities' load on the sphere at each recorded step, w.P_a(H) (by 6 pi mu V0

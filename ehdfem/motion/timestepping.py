@@ -175,10 +175,17 @@ def crossing(nodes, values, level: float) -> float:
     return 0.5 * (early + late)
 
 
-def peak(times, values) -> tuple[float, float]:
+def peak(times, values, end=math.inf) -> tuple[float, float]:
     """(time, value) of the largest of ``values`` at the accepted ``times``, refined by the
     dense output: the vertex of the parabola through the largest value and its two
-    neighbours, when it lies between them (error O(step^3) instead of O(step^2))."""
+    neighbours, when it lies between them (error O(step^3) instead of O(step^2)). Up to the
+    time ``end``: where it lies inside the last step (an exit's or a stop's crossing), that
+    step's value is the dense output's at ``end`` (the polynomial through the three latest
+    values), as the exit velocity is, so that a history still growing at the end is not read
+    past it."""
+    if end < times[-1]:
+        last = extrapolate(times[-3:], values[-3:], end)
+        times, values = np.r_[times[:-1], end], np.r_[values[:-1], last]
     i = int(np.argmax(values))
     if not 0 < i < len(values) - 1:
         return float(times[i]), float(values[i])

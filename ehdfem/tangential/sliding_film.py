@@ -141,6 +141,33 @@ class SlidingFilm:
         self.compliance.setdefault("r", None)
         self.compliance.setdefault("phi", None)
         self.surface_sum = surface_sum
+        # the rows on z that do not change with the step: the nodal slips (v_r, v_phi), and
+        # each face displacement's pressure columns (its traction columns are rewritten at
+        # every step, :meth:`_operators`)
+        self._slips = tuple(self._slip_rows(component) for component in range(2))
+        self._slip_sum = self._slips[0] + self._slips[1]
+        self._displacement_rows = {
+            name: self._pressure_rows(c) for name, c in self.compliance.items() if c is not None
+        }
+
+    def _slip_rows(self, component: int) -> np.ndarray:
+        """The nodal slip velocity v_r (``component`` 0) or v_phi (1) as rows on z: v itself
+        with deformation "full", else the slip u_s at every node."""
+        n, size = self.n, self.size
+        if self.deformation == "full":
+            rows = np.zeros((n, size))
+            rows[:, n * (1 + component) : n * (2 + component)] = np.eye(n)
+            return rows
+        sliding = np.zeros(size)
+        sliding[self.motion] = self.bodies.sliding
+        return np.outer(np.ones(n), sliding)
+
+    def _pressure_rows(self, compliance: np.ndarray) -> np.ndarray:
+        """Rows on z of a face displacement, compliance (n, 3n) @ L, with its pressure columns
+        filled (the traction's are filled at each step)."""
+        rows = np.zeros((self.n, self.size))
+        rows[:, : self.n] = compliance[:, : self.n]
+        return rows
 
     def solve(self, unloaded=None) -> TangentialResult:
         """Step through the normal solution; the tangential result with its energy balance
@@ -272,28 +299,22 @@ class SlidingFilm:
         rolling[self.motion], sliding[self.motion] = bodies.entrainment, bodies.sliding
         traction = -mf.shear_weights / self.mass_full  # a = traction * v, by mu U0 / x0
 
-        def slip(component):  # nodal slip velocity v_r or v_phi as rows on z
-            if full:
-                rows = np.zeros((n, size))
-                rows[:, n * (1 + component) : n * (2 + component)] = np.eye(n)
-                return rows
-            return np.outer(np.ones(n), sliding)
-
-        def displacement(compliance):  # compliance (n, 3n) @ L as rows on z
+        def displacement(name):  # compliance (n, 3n) @ L as rows on z (kept, the step's traction)
+            compliance, rows = self.compliance[name], self._displacement_rows.get(name)
             if compliance is None:
                 return None
-            rows = np.zeros((n, size))
-            rows[:, :n] = compliance[:, :n]
+            motion = np.zeros((n, len(self.motion)))
             for component in range(2):
                 block = compliance[:, n * (1 + component) : n * (2 + component)]
                 if full:
-                    rows[:, n * (1 + component) : n * (2 + component)] += block * traction
+                    rows[:, n * (1 + component) : n * (2 + component)] = block * traction
                 else:  # the traction of the slip u_s: a column on each of U and the spins
-                    rows[:, self.motion] += np.outer(block @ traction, bodies.sliding)
+                    motion += np.outer(block @ traction, bodies.sliding)
+            rows[:, self.motion] = motion
             return rows
 
-        ops = {"slip_r": slip(0), "slip_phi": slip(1)}
-        ops.update({name: displacement(c) for name, c in self.compliance.items()})
+        ops = {"slip_r": self._slips[0], "slip_phi": self._slips[1]}
+        ops.update({name: displacement(name) for name in self.compliance})
         surface_sum = None
         if self.surface_sum is not None:
             surface_sum = self.surface_sum @ self.normal.history.pressure[i]
@@ -303,7 +324,7 @@ class SlidingFilm:
         gradient_weights = mf.gradient_weights()
         force = (delta / 12.0) * (gradient_weights @ ops["sum"])
         force[:n] -= (delta / 12.0) * slope_weights
-        force -= (delta / 6.0) * (mf.shear_weights @ (ops["slip_r"] + ops["slip_phi"]))
+        force -= (delta / 6.0) * (mf.shear_weights @ self._slip_sum)
         force -= (delta / 3.0) * mf.tail * (sliding + 0.6 * bodies.rho * rolling)
         pressure = 0.4 * delta * mf.tail * rolling  # P: the pressure's x-force, tail and film
         pressure[:n] += (delta / 6.0) * mf.torque_weights

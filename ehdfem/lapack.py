@@ -1,8 +1,8 @@
 """LAPACK's dense LU (getrf) from the OpenBLAS the package installs (scipy-openblas32, a wheel of
-the package registry), on one thread; its solve (getrs) and the two at once (gesv).
+the package registry), on one thread, and its solve (getrs).
 
 A collision factorises a dense Newton matrix of a few hundred unknowns at nearly every step
-(:mod:`ehdfem.motion.reusable_lu`; the sliding film's (3N + 2)-square system every step), and
+(:mod:`ehdfem.motion.reusable_lu`, which the sliding film's system of every step uses too), and
 those LUs are about a third of its time. The machine's own LAPACK may not know its CPU: Debian
 12's OpenBLAS 0.3.21 falls back to its generic kernels on recent processors (an LU of 242
 unknowns took 0.62 ms on the project's machine, the packaged OpenBLAS 0.3.34 0.38 ms). With
@@ -61,13 +61,3 @@ def getrs(factors: np.ndarray, pivots: np.ndarray, rhs: np.ndarray, overwrite=Fa
     9 us each at 200 unknowns)."""
     solution, _ = _GETRS(factors, pivots, rhs, overwrite_b=overwrite)
     return solution
-
-
-def gesv(matrix: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, int]:
-    """(x, info) with A x = ``rhs`` for the square ``matrix`` A (neither changed): getrf on a
-    copy of A, then getrs; info > 0 for a singular A (x is then not defined)."""
-    factors = np.array(matrix, dtype=np.float64, order="F")
-    pivots, info = getrf(factors)
-    if info != 0:
-        return rhs, info
-    return getrs(factors, pivots, rhs), 0

@@ -17,8 +17,8 @@ import scipy.integrate
 from ..film.elements import add_band_rows, tridiagonal_rows
 from ..film.mode_one import ModeOneFilm, band_sum
 from ..film.reynolds import Film, tridiagonal_product
-from ..lapack import gesv
 from ..motion.normal import NormalSolverError
+from ..motion.reusable_lu import ReusableLU, SingularMatrix
 from ..solids.compliance import ModeOneCompliance
 from .friction import CoulombContact
 from .normal_film import mode_one_films
@@ -408,27 +408,22 @@ class SlidingFilm:
 def _solve_equilibrated(matrix, rhs, motion):
     """Solve matrix z = rhs (``rhs`` a vector, or one right-hand side per column) in the
     unknowns y = z except the slip U - a Omega (U - s1 - s2) in place of U (``motion``: the
-    indices of U and the spins), with every column of the transformed matrix and then every row
-    scaled to unit largest entry. A piezoviscous film's Reynolds rows
-    are smaller than the others by mu/mu0 (up to 1e30 and more), and its Couette traction makes
-    the columns of the slip velocities larger by as much: the unscaled rows of U and a Omega
-    are then parallel to round-off (the film locks the sphere into rolling), the scaled system
-    is not."""
+    indices of U and the spins), by the Newton matrix's LU (:class:`ReusableLU`: every column of
+    the transformed matrix and then every row scaled by a power of two to a largest entry in
+    [1/2, 1), exactly). A piezoviscous film's Reynolds rows are smaller than the others by
+    mu/mu0 (up to 1e30 and more), and its Couette traction makes the columns of the slip
+    velocities larger by as much: the unscaled rows of U and a Omega are then parallel to
+    round-off (the film locks the sphere into rolling), the scaled system is not."""
     u, spins = motion[0], motion[1:]
     transformed = matrix.copy()  # matrix @ B, B = I + e_u sum e_spin^T: z_U = u_s + spins
     transformed[:, spins] += matrix[:, [u]]
-    column_scale = 1.0 / np.abs(transformed).max(axis=0)
-    transformed *= column_scale
-    row_scale = 1.0 / np.abs(transformed).max(axis=1)
-    scaled_rhs = (rhs.T * row_scale).T  # a vector, or one right-hand side per column
-    # LAPACK directly (ehdfem.lapack): scipy's solve also checked its arguments and estimated
-    # the condition number, a third of the time at a few hundred unknowns
-    y, info = gesv(transformed * row_scale[:, None], scaled_rhs)
-    if info != 0:
-        raise np.linalg.LinAlgError(f"singular sliding-film matrix (LAPACK gesv info {info})")
-    z = (y.T * column_scale).T
-    z[u] += z[spins].sum(axis=0)  # back from y to z = B y
-    return z
+    nothing = np.zeros(len(matrix), bool)
+    try:
+        y = ReusableLU(transformed, nothing, nothing).solve(rhs, nothing, None)
+    except SingularMatrix as err:
+        raise np.linalg.LinAlgError(f"sliding-film matrix: {err}") from err
+    y[u] += y[spins].sum(axis=0)  # back from y to z = B y
+    return y
 
 
 def _face_combination(mode_one: ModeOneCompliance, component: str, signs) -> np.ndarray:

@@ -462,12 +462,12 @@ def _check_liquid(physical) -> None:
 
 
 def _check_result_range(params, physical, normal: NormalResult) -> None:
-    """Warn (ResultRangeWarning) of each of the normal motion's plausibility notes
-    (:func:`ehdfem.outputs.plausibility.result_notes`: e_n above 1, a rough contact the impact
-    model does not hold for, a stuck sphere's unresolved stop, a nanometre film of physical
-    inputs); the result keeps them."""
+    """Warn (ResultRangeWarning, or a category of it) of each of the normal motion's
+    plausibility notes (:func:`ehdfem.outputs.plausibility.result_notes`: e_n above 1, a rough
+    contact the impact model does not hold for, a stuck sphere's unresolved stop, a weak
+    rebound, a nanometre film of physical inputs); the result keeps them."""
     for note in plausibility.result_notes(params, physical, normal):
-        warnings.warn(note, ResultRangeWarning, stacklevel=4)
+        warnings.warn(note, note.category, stacklevel=4)
 
 
 def _check_viscosity_range(params, physical, normal: NormalResult) -> None:

@@ -11,7 +11,11 @@ from ehdfem.film.grid import radial_grid
 from ehdfem.inputs.scales import CollisionParameters
 from ehdfem.motion.normal import solve_normal
 from ehdfem.motion.timestepping import IntegratorOptions
-from ehdfem.outputs.plausibility import ResultRangeWarning, unresolved_stop
+from ehdfem.outputs.plausibility import (
+    TimeResolutionWarning,
+    unresolved_stop,
+    weak_rebound,
+)
 from ehdfem.solids.compliance import RigidSolids
 
 pytestmark = pytest.mark.serial
@@ -232,6 +236,21 @@ def test_a_film_still_thinning_at_the_exit_is_read_at_the_exit():
     assert abs(default.min_film_thickness / converged.min_film_thickness - 1) < 2e-3
 
 
+def test_a_weak_rebound_is_noted_with_its_estimated_time_error():
+    """Near the critical Stokes number (thin, St 21.5, eps 1e-10, no cavitation limit) e_n is
+    0.01033 at the default rtol and 0.01134 at 2e-6: 8.9 % off, as e_n's absolute time error
+    (up to 1.2e-3 at the default rtol, REBOUND_TIME_ERROR) is no longer small beside it. The
+    collision notes it (a TimeResolutionWarning) with an estimate that covers the error; thin
+    St 20 (e_n 0.5995, 2e-4 off) is not noted."""
+    params = CollisionParameters.from_settings(St=21.544346900318832, eps=1e-10, layer="thin")
+    with pytest.warns(TimeResolutionWarning, match="weak rebound"):
+        weak = collide(params, tangential="couette").normal
+    converged = collide(params, tangential="couette", rtol=2e-6).normal
+    assert weak_rebound(weak) >= abs(weak.e_n / converged.e_n - 1) > 0.05
+    strong = collide(CollisionParameters.from_settings(St=20.0, eps=1e-3, layer="thin")).normal
+    assert weak_rebound(strong) is None
+
+
 def test_a_stuck_sphere_whose_motion_dies_out_is_noted():
     """A rigid sphere stopped by a thin film at St = 2 (eps = 1e-12) creeps to its stop as
     exp(-T/tau), without a finite end: its contact time is 2.57 at the default rtol and 4.62
@@ -239,7 +258,7 @@ def test_a_stuck_sphere_whose_motion_dies_out_is_noted():
     film turns the sphere back within about tau of its last resolved speed (contact time
     1.0419 at both rtols): no note."""
     params = CollisionParameters.from_settings(St=2.0, eps=1e-12, layer="thin")
-    with pytest.warns(ResultRangeWarning, match="died out without a finite end"):
+    with pytest.warns(TimeResolutionWarning, match="died out without a finite end"):
         creeping = collide(params).normal
     assert unresolved_stop(creeping) > 0.4
     assert unresolved_stop(collide(params.with_settings(St=10.0)).normal) is None

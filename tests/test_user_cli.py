@@ -80,7 +80,12 @@ def test_a_restitution_above_one_is_a_note_of_the_result():
     from ehdfem.outputs.plausibility import result_notes
 
     normal = SimpleNamespace(
-        e_n=1.01, energy_error=0.02, solid_impact=None, min_film_thickness=0.1, status="rebound"
+        e_n=1.01,
+        energy_error=0.02,
+        solid_impact=None,
+        min_film_thickness=0.1,
+        status="rebound",
+        rtol=2e-4,
     )
     notes = result_notes(CollisionParameters.from_settings(St=10.0, eps=1e-3), None, normal)
     assert len(notes) == 1 and notes[0].startswith("e_n = 1.01 is above 1")

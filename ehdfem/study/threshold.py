@@ -9,7 +9,7 @@ import warnings
 
 from .. import checks
 from ..console.progress import Counter
-from ..outputs.plausibility import STUCK_STOP_NOTE, ResultRangeWarning
+from ..outputs.plausibility import TimeResolutionWarning
 
 
 def bisections(low: float, high: float, rtol: float) -> int:
@@ -42,8 +42,8 @@ def threshold(rebounds, low, high, rtol, name, limits, progress_label=None):
         """The outcome at ``value``; ``more``: evaluations after this one besides the halvings
         of the current bracket (1 and 0 for the ends' checks, -1 for a halving itself)."""
         nonlocal evaluations
-        with warnings.catch_warnings():  # the search reports no stuck sphere's contact time
-            warnings.filterwarnings("ignore", STUCK_STOP_NOTE, ResultRangeWarning)
+        with warnings.catch_warnings():  # the search reports no contact time and no e_n
+            warnings.filterwarnings("ignore", category=TimeResolutionWarning)
             result = rebounds(value)
         evaluations += 1
         if bar is not None:

@@ -874,7 +874,12 @@ def test_a_restitution_above_one_is_warned_of():
     params = CollisionParameters.from_settings(St=10.0, eps=1e-3)
     with pytest.warns(ResultRangeWarning, match=r"e_n = 1.01 is above 1.*energy error 0.02"):
         normal = SimpleNamespace(
-            e_n=1.01, energy_error=0.02, solid_impact=None, status="rebound", rtol=2e-4
+            e_n=1.01,
+            energy_error=0.02,
+            solid_impact=None,
+            status="rebound",
+            rtol=2e-4,
+            exit_velocity=1.01,
         )
         _check_result_range(params, None, normal)
 

@@ -86,6 +86,7 @@ def test_a_restitution_above_one_is_a_note_of_the_result():
         min_film_thickness=0.1,
         status="rebound",
         rtol=2e-4,
+        exit_velocity=1.01,
     )
     notes = result_notes(CollisionParameters.from_settings(St=10.0, eps=1e-3), None, normal)
     assert len(notes) == 1 and notes[0].startswith("e_n = 1.01 is above 1")

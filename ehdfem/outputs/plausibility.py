@@ -102,13 +102,15 @@ def unresolved_stop(normal) -> float | None:
 
 def weak_rebound(normal) -> float | None:
     """A rebound's estimated relative time error in e_n, REBOUND_TIME_ERROR sqrt(rtol / 2e-4)
-    / e_n, when above WEAK_REBOUND; None otherwise. Near the critical Stokes number the sphere
-    leaves slowly after a long contact, and e_n's absolute time error (up to 1.2e-3 at the
-    default rtol, whatever e_n) becomes large beside it: thin, St 21.5, eps 1e-10, no
-    cavitation limit: e_n 0.01033 at rtol 2e-4, 0.01118 at 2e-5, 0.01134 at 2e-6."""
-    if normal.status != "rebound" or normal.e_n <= 0.0:
+    / V_exit (V_exit the exit velocity by V0, of which e_n is e_dry times or, after a solid
+    impact, all), when above WEAK_REBOUND; None otherwise. Near the critical Stokes number the
+    sphere leaves slowly after a long contact, and the exit velocity's absolute time error (up
+    to 1.2e-3 at the default rtol, whatever its size) becomes large beside it: thin, St 21.5,
+    eps 1e-10, no cavitation limit: e_n 0.01033 at rtol 2e-4, 0.01118 at 2e-5, 0.01134 at
+    2e-6."""
+    if normal.status != "rebound" or normal.exit_velocity <= 0.0:
         return None
-    error = REBOUND_TIME_ERROR * np.sqrt(normal.rtol / 2e-4) / normal.e_n
+    error = REBOUND_TIME_ERROR * np.sqrt(normal.rtol / 2e-4) / normal.exit_velocity
     return float(error) if error > WEAK_REBOUND else None
 
 

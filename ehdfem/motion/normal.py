@@ -320,16 +320,17 @@ class _NormalIntegration:
         if self._overshoots(float(np.min(thickness[0])), solution.velocity):
             self._step_to_touch(t_new, t_old, float(np.min(thickness[0])))
             return None
-        error = self._error(t_new, order, solution, thickness[0])
+        states = self._film_states(solution.pressure, solution.state)  # once a step
+        error = self._error(t_new, order, solution, thickness[0], states)
         if error > 1.0:
             self.rejected += 1
             stepper.reject(error, order)
             return None
-        status = self._accept(solution, thickness, t_new)
+        status = self._accept(solution, thickness, t_new, states)
         stepper.accept(error, order)
         return status
 
-    def _error(self, t_new, order, solution, film_thickness) -> float:
+    def _error(self, t_new, order, solution, film_thickness, states) -> float:
         """The step's estimated local error over rtol: the largest of |dX|/H_min, |dV| and, with
         film control, |dH/H| at the thinnest node where the reported minimum can still form: its
         film within NEAR_THINNEST of the thinnest yet, and thinning (below the last step's thinnest)
@@ -366,7 +367,7 @@ class _NormalIntegration:
             thinning = film_thickness[thinnest] < hist.min_film[-1]
             if near and (thinning or hist.min_film[-1] <= self.thinnest):
                 errors.append(abs(relative[thinnest]))
-            settled = self._settled(self._film_states(solution.pressure, solution.state), order)
+            settled = self._settled(states, order)
             if settled.any():
                 errors.append(np.sqrt(np.mean(relative[settled] ** 2)))
         return share * max(errors) / self.options.rtol
@@ -477,14 +478,14 @@ class _NormalIntegration:
             times, latest(self.dissipation_rates, known + 1)
         )
 
-    def _accept(self, solution, thickness, t_new):
+    def _accept(self, solution, thickness, t_new, states):
         """Record an accepted step (the dissipation rate integrated over it) and return its event,
         if any; a step that ends at the asperities' touch is the solid impact."""
         rate = self.film.dissipation_rate(solution.state, solution.pressure)
         dissipated = self._dissipated(t_new, rate)
         self.pressure, self.gap, self.velocity = solution.pressure, solution.gap, solution.velocity
         self.cavitated = solution.cavitated
-        self.film_states.append(self._film_states(solution.pressure, solution.state))
+        self.film_states.append(states)
         thinnest = float(np.min(thickness[0]))
         self.thinnest = min(self.thinnest, thinnest)
         self._advance_sphere(t_new, thickness[0])

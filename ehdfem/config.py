@@ -208,7 +208,8 @@ def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, 
     the one whose "parameters" held every constant of every viscosity law, the suction
     limit whatever the cavitation model and the asperity constants whatever the asperity model
     (those of the components not chosen are left out), and whose run settings held the
-    asperity model (now an input)."""
+    asperity model (now an input). A file without ``lu_precision`` (written before the LU in
+    single precision) is read with "double", as it ran."""
     run = dict(inputs["run"]) if "run" in inputs else None
     moved = {"asperities": run.pop("asperities")} if run and "asperities" in run else {}
     if inputs.get("physical") is not None:
@@ -217,9 +218,13 @@ def read_inputs(inputs: dict) -> tuple[CollisionParameters | PhysicalCollision, 
         parameters = {**inputs["parameters"], **moved}
         parameters = without_other_components(CollisionParameters, parameters)
         collision = CollisionParameters.from_settings(read=True, **parameters)
+    # a file written before the LU in single precision (it has no lu_precision) ran in double:
+    # replayed as it ran
     if run is not None:
-        return collision, RunConfig.from_settings(**run)
-    return collision, RunConfig.from_settings(**_earlier_run(inputs, collision))
+        return collision, RunConfig.from_settings(**{"lu_precision": "double", **run})
+    return collision, RunConfig.from_settings(
+        lu_precision="double", **_earlier_run(inputs, collision)
+    )
 
 
 def _physical(values: dict) -> PhysicalCollision:

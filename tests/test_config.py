@@ -82,8 +82,9 @@ def test_todays_json_format_replays_with_collide_from(tmp_path, capsys):
     become that body."""
     params, config = read_inputs(TODAYS_FORMAT)
     assert params == CollisionParameters.from_settings(St=10.0, eps=1e-3, p_cav=-2.0)
-    # written when Newton's tolerance was 1e-7 whatever rtol: replayed with it, as it ran
-    assert config == RunConfig.from_settings(nodes=40, newton_tol=1e-7)
+    # written when Newton's tolerance was 1e-7 whatever rtol and the LU in double precision:
+    # replayed with them, as it ran
+    assert config == RunConfig.from_settings(nodes=40, newton_tol=1e-7, lu_precision="double")
     source, again = tmp_path / "today.json", tmp_path / "again.json"
     source.write_text(json.dumps({"inputs": TODAYS_FORMAT}))
     assert main(["collide", "--from", str(source), "--json", str(again)]) == 0
@@ -107,7 +108,8 @@ def test_a_lower_body_without_its_required_setting_is_refused_by_name():
 
 def test_the_earlier_json_format_is_read():
     """The earlier `inputs`: parameters, physical, and the run options at the top level (a
-    coating as (E, nu) in Pa for physical inputs: its stiffness is E over the wall's)."""
+    coating as (E, nu) in Pa for physical inputs: its stiffness is E over the wall's), with
+    the Newton matrix's LU in double precision, as they ran."""
     earlier = {
         "parameters": {"St": 10.0, "eps": 1e-3, "p_cav": None, "angle": 30.0},
         "physical": None,
@@ -121,6 +123,7 @@ def test_the_earlier_json_format_is_read():
     assert params == CollisionParameters.from_settings(St=10.0, eps=1e-3, angle=30.0)
     assert (config.model, config.tangential, config.numerics.nodes) == ("fem", "lubrication", 60)
     assert config.options.rtol == 1e-3 and config.lower.coating_stiffness == 30e9
+    assert config.options.lu_precision == "double"  # as it ran
     physical = from_presets(
         sphere="steel", wall="glass", liquid="water", radius=1e-3, speed=1.0,
         layer_thickness=1e-4,
@@ -163,7 +166,9 @@ def test_todays_json_results_replay_with_from(tmp_path, capsys):
         St=6.0, eps=1e-3, angle=30.0, p_cav=-2.0, cavitation="mass-conserving",
         viscosity="roelands", alpha=0.05, roelands_pressure=40.0, roelands_index=0.5,
     )  # fmt: skip
-    assert params == expected and config == RunConfig.from_settings(nodes=60)
+    # written with the LU in double precision: replayed with it, as it ran
+    assert params == expected
+    assert config == RunConfig.from_settings(nodes=60, lu_precision="double")
     source, again = tmp_path / "today.json", tmp_path / "again.json"
     source.write_text(json.dumps({"e_n": 0.5, "inputs": TODAYS_INPUTS}))
     assert main(["collide", "--from", str(source), "--json", str(again)]) == 0
@@ -179,7 +184,7 @@ def test_todays_json_results_replay_with_from(tmp_path, capsys):
     run = {**TODAYS_INPUTS["run"], "asperities": "greenwood-tripp"}
     params, config = read_inputs({**TODAYS_INPUTS, "parameters": rough, "run": run})
     assert params.asperities == GreenwoodTrippAsperities(0.03, asperity_slope=0.002)
-    assert config == RunConfig.from_settings(nodes=60)
+    assert config == RunConfig.from_settings(nodes=60, lu_precision="double")
 
 
 def test_a_study_sweeps_the_model_and_a_lower_body_field(tmp_path):

@@ -31,6 +31,18 @@ iterations while they contract fast enough (simplified Newton): rows of nodes th
 wet or cavitated, and the columns of nodes whose unknown switches between P and theta at a
 mass-conserving cavity, are swapped in by the Woodbury identity.
 
+Mixed precision (``lu_precision`` "mixed" of :class:`ehdfem.motion.timestepping.IntegratorOptions`,
+the default): the LU is computed in single precision, which halves its cost. The residual is
+formed in double precision, so the iteration converges to the same solution and stops at the
+same test; the LU's rounding (6e-8 relative, times the matrix's condition) only slows its
+contraction, as a kept LU's staleness does. Where the film is a small difference of large
+deflections (hard impacts, H ~ 1e-6 of a deflection ~ 1e-3), an update's error in P is one
+in H that can close the film: the first update that would close it (and is damped) is
+formed again from an LU in double precision of the same iterate, and the rest of the
+collision is in double precision, as it is after a step whose Newton iteration failed and
+after an LU that single precision finds singular (redone in double at once;
+docs/performance.md, "The LU in single precision").
+
 Rough surfaces with Greenwood & Tripp's asperity pressure P_a(H) (mixed lubrication,
 :mod:`ehdfem.film.asperities`): the solids carry it with the film's, H = X + S(R) + C (P + P_a(H))
 (+ C_T T, T formed without the asperities' share), solved for H at every iterate; the sphere
@@ -164,10 +176,14 @@ class ImplicitStep:
         self.factor = None
         self.factorisations = 0
         size = len(self.compliance) + 2
-        # two Newton matrices and LU workspaces, taken in turn: the one the kept LU holds
-        # and the one the next matrix is formed in (fresh arrays of this size made some 8 000
-        # page faults a collision, docs/performance.md)
-        self._slots = [(np.zeros((size, size), order="F"), np.empty(size**2)) for _ in range(2)]
+        # two Newton matrices and LU workspaces (double, single), taken in turn: the one the
+        # kept LU holds and the one the next matrix is formed in (fresh arrays of this size made
+        # some 8 000 page faults a collision, docs/performance.md)
+        self._slots = [
+            (np.zeros((size, size), order="F"), np.empty(size**2), np.empty(size**2, np.float32))
+            for _ in range(2)
+        ]
+        self.single = self.options.lu_precision == "mixed"  # the next LU in single precision
         self._kept_deflection = Kept()  # C P for the latest P
         self._kept_thickness = Kept()  # thickness_parts for the latest (P, X, loaded)
 
@@ -239,8 +255,17 @@ class ImplicitStep:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step to the time ``time``, where
         past_y is the weighted sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V,
         theta, cavitated).
-        Raises StepFailed. The node unknown is P, except at nodes the cavitation model solves
-        for theta (mass-conserving cavities, P = P_cav there)."""
+        Raises StepFailed, after which the LUs are in double precision (module docstring). The
+        node unknown is P, except at nodes the cavitation model solves for theta
+        (mass-conserving cavities, P = P_cav there)."""
+        try:
+            return self._newton(guess, step, a0, past, time)
+        except StepFailed:
+            self.single = False
+            raise
+
+    def _newton(self, guess, step, a0, past, time) -> StepSolution:
+        """:meth:`solve`'s iteration."""
         pressure, gap, velocity, fill, cavitated = guess
         fill, cavitated = self.cavitation.start(fill, cavitated)
         previous_sets = previous_norm = None
@@ -253,8 +278,8 @@ class ImplicitStep:
             if fresh:
                 self._factorise(self._newton_matrix(it, step, a0, fill), it)
                 refresh = False
-            update = self._newton_update(it, step, a0, fill)
-            damping = self._damping(pressure, gap, update, it.rhs)
+            update, damping, redone = self._damped_update(it, pressure, gap, step, a0, fill)
+            fresh = fresh or redone
             damped = damped + 1 if damping < 1.0 else 0
             if damped == DAMPED_IN_A_ROW:
                 raise StepFailed(
@@ -292,6 +317,25 @@ class ImplicitStep:
             previous_sets, previous_norm = sets, norm
         self.factor = None
         raise StepFailed("Newton did not converge", np.abs(it.rhs).max())
+
+    def _damped_update(self, it: _Iterate, pressure, gap, step, a0, fill):
+        """(update, damping, redone): the Newton update (:meth:`_newton_update`) and its
+        damping (:meth:`_damping`). An update from an LU in single precision that would close
+        the film is formed again from a new LU of the iterate in double precision (``redone``),
+        which the rest of the collision keeps (module docstring)."""
+        update = self._newton_update(it, step, a0, fill)
+        try:
+            damping = self._damping(pressure, gap, update, it.rhs)
+        except StepFailed:
+            if not self.single:
+                raise
+            damping = 0.0
+        if damping == 1.0 or not self.single:
+            return update, damping, False
+        self.single = False
+        self._factorise(self._newton_matrix(it, step, a0, fill), it)
+        update = self._newton_update(it, step, a0, fill)
+        return update, self._damping(pressure, gap, update, it.rhs), True
 
     def _residual(self, pressure, gap, velocity, fill, cavitated, step, a0, past, time):
         """The residual at an iterate, with the cavitation model's rows and the sphere's;
@@ -388,11 +432,18 @@ class ImplicitStep:
         return out
 
     def _factorise(self, matrix, it: _Iterate):
-        """A new LU of the iterate's Newton ``matrix`` (:meth:`_newton_matrix`)."""
+        """A new LU of the iterate's Newton ``matrix`` (:meth:`_newton_matrix`), in single
+        precision while :attr:`single` (one that is singular there is redone in double, and
+        the collision goes on in double)."""
+        _, workspace, single = self._slots[0] if matrix is self._slots[0][0] else self._slots[1]
         try:
-            workspace = self._slots[0][1] if matrix is self._slots[0][0] else self._slots[1][1]
-            self.factor = ReusableLU(matrix, it.fixed, it.theta_nodes, workspace)
+            self.factor = ReusableLU(
+                matrix, it.fixed, it.theta_nodes, workspace, single if self.single else None
+            )
         except SingularMatrix as err:
+            if self.single:
+                self.single = False
+                return self._factorise(matrix, it)
             raise StepFailed(str(err), np.nan) from err
         self.factorisations += 1
 

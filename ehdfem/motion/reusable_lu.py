@@ -19,6 +19,11 @@ The matrix is equilibrated (columns, then rows, scaled by powers of two to a lar
 [1/2, 1), so the scaling itself rounds nothing) before the LU: its
 unknowns are pressures (up to ~1e8 near a rigid stop), the gap (~1e-4) and the velocity (~1),
 many orders of magnitude apart.
+
+The LU may be computed in single precision: the equilibrated matrix rounded to float32,
+factorised and solved in float32, the right-hand sides and solutions float64. A Newton
+iteration whose residual is formed in double precision corrects the LU's error as it corrects
+a kept LU's (:mod:`ehdfem.motion.implicit_step`, whose mixed precision says when).
 """
 
 from __future__ import annotations
@@ -59,12 +64,14 @@ def _power_of_two(largest: float) -> float:
 
 
 @njit(cache=True, error_model="numpy")
-def _equilibrated(matrix, index, out):
+def _equilibrated(matrix, index, out, single):
     """(S, c, r, finite): S = diag(1/r) B diag(1/c) for the square block B = A[index][:, index] (the
     whole A when ``index`` is None), c the powers of two of B's columns' largest absolute
     entries and then r those of the scaled rows' (:func:`_power_of_two`): the scaling is exact.
     S is written into the flat array ``out`` (at least m^2 long) in LAPACK's column order
-    (getrf takes it without a copy): B is copied there and scaled in place. The largest entries
+    (getrf takes it without a copy): B is copied there and scaled in place; with a float32 flat
+    array ``single`` (None: none), S rounded to single precision is written there instead, in
+    the same order, by the last pass (``out`` then holds B diag(1/c)). The largest entries
     are found by :func:`_larger`; every loop runs down one column of ``out`` and vectorises
     (0.11 -> 0.05 ms at 242 unknowns). A fourth output says whether every entry of B is
     finite: the copy counts those that are not as it goes (an integer count vectorises, a float
@@ -99,8 +106,12 @@ def _equilibrated(matrix, index, out):
         inverse_row[i] = 1.0 / row[i]
     for j in range(m):
         start = j * m
-        for i in range(m):
-            out[start + i] *= inverse_row[i]
+        if single is None:
+            for i in range(m):
+                out[start + i] *= inverse_row[i]
+        else:
+            for i in range(m):
+                single[start + i] = out[start + i] * inverse_row[i]
     return out[: m * m].reshape((m, m)).T, col, row, not_finite == 0
 
 
@@ -119,7 +130,8 @@ class ReusableLU:
     Newton matrix's are: only the other rows and columns are factorised (module docstring).
     ``workspace``: a flat float array of at least len(matrix)^2 entries that holds the factors
     while this LU lives (a new one if None): a caller that alternates two of them allocates
-    no memory a factorisation.
+    no memory a factorisation. ``single``: a flat float32 array of as many entries, or None:
+    with it the LU is computed and held there in single precision (module docstring).
     """
 
     MAX_CHANGES = 12
@@ -128,7 +140,7 @@ class ReusableLU:
     # not save in the LU (at 240 nodes the estimated break-even is near 10 of them, 1/16 is 15)
     MIN_HELD_SHARE = 1 / 16
 
-    def __init__(self, matrix, fixed, theta, workspace=None):
+    def __init__(self, matrix, fixed, theta, workspace=None, single=None):
         self.matrix, self.fixed, self.theta = matrix, fixed.copy(), theta.copy()
         identity = np.zeros(len(matrix), dtype=bool)
         identity[: len(fixed)] = fixed & ~theta
@@ -140,9 +152,12 @@ class ReusableLU:
                 raise SingularMatrix("Newton matrix not finite")
         if workspace is None:
             workspace = np.empty(len(matrix) ** 2)
-        scaled, self.col, self.row, finite = _equilibrated(matrix, self.free, workspace)
+        scaled, self.col, self.row, finite = _equilibrated(matrix, self.free, workspace, single)
         if not finite:
             raise SingularMatrix("Newton matrix not finite")
+        if single is not None:
+            m = len(scaled)
+            scaled = single[: m * m].reshape((m, m)).T
         self.lu = scaled
         self.pivots, info = getrf(scaled)
         if info != 0:
@@ -158,8 +173,16 @@ class ReusableLU:
         return solution
 
     def _block_solve(self, rhs):
-        """The factorised block's solve, scaled back."""
-        solution = getrs(self.lu, self.pivots, (rhs.T / self.row).T, overwrite=True)
+        """The factorised block's solve in the LU's precision, scaled back (float64). In single
+        precision each right-hand side is first scaled by the power of two of its largest
+        entry, so that rounding it to float32 neither overflows nor underflows."""
+        scaled = (rhs.T / self.row).T
+        if self.lu.dtype == np.float64:
+            solution = getrs(self.lu, self.pivots, scaled, overwrite=True)
+        else:
+            size = np.ldexp(1.0, np.frexp(np.abs(scaled).max(axis=0))[1])
+            single = (scaled / size).astype(np.float32)
+            solution = getrs(self.lu, self.pivots, single, overwrite=True) * size
         return solution / (self.col if rhs.ndim == 1 else self.col[:, None])
 
     def solve(self, rhs, fixed, film_rows, theta=None, columns=None):

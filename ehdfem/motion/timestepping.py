@@ -21,6 +21,8 @@ PREDICTOR_DEGREE = 3  # the highest degree of the polynomial that starts Newton 
 # the Newton error left in a step by default, a share of rtol: 1e-5 at the default rtol, where
 # 1e-7 took 16-37 % more Newton sweeps for outputs that agree to 2e-7 (docs/performance.md)
 NEWTON_SHARE = 0.05
+# the precisions of the Newton matrix's LU (IntegratorOptions.lu_precision)
+LU_PRECISIONS = ("mixed", "double")
 
 
 @dataclass(frozen=True)
@@ -42,8 +44,12 @@ class IntegratorOptions:
     (the latest update, or rho/(1 - rho) times it at a contraction rate rho < 1/2); None (the
     default) takes NEWTON_SHARE of rtol (:attr:`newton_tolerance`), as stiff BDF codes tie
     their Newton test to the error test, so that a tighter rtol tightens Newton with it.
-    ``first_step``: initial time step (by x0 / V0). ``max_time``: give up after this scaled
-    time (sticking by stalling).
+    ``lu_precision``: "mixed" (the default) factorises the Newton matrix in single precision
+    until a step's Newton iteration fails, then in double precision for the rest of the
+    collision; "double" always in double precision (:mod:`ehdfem.motion.implicit_step`; the
+    residual, hence the solution, is double precision either way). ``first_step``: initial
+    time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by
+    stalling).
     ``exit_gap``: the gap X (by x0) at which a rebounding sphere leaves the film model (V > 0);
     1, the layer surface, by default; above 1 only for an immersed film, which then follows the
     sphere further out (a bounce hands back to its flight where cavitation no longer acts,
@@ -71,6 +77,11 @@ class IntegratorOptions:
         lower=1e-14,
         upper=1e-3,
         default_text=f"{NEWTON_SHARE:g} rtol",
+    )
+    lu_precision: str = setting(
+        "mixed",
+        help="the Newton matrix's LU: single precision until a step fails (mixed), or double",
+        choices=LU_PRECISIONS,
     )
     max_newton: int = setting(30, help="most Newton iterations per step", lower=2, upper=100)
     first_step: float = setting(

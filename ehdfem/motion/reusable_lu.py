@@ -115,6 +115,36 @@ def _equilibrated(matrix, index, out, single):
     return out[: m * m].reshape((m, m)).T, col, row, not_finite == 0
 
 
+@njit(cache=True, error_model="numpy")
+def _single_right_sides(rhs, row, out):
+    """The sizes s_j: ``out`` (float32, n x k) holds the columns of diag(1/r) ``rhs`` divided
+    by s_j, the power of two of their largest magnitude (:func:`_power_of_two`), so that their
+    rounding to float32 neither overflows nor underflows; both scalings are exact."""
+    n, k = rhs.shape
+    sizes = np.empty(k)
+    for j in range(k):
+        largest = 0.0
+        for i in range(n):
+            largest = _larger(largest, abs(rhs[i, j] / row[i]))
+        sizes[j] = _power_of_two(largest)
+        inverse = 1.0 / sizes[j]
+        for i in range(n):
+            out[i, j] = rhs[i, j] / row[i] * inverse
+    return sizes
+
+
+@njit(cache=True, error_model="numpy")
+def _double_solutions(single, sizes, col):
+    """diag(1/c) times the float32 solutions ``single`` (n x k), column j scaled back by
+    ``sizes[j]`` (:func:`_single_right_sides`), in float64."""
+    n, k = single.shape
+    out = np.empty((n, k))
+    for j in range(k):
+        for i in range(n):
+            out[i, j] = single[i, j] * sizes[j] / col[i]
+    return out
+
+
 class TooManyChanges(Exception):
     """More changed rows than the Woodbury correction takes, or a singular correction."""
 
@@ -176,14 +206,14 @@ class ReusableLU:
         """The factorised block's solve in the LU's precision, scaled back (float64). In single
         precision each right-hand side is first scaled by the power of two of its largest
         entry, so that rounding it to float32 neither overflows nor underflows."""
-        scaled = (rhs.T / self.row).T
         if self.lu.dtype == np.float64:
-            solution = getrs(self.lu, self.pivots, scaled, overwrite=True)
-        else:
-            size = np.ldexp(1.0, np.frexp(np.abs(scaled).max(axis=0))[1])
-            single = (scaled / size).astype(np.float32)
-            solution = getrs(self.lu, self.pivots, single, overwrite=True) * size
-        return solution / (self.col if rhs.ndim == 1 else self.col[:, None])
+            solution = getrs(self.lu, self.pivots, (rhs.T / self.row).T, overwrite=True)
+            return solution / (self.col if rhs.ndim == 1 else self.col[:, None])
+        columns = rhs.reshape(len(rhs), -1)
+        single = np.empty(columns.shape, np.float32, order="F")
+        sizes = _single_right_sides(columns, self.row, single)
+        solution = _double_solutions(getrs(self.lu, self.pivots, single, True), sizes, self.col)
+        return solution.reshape(rhs.shape)
 
     def solve(self, rhs, fixed, film_rows, theta=None, columns=None):
         """Solve with the rows of the nodes whose fixed state changed replaced (identity rows

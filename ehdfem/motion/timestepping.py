@@ -45,11 +45,11 @@ class IntegratorOptions:
     default) takes NEWTON_SHARE of rtol (:attr:`newton_tolerance`), as stiff BDF codes tie
     their Newton test to the error test, so that a tighter rtol tightens Newton with it.
     ``lu_precision``: "mixed" (the default) factorises the Newton matrix in single precision
-    until a step's Newton iteration fails, then in double precision for the rest of the
-    collision; "double" always in double precision (:mod:`ehdfem.motion.implicit_step`; the
-    residual, hence the solution, is double precision either way). ``first_step``: initial
-    time step (by x0 / V0). ``max_time``: give up after this scaled time (sticking by
-    stalling).
+    until an update from it would close the film (or a step's Newton iteration fails), then in
+    double precision for the rest of the collision; "double" always in double precision
+    (:mod:`ehdfem.motion.implicit_step`; the residual, hence the solution, is double precision
+    either way). ``first_step``: initial time step (by x0 / V0). ``max_time``: give up after
+    this scaled time (sticking by stalling).
     ``exit_gap``: the gap X (by x0) at which a rebounding sphere leaves the film model (V > 0);
     1, the layer surface, by default; above 1 only for an immersed film, which then follows the
     sphere further out (a bounce hands back to its flight where cavitation no longer acts,
@@ -80,7 +80,8 @@ class IntegratorOptions:
     )
     lu_precision: str = setting(
         "mixed",
-        help="the Newton matrix's LU: single precision until a step fails (mixed), or double",
+        help="the Newton matrix's LU: single precision until an update would close the film "
+        "(mixed), or double",
         choices=LU_PRECISIONS,
     )
     max_newton: int = setting(30, help="most Newton iterations per step", lower=2, upper=100)

@@ -71,6 +71,8 @@ def getrs(factors: np.ndarray, pivots: np.ndarray, rhs: np.ndarray, overwrite=Fa
     if factors.dtype == np.float64:
         solution, _ = _GETRS(factors, pivots, rhs, overwrite_b=overwrite)
         return solution
+    if rhs.dtype != factors.dtype:
+        raise ValueError("getrs takes a right-hand side of its factors' dtype")
     solution = rhs if overwrite and rhs.flags.f_contiguous else np.array(rhs, order="F")
     size, count = _INT(len(factors)), _INT(1 if rhs.ndim == 1 else rhs.shape[1])
     one_based, info = pivots + 1, _INT(0)

@@ -43,6 +43,9 @@ def test_the_lu_solves_an_exact_system_to_rounding(size, dtype, tolerance):
         assert np.abs(found - x).max() <= tolerance * max(np.abs(x).max(), 1.0)
     if size > 1:
         assert pivots[0] != 0  # the zero leading entry was pivoted away
+    if dtype == np.float32:  # the float32 routine reads a float32 right-hand side only
+        with pytest.raises(ValueError, match="dtype"):
+            getrs(factors, pivots, rhs)
 
 
 def test_a_singular_matrix_is_reported_and_a_row_ordered_one_refused():

@@ -32,7 +32,7 @@ wet or cavitated, and the columns of nodes whose unknown switches between P and 
 mass-conserving cavity, are swapped in by the Woodbury identity.
 
 Mixed precision (``lu_precision`` "mixed" of :class:`ehdfem.motion.timestepping.IntegratorOptions`,
-the default): the LU is computed in single precision, which halves its cost. The residual is
+the default): the LU is computed in single precision, at about half the cost. The residual is
 formed in double precision, so the iteration converges to the same solution and stops at the
 same test; the LU's rounding (6e-8 relative, times the matrix's condition) only slows its
 contraction, as a kept LU's staleness does. Where the film is a small difference of large

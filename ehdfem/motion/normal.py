@@ -396,22 +396,22 @@ class _NormalIntegration:
         return wet.view(np.int8) + (wet & (pressure > self.cavitation.p_cav)).view(np.int8)
 
     def _settled(self, states, order) -> np.ndarray:
-        """The nodes the film's mean-square error is taken over: full at every value of the
-        step's BDF stencil (``states`` of the new step and of the order + 1 latest accepted
-        ones, :meth:`_film_states`) and no neighbour of a node the wetted edge passes within
-        it; none while a wet node cavitates or refills within it. The wetted edge moves
-        continuously (cut into its element, docs/model.md), so its passing a node kinks that
-        node's film in time and, through the three-point rows, its neighbours'. A cavity's
-        boundary moves node by node and kinks the film further (leaving out one to three
-        neighbours still cost a mass-conserving cavity growing node by node 1.05 to 7.4 times
-        the steps). Leaving the mean square out at every switch of either kind left a thin
-        layer's rebound uncontrolled, as its wetted edge passes a node every few steps: the
-        thinnest film of a suction dip there was 4 % off at the default rtol and did not
-        converge with it (docs/performance.md)."""
-        stencil = np.array(list(self.film_states)[-(order + 1) :])
-        switching = (stencil != states).any(axis=0)
-        if not switching.any():
+        """The nodes the film's mean-square error is taken over: full at every value of the step's
+        BDF stencil (``states`` of the new step and of the order + 1 latest accepted ones,
+        :meth:`_film_states`) and no neighbour of a node the wetted edge passes within it; none
+        while a wet node cavitates or refills within it. The wetted edge moves continuously (cut
+        into its element, docs/model.md), so its passing a node kinks that node's film in time and,
+        through the three-point rows, its neighbours'. A cavity's boundary moves node by node and
+        kinks the film further (leaving out one to three neighbours still cost a mass-conserving
+        cavity growing node by node 1.05 to 7.4 times the steps). Leaving the mean square out at
+        every switch of either kind left a thin layer's rebound uncontrolled, as its wetted edge
+        passes a node every few steps: the thinnest film of a suction dip there was 4 % off at the
+        default rtol and did not converge with it (docs/performance.md)."""
+        recent = list(self.film_states)[-(order + 1) :]
+        if all(kept.tobytes() == states.tobytes() for kept in recent):  # no node switched
             return states == 2
+        stencil = np.array(recent)
+        switching = (stencil != states).any(axis=0)
         if np.any(switching & (stencil > 0).all(axis=0) & (states > 0)):
             return np.zeros(len(states), bool)  # a wet node cavitates or refills
         switching[1:] |= switching[:-1].copy()

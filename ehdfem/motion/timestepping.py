@@ -167,7 +167,7 @@ def step_integral(nodes, values) -> float:
     units: the result is in those of values times nodes (scaled time by x0/V0 in the solver)."""
     early, late = nodes[1], nodes[0]
     half, middle = 0.5 * (late - early), 0.5 * (late + early)
-    offset = half / np.sqrt(3.0)
+    offset = half / math.sqrt(3.0)
     gauss = (middle - offset, middle + offset)
     return half * sum(extrapolate(nodes, values, t) for t in gauss)
 
@@ -219,10 +219,10 @@ def error_share(t_new, past):
     prod_{j<=q} d_j / sum_{j<=q} 1/d_j for BDF-q and prod_{j<=q+1} d_j for the extrapolation
     through q+1 past points (d_j = t_new - t_{n+1-j}); Milne's device splits the difference.
     """
-    d = t_new - np.asarray(past)
+    d = [t_new - t for t in past]  # Python floats: numpy's calls cost more than the arithmetic
     q = len(past) - 1
-    bdf = np.prod(d[:q]) / np.sum(1.0 / d[:q])
-    predictor = np.prod(d)
+    bdf = math.prod(d[:q]) / sum(1.0 / x for x in d[:q])
+    predictor = math.prod(d)
     return bdf / (bdf + predictor)
 
 

@@ -247,6 +247,19 @@ def _banded_product(bands, column, out, k):
 
 
 @njit(cache=True, error_model="numpy")
+def add_banded_product(bands, matrix, scale, out):
+    """out[:n, :m] += ``scale`` tridiag(lower, diagonal, upper) @ ``matrix`` (n x m), column by
+    column (:func:`_banded_product`: the same sums as :func:`tridiagonal_rows`; ``matrix`` and
+    ``out`` best in column order)."""
+    n, m = matrix.shape
+    column = np.empty((n, 1))
+    for k in range(m):
+        _banded_product(bands, matrix[:, k], column, 0)
+        for i in range(n):
+            out[i, k] += column[i, 0] * scale
+
+
+@njit(cache=True, error_model="numpy")
 def film_jacobian(squeeze, compliance, by_gap, flux_bands, viscous_bands, out):
     """The film's rows of the Newton matrix into ``out`` (at least n x (n + 1)):
     d(r)/dP = S C + K + E and d(r)/dX = S g, with S = ``squeeze`` the bands of d(r)/dH,

@@ -61,7 +61,7 @@ from functools import partial
 import numpy as np
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
-from ..film.elements import add_band_rows, film_jacobian, tridiagonal_rows
+from ..film.elements import add_band_rows, add_banded_product, film_jacobian, tridiagonal_rows
 from ..film.reynolds import Film, FilmState
 from ..kept import Kept
 from .forces import SphereState
@@ -165,6 +165,8 @@ class ImplicitStep:
         self._no_load = np.ones(len(self.compliance))  # dH/dX without asperities
         self.shear = shear_matrix
         self.surface_motion = surface_motion
+        if surface_motion is not None:  # C_r in column order, for the Newton matrix's rows
+            self._radial_columns = np.asfortranarray(surface_motion.matrix)
         self.compliance_diagonal = np.diag(self.compliance).copy()
         self.cavitation = cavitation
         self.sphere = sphere
@@ -463,11 +465,11 @@ class ImplicitStep:
         columns are overwritten, their V column, zero, is left as it is),
         d(m d(theta H)/dT + K(H, P) P)_i/d(P, X, V) = ((m theta a0/dt + D) C + K + E,
         (m theta a0/dt + D) 1, 0) (E: the viscosity's d(K P)/dP - K)."""
-        n = len(state.mass)
         squeeze, c, by_gap = self._squeeze(state, step, a0, fill)
         film_jacobian(squeeze, c, by_gap, state.conductance, state.dflux_dP, out)
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
-            out[:n, :n] += self._transport_rows(state, step, a0, self._nodes)
+            scale = self.surface_motion.sqrt_delta * a0 / step  # as in _transport_rows
+            add_banded_product(state.transport, self._radial_columns, scale, out)
         return out
 
     def _transport_rows(self, state: FilmState, step, a0, rows):

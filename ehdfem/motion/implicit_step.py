@@ -468,17 +468,19 @@ class ImplicitStep:
         squeeze, c, by_gap = self._squeeze(state, step, a0, fill)
         film_jacobian(squeeze, c, by_gap, state.conductance, state.dflux_dP, out)
         if state.transport is not None:  # sqrt(delta) B dU/dT through U = C_r P (T lagged)
-            scale = self.surface_motion.sqrt_delta * a0 / step  # as in _transport_rows
+            scale = self._transport_scale(step, a0)
             add_banded_product(state.transport, self._radial_columns, scale, out)
         return out
 
     def _transport_rows(self, state: FilmState, step, a0, rows):
         """The rows ``rows`` of sqrt(delta) (a0/dt) B C_r: the liquid the faces' radial motion
-        carries (U = C_r P, T lagged)."""
-        motion = self.surface_motion
-        return tridiagonal_rows(state.transport, motion.matrix, rows) * (
-            motion.sqrt_delta * a0 / step
-        )
+        carries (U = C_r P, T lagged); the same bits as the whole matrix's (:meth:`_film_rows`)."""
+        rows_of_b_c = tridiagonal_rows(state.transport, self.surface_motion.matrix, rows)
+        return rows_of_b_c * self._transport_scale(step, a0)
+
+    def _transport_scale(self, step, a0) -> float:
+        """sqrt(delta) a0/dt, the factor of B C_r in the Newton matrix (scaled time)."""
+        return self.surface_motion.sqrt_delta * a0 / step
 
     def _newton_rows(self, it: _Iterate, step, a0, fill, rows):
         """The rows ``rows`` of :meth:`_newton_matrix` at nodes whose row is the film's (not

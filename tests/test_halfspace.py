@@ -12,6 +12,7 @@ from ehdfem.collision import DEFAULT_NODES, collide
 from ehdfem.film.grid import radial_grid
 from ehdfem.film.reynolds import Film
 from ehdfem.inputs.scales import CollisionParameters
+from ehdfem.solids import halfspace
 from ehdfem.solids.compliance import FILM_REACH_LIMIT
 from ehdfem.solids.halfspace import (
     COMPRESSION_LIMIT,
@@ -23,6 +24,7 @@ from ehdfem.solids.halfspace import (
     influence_matrix,
     load_radius,
 )
+from ehdfem.solids.halfspace_mode_one import response_parts
 
 pytestmark = pytest.mark.serial
 
@@ -178,3 +180,35 @@ def test_range_warning_points_to_the_fe_solids_only_where_they_take_the_film():
     assert f"about {thinner:.2g} times" in text and "use the FE solids" not in text
     inside = HalfSpaceRange(compression=0.2, load_radius=0.3, film_reach=0.5)
     assert "use the FE solids (model fem) here" in inside.warning()
+
+
+def test_grid_matrices_are_kept_per_kind_read_only_and_as_built(monkeypatch):
+    """kept_on_grid: a matrix of the same kind and grid is the one built (not rebuilt), read-only;
+    a kind keeps its latest KEPT_KERNELS grids, whatever the other kinds hold; the kept mode-1
+    response is the same bits as one built afresh."""
+    monkeypatch.setattr(halfspace, "_kernels", {})
+    monkeypatch.setattr(halfspace, "KEPT_KERNELS", 2)
+    built = []
+
+    def build(kind, radii):
+        return halfspace.kept_on_grid(kind, radii, lambda: built.append(kind) or np.ones(3))
+
+    grids = [np.linspace(0.0, 1.0 + k, 5) for k in range(3)]
+    first = build("a", grids[0])
+    assert build("a", grids[0]) is first and built == ["a"]
+    with pytest.raises(ValueError):
+        first[0] = 2.0
+    build("b", grids[0])
+    build("a", grids[1])
+    build("a", grids[2])  # evicts ("a", grids[0]) alone
+    assert build("b", grids[0]) is not None and built == ["a", "b", "a", "a"]
+    build("a", grids[1])
+    assert built == ["a", "b", "a", "a"]
+    build("a", grids[0])
+    assert built == ["a", "b", "a", "a", "a"]
+
+    r = contact_grid(40)
+    kept = response_parts(r)
+    assert response_parts(r) is kept
+    halfspace._kernels.clear()
+    assert np.array_equal(response_parts(r), kept)

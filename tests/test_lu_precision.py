@@ -19,7 +19,7 @@ from ehdfem.collision import collide
 from ehdfem.config import RunConfig
 from ehdfem.film.cavitation import Unlimited
 from ehdfem.film.grid import radial_grid
-from ehdfem.film.reynolds import Film
+from ehdfem.film.reynolds import Film, FilmError
 from ehdfem.inputs.presets import EXAMPLE
 from ehdfem.inputs.scales import CollisionParameters, from_presets
 from ehdfem.motion import implicit_step
@@ -105,3 +105,24 @@ def test_an_lu_singular_in_single_precision_is_redone_in_double():
     exact = np.arange(1.0, n + 3)
     found = step.factor.solve(matrix @ exact, iterate.fixed, None)
     assert np.abs(found - exact).max() <= 1e-5 * np.abs(exact).max()
+
+
+@pytest.mark.parametrize("failure", ["step", "film"])
+def test_a_failed_step_turns_the_lu_to_double_precision(failure, monkeypatch):
+    """A step whose Newton iteration fails (StepFailed) or whose iterate the film cannot take
+    (FilmError: a pressure past the viscosity law's range) leaves the next LUs in double
+    precision: its retries at shorter steps must not meet single precision's rounding again."""
+    n = 8
+    options = IntegratorOptions(lu_precision="mixed")
+    radii = radial_grid(n, 0.5, 1.1)
+    step = ImplicitStep(Film(radii, "thin"), np.zeros((n, n)), Unlimited(), Sphere(1.0), options)
+    error = {"step": implicit_step.StepFailed("no", 1.0), "film": FilmError("overflow")}[failure]
+
+    def fail(*args):
+        raise error
+
+    monkeypatch.setattr(step, "_newton", fail)
+    assert step.single
+    with pytest.raises(type(error)):
+        step.solve(None, 1.0, 1.0, None, 0.0)
+    assert not step.single

@@ -39,8 +39,9 @@ contraction, as a kept LU's staleness does. Where the film is a small difference
 deflections (hard impacts, H ~ 1e-6 of a deflection ~ 1e-3), an update's error in P is one
 in H that can close the film: the first update that would close it (and is damped) is
 formed again from an LU in double precision of the same iterate, and the rest of the
-collision is in double precision, as it is after a step whose Newton iteration failed and
-after an LU that single precision finds singular (redone in double at once;
+collision is in double precision, as it is after a step whose Newton iteration failed (or
+whose iterate the film could not take: a pressure past the viscosity law's range) and after an
+LU that single precision finds singular (redone in double at once;
 docs/performance.md, "The LU in single precision").
 
 Rough surfaces with Greenwood & Tripp's asperity pressure P_a(H) (mixed lubrication,
@@ -62,7 +63,7 @@ import numpy as np
 
 from ..film.asperities import GreenwoodTripp, LoadedThickness
 from ..film.elements import add_band_rows, add_banded_product, film_jacobian, tridiagonal_rows
-from ..film.reynolds import Film, FilmState
+from ..film.reynolds import Film, FilmError, FilmState
 from ..kept import Kept
 from .forces import SphereState
 from .reusable_lu import ReusableLU, SingularMatrix, TooManyChanges
@@ -257,12 +258,13 @@ class ImplicitStep:
         """Newton for one step of dy/dT ~ (a0 y + past_y) / step to the time ``time``, where
         past_y is the weighted sum of earlier values of y = (theta H, X, V). ``guess``: (P, X, V,
         theta, cavitated).
-        Raises StepFailed, after which the LUs are in double precision (module docstring). The
-        node unknown is P, except at nodes the cavitation model solves for theta
+        Raises StepFailed, or FilmError for an iterate the film cannot take (a pressure past
+        the viscosity law's range), after which the LUs are in double precision (module
+        docstring). The node unknown is P, except at nodes the cavitation model solves for theta
         (mass-conserving cavities, P = P_cav there)."""
         try:
             return self._newton(guess, step, a0, past, time)
-        except StepFailed:
+        except (StepFailed, FilmError):
             self.single = False
             raise
 

@@ -92,27 +92,35 @@ def _ring_kernel(radius, offset):
     return (radius + offset) / total * ellipkm1((offset / total) ** 2)
 
 
-KEPT_KERNELS = 4  # the influence matrices of the latest grids built that a process keeps
-_kernels: dict[bytes, np.ndarray] = {}  # the grid's radii (bytes) -> its influence matrix
+KEPT_KERNELS = 4  # the matrices of each kind for the latest grids built that a process keeps
+_kernels: dict[tuple[str, bytes], np.ndarray] = {}  # (kind, the grid's radii as bytes) -> matrix
+
+
+def kept_on_grid(kind: str, radii: np.ndarray, build) -> np.ndarray:
+    """``build()``, a matrix that depends on the grid ``radii`` alone, kept read-only for the
+    latest KEPT_KERNELS grids of its ``kind``: the points of a sweep share a few grids (an angle
+    sweep one per normal motion), and a build at 240 nodes costs some 25 ms (the pressure's
+    influence matrix) to 70 ms (the mode-1 response)."""
+    key = (kind, np.asarray(radii, dtype=float).tobytes())
+    if key not in _kernels:
+        matrix = build()
+        matrix.flags.writeable = False
+        mine = [k for k in _kernels if k[0] == kind]
+        for old in mine[: max(len(mine) - KEPT_KERNELS + 1, 0)]:
+            del _kernels[old]
+        _kernels[key] = matrix
+    return _kernels[key]
 
 
 def influence_matrix(radii: np.ndarray) -> np.ndarray:
     """A[i, j] = int phi_j(S) S/(R_i+S) K(m) dS for hat functions on ``radii`` (W = eps A P).
 
     Scales: radii by sqrt(a x0); A maps P (by mu V0 a / x0^2) to W / eps (by x0). A depends on
-    the grid alone, so the matrices of the latest KEPT_KERNELS grids built are kept (read-only): the
-    points of a sweep share a few grids, and each point asks for its own twice (its normal
-    motion's key and its collision), some 25 ms a time at 240 nodes.
+    the grid alone and is kept (:func:`kept_on_grid`): each point of a sweep asks for its own
+    twice (its normal motion's key and its collision).
     """
     r = np.asarray(radii, dtype=float)
-    key = r.tobytes()
-    if key not in _kernels:
-        kernel = hat_integrals(r, _ring_kernel, 1)[0]
-        kernel.flags.writeable = False
-        while len(_kernels) >= KEPT_KERNELS:
-            del _kernels[next(iter(_kernels))]
-        _kernels[key] = kernel
-    return _kernels[key]
+    return kept_on_grid("pressure", r, lambda: hat_integrals(r, _ring_kernel, 1)[0])
 
 
 def hat_integrals(radii, kernel, size):

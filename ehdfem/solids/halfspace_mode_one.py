@@ -55,7 +55,7 @@ from scipy.special import ellipe, ellipkm1
 from ..checks import InputError, number, positive
 from ..inputs.presets import MATERIAL_RANGES
 from .compliance import ModeOneCompliance
-from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, theta_shares
+from .halfspace import IDENTICAL_SOLIDS, film_nodes, hat_integrals, kept_on_grid, theta_shares
 
 _CLOSED_FORM_RATIO = 0.25  # min(R, S)/max(R, S) from which the elliptic closed forms are used
 _TRAPEZOID_COSINES = np.cos(np.linspace(0.0, np.pi, 17))  # half a period: the integrands are even
@@ -203,10 +203,12 @@ def _stacked(blocks):
 
 def response_parts(radii) -> np.ndarray:
     """(3, 3N, 3N): the parts (k0, k_beta, k_gamma) of :func:`surface_response`, which is
-    their sum weighted by (1, beta, gamma) (module docstring)."""
+    their sum weighted by (1, beta, gamma) (module docstring). They depend on the grid alone
+    and are kept, read-only (:func:`ehdfem.solids.halfspace.kept_on_grid`)."""
     r = film_nodes(radii)
-    matrix = _expanded(hat_integrals(r, _nonzero_parts, len(_NONZERO)))
-    return _stacked(matrix)
+    return kept_on_grid(
+        "mode one", r, lambda: _stacked(_expanded(hat_integrals(r, _nonzero_parts, len(_NONZERO))))
+    )
 
 
 def surface_response(radii, poisson: float) -> np.ndarray:

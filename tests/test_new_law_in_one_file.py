@@ -61,6 +61,14 @@ class LinearViscosity:
         slope = np.where(pressure > 0.0, self.beta / (1.0 + self.beta * compressive), 0.0)
         return 1.0 + self.beta * compressive, slope
 
+    def fluidity_integral(self, lower, upper):
+        """int_lower^upper dP / (1 + beta P) = ln(1 + beta (upper - lower) / (1 + beta lower))
+        / beta."""
+        lower, upper = np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
+        if self.beta == 0.0:
+            return upper - lower
+        return np.log1p(self.beta * (upper - lower) / (1.0 + self.beta * lower)) / self.beta
+
     def overflow(self, pressure) -> str:
         return "the linear viscosity does not overflow"
 

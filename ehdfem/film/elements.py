@@ -11,11 +11,13 @@ m cut at the wetted edge, where H = 1 and P = 0) one call forms
     E    = sum_e (dk_e/dP) (P_l - P_r) (e_l - e_r)^T        (d(K P)/dP - K, piezoviscous),
 
 with A_e = R_l^2/2 + L (3 R_l + L)/6 the flux through the element of a uniform unit squeeze and
-<mu0/mu>_e = sum_q w_q mu0/mu(P_q), P linear on the element (the factor of an element that
-carries a constant flux; docs/model.md). The integral of R^3/H^3 is by the six-point
-Gauss-Legendre rule (points ``xi``, weights ``w`` on [0, 1]), H at the points given by the
-caller (the undeformed gap exact between nodes). The viscosity law stays a plug-in: its
-fluidity mu0/mu and d(mu0/mu)/dP at the element's points are inputs.
+<mu0/mu>_e = (Pi(P_r) - Pi(P_l)) / (P_r - P_l) the mean fluidity over the element's linear P,
+Pi(P) = int_0^P mu0/mu dP' the reduced pressure (the factor of an element that carries a
+constant flux, exact however steeply mu grows across it; docs/model.md). The integral of
+R^3/H^3 is by the six-point Gauss-Legendre rule (points ``xi``, weights ``w`` on [0, 1]), H at
+the points given by the caller (the undeformed gap exact between nodes). The viscosity law
+stays a plug-in: the elements' mean fluidities and their derivatives by the nodal pressures
+are inputs (:meth:`ehdfem.film.reynolds.Film._fluidity`).
 
 One compiled loop over the elements replaces some forty small array operations a call, each of
 which cost more in overhead than its arithmetic (docs/performance.md). The loops use numpy's
@@ -32,11 +34,12 @@ from numba import njit
 
 
 @njit(cache=True, error_model="numpy")
-def _conductance(r_left, length, h_points, fluidity, dfluidity, e, xi, w, density):
+def _conductance(r_left, length, h_points, fluidity, d_left, d_right, e, xi, w, density):
     """(k, dk/dH_left, dk/dH_right, dk/dP_left, dk/dP_right) of element ``e`` from its left
-    radius, its length and H at its points (module docstring); ``fluidity`` and ``dfluidity``
-    mu0/mu and d(mu0/mu)/dP at the elements' points, or empty (constant viscosity);
-    ``density``: room for the resistance's terms at the points."""
+    radius, its length and H at its points (module docstring); ``fluidity``, ``d_left`` and
+    ``d_right``: the elements' mean fluidities <mu0/mu>_e and their derivatives by the left and
+    right nodes' pressures, or empty (constant viscosity); ``density``: room for the
+    resistance's terms at the points."""
     points = len(xi)
     squeeze_flux = 0.5 * r_left * r_left + length * (3.0 * r_left + length) / 6.0
     resistance = 0.0
@@ -49,12 +52,9 @@ def _conductance(r_left, length, h_points, fluidity, dfluidity, e, xi, w, densit
     mean = 1.0
     dk_dp_left = dk_dp_right = 0.0
     if fluidity.shape[0] > 0:
-        mean = 0.0
-        for q in range(points):
-            mean += w[q] * fluidity[e, q]
-            share = geometric * w[q] * dfluidity[e, q]
-            dk_dp_left += share * (1.0 - xi[q])
-            dk_dp_right += share * xi[q]
+        mean = fluidity[e]
+        dk_dp_left = geometric * d_left[e]
+        dk_dp_right = geometric * d_right[e]
     factor = 3.0 * geometric / resistance * mean
     dk_dh_left = dk_dh_right = 0.0
     for q in range(points):
@@ -74,7 +74,8 @@ def assemble_bands(
     cut_between,
     between,
     fluidity,
-    dfluidity,
+    d_left,
+    d_right,
     xi,
     w,
 ):
@@ -85,8 +86,9 @@ def assemble_bands(
     cell ``regular`` cut to that length at the wetted edge (H = 1, P = 0 there). ``thickness``
     H and ``pressure`` P are nodal; H at the points is linear between the element's ends plus
     the undeformed gap's excess over its chord, ``between`` (cells, len(xi)) on whole cells and
-    ``cut_between`` on the cut one. ``fluidity``, ``dfluidity``: mu0/mu and d(mu0/mu)/dP at
-    the elements' points (elements, len(xi)); an empty array: constant viscosity, E = 0."""
+    ``cut_between`` on the cut one. ``fluidity``, ``d_left``, ``d_right``: each element's mean
+    fluidity <mu0/mu>_e and its derivatives by the pressures of its left and right ends; empty
+    arrays: constant viscosity, E = 0."""
     n = len(radii)
     mass = np.zeros(n)
     k_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
@@ -103,7 +105,7 @@ def assemble_bands(
         for q in range(len(xi)):
             h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + excess[q]
         k, dh_left, dh_right, dp_left, dp_right = _conductance(
-            r_left, length, h_points, fluidity, dfluidity, e, xi, w, density
+            r_left, length, h_points, fluidity, d_left, d_right, e, xi, w, density
         )
         jump = pressure[e] - p_right
         # int phi R dR of the falling (left) hat over the element, and of the rising one

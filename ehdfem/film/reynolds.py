@@ -54,7 +54,7 @@ _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
 _FLUX_XI, _FLUX_W = np.polynomial.legendre.leggauss(6)
 _FLUX_XI, _FLUX_W = 0.5 + 0.5 * _FLUX_XI, 0.5 * _FLUX_W
 _POINTS = {"gauss": _GAUSS_XI, "flux": _FLUX_XI}  # the film's quadrature points, by name
-_NO_POINTS = np.zeros((0, len(_FLUX_XI)))  # no fluidity at the points: constant viscosity
+_CONSTANT = (np.zeros(0),) * 3  # no element fluidities: constant viscosity
 
 
 def _ascending_mass(left, right):
@@ -293,13 +293,13 @@ class Film:
     def assemble(self, film_thickness: np.ndarray, pressure: np.ndarray) -> FilmState:
         """Assemble the film for thickness H and pressure P (both at the nodes, scaled): the
         element loop is :func:`ehdfem.film.elements.assemble_bands`; the viscosity law gives
-        its fluidity at the elements' points."""
+        each element's mean fluidity (:meth:`_fluidity`)."""
         h = film_thickness
         n = len(self.radii)
         (n_wet, edge), regular, cut_length, cut_between = self._wetted(h, "flux")
-        fluidity = dfluidity = _NO_POINTS
+        fluidity = _CONSTANT
         if not self.viscosity.constant:
-            fluidity, dfluidity = self._fluidity(pressure, regular, cut_length > 0.0)
+            fluidity = self._fluidity(pressure, regular, cut_length > 0.0)
         mass, conductance, dflux_dH, dflux_dP = assemble_bands(
             self.radii,
             h,
@@ -308,8 +308,7 @@ class Film:
             cut_length,
             cut_between,
             self._cell_between["flux"],
-            fluidity,
-            dfluidity,
+            *fluidity,
             _FLUX_XI,
             _FLUX_W,
         )
@@ -334,15 +333,33 @@ class Film:
         return (n_wet, edge), regular, cut_length, cut_between
 
     def _fluidity(self, pressure, regular: int, cut: bool):
-        """(mu0/mu, d(mu0/mu)/dP) at the flux points of the wetted elements (the whole cells
-        0..``regular``-1, then the ``cut`` one, whose edge holds P = 0), P linear on each."""
+        """(<mu0/mu>, d<mu0/mu>/dP_left, d<mu0/mu>/dP_right) of the wetted elements (the whole
+        cells 0..``regular``-1, then the ``cut`` one, whose edge holds P = 0): the mean
+        fluidity over each element's linear P, <mu0/mu> = (Pi(P_r) - Pi(P_l)) / (P_r - P_l)
+        with the reduced pressure Pi(P) = int_0^P mu0/mu dP' (mu0 under suction, the law's
+        :meth:`fluidity_integral` above 0): the factor of an element that carries a constant
+        flux, exact however steeply mu grows across the element (docs/model.md, "The element
+        conductance"), and mu0/mu(P) where P_l = P_r. A nodal pressure whose mu/mu0
+        overflows is refused (FilmError)."""
         p_left = pressure[: regular + int(cut)]
         p_right = np.concatenate([pressure[1 : regular + 1], np.zeros(int(cut))])
-        ratio, dlog = self.viscosity.ratio(_gauss_values(p_left, p_right, _FLUX_XI))
+        ratio, dlog = self.viscosity.ratio(pressure[: regular + 1])
         if not np.isfinite(ratio).all():  # mu = inf would let a node carry any pressure
-            raise FilmError(self.viscosity.overflow(np.maximum(p_left, p_right)))
+            raise FilmError(self.viscosity.overflow(pressure[: regular + 1]))
         fluidity = 1.0 / ratio
-        return fluidity, -fluidity * dlog
+        slope = -fluidity * dlog
+        f_left, f_right = fluidity[: len(p_left)], np.concatenate([fluidity[1:], np.ones(int(cut))])
+        low, high = np.minimum(p_left, p_right), np.maximum(p_left, p_right)
+        compressive = self.viscosity.fluidity_integral(np.maximum(low, 0.0), np.maximum(high, 0.0))
+        integral = np.minimum(high, 0.0) - np.minimum(low, 0.0) + compressive
+        span = high - low
+        level = span == 0.0
+        safe = np.where(level, 1.0, p_right - p_left)
+        mean = np.where(level, f_left, integral / np.where(level, 1.0, span))
+        half_slope = 0.5 * slope[: len(p_left)]
+        d_left = np.where(level, half_slope, (mean - f_left) / safe)
+        d_right = np.where(level, half_slope, (f_right - mean) / safe)
+        return mean, d_left, d_right
 
     def _add_far_field(self, h, pressure, diagonal, d_diagonal, force_weights):
         """Robin condition R H^3/12 dP/dR = -R^2 H^2 P / 6 at the last node (P ~ H^-2, dH/dR = R)

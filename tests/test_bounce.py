@@ -569,3 +569,32 @@ def test_a_pressure_viscosity_without_a_piezoviscous_law_is_refused():
     """alpha cannot act with the constant viscosity: refused by name."""
     with pytest.raises(InputError, match="pressure_viscosity"):
         BounceInputs(**OIL_BOUNCE, release_height=0.01, pressure_viscosity=1e-8)
+
+
+@pytest.mark.parametrize("history", ["basset", "mei-adrian", "mei-adrian-wall"])
+@pytest.mark.parametrize("velocity", [-0.3, 0.05])
+def test_the_flight_jacobian_against_central_differences(history, velocity):
+    """FarField.rates_jacobian (the memory's columns exact, the gap's and velocity's by central
+    differences of relative step 1e-5) against central differences of relative step 1e-4 of
+    every column of rates, near the wall (h = 0.1 a) with the wall's added mass, a drag law of
+    finite Re and a non-zero memory: the memory's columns to 1e-9 of each row's largest entry,
+    the others to 2e-5 (the rounding of the history force, a sum of weights of both signs,
+    moves such differences by up to 7e-6 with the wall-bounded kernel; forward differences of
+    step sqrt(eps), LSODA's own, were 15 % off in the gap's column there)."""
+    inputs = BounceInputs(**OIL_BOUNCE, release_height=3e-3, history=history)
+    far = FarField(inputs)
+    modes = len(far.relaxation_times)
+    memory = velocity * np.linspace(0.2, 1.0, modes)
+    y = np.array([0.1 * inputs.radius, velocity, 1e-6, 2e-7, *memory])
+    jacobian = far.rates_jacobian(y)
+    differences = np.zeros_like(jacobian)
+    for k in range(len(y)):
+        step = 1e-4 * max(abs(y[k]), 1e-3 * inputs.radius if k == 0 else 1e-4)
+        up, down = y.copy(), y.copy()
+        up[k] += step
+        down[k] -= step
+        differences[:, k] = (far.rates(up) - far.rates(down)) / (2.0 * step)
+    scale = np.abs(differences).max(axis=1, keepdims=True)
+    assert np.all(np.abs(jacobian - differences)[:, :4] <= 2e-5 * scale)
+    memory_columns = np.abs(jacobian[:, 4:] - differences[:, 4:])
+    assert np.all(memory_columns <= 1e-9 * scale)

@@ -97,6 +97,11 @@ class FilmState:
     edge_radius: float
     transport: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
+    def flux_slope(self) -> np.ndarray:
+        """d(K P)_i/dP_i = K_ii + E_ii, a node's flux against its own pressure (the sum of its
+        elements' Newtonian conductances times mu0/mu(P_i); K_ii at constant viscosity)."""
+        return self.conductance[1] + self.dflux_dP[1]
+
     def flux(self, pressure: np.ndarray) -> np.ndarray:
         """(K(H) P)_i, the net outward lubrication flux from node i (times 2 pi, scaled)."""
         return tridiagonal_product(self.conductance, pressure)
@@ -450,8 +455,10 @@ class Film:
         return _gauss_values(el.h_left, el.h_right, xi) + between
 
     def dissipation_rate(self, state: FilmState, pressure: np.ndarray) -> float:
-        """Viscous dissipation (1/3) int H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H)P, in units of
-        m V0^2 per (x0/V0) divided by St (the same units as St d(V^2/2)/dT)."""
+        """Viscous dissipation (1/3) int (mu0/mu) H^3 (dP/dR)^2 R dR / 12 = (1/3) P.K(H, P)P
+        (each element's flux times its pressure drop, exact for an element that carries a
+        constant flux), in units of m V0^2 per (x0/V0) divided by St (the same units as
+        St d(V^2/2)/dT)."""
         return float(pressure @ state.flux(pressure)) / 3.0
 
 

@@ -34,8 +34,8 @@ from dataclasses import dataclass
 from typing import ClassVar, Protocol
 
 import numpy as np
-import scipy.special
 from scipy.optimize import brentq
+from scipy.special import gammainc, gammaincc, gammaln
 
 from .. import checks
 from ..settings import Registry, setting, validate
@@ -47,6 +47,7 @@ BARUS_EXCESS = 1.0  # ln of the factor by which Barus may exceed Roelands within
 # alpha P_r / Z of the Roelands law at most (ln(mu0 / 6.31e-5 Pa s) of a liquid, some 30 for a
 # bitumen): its fluidity integral takes e^(alpha P_r / Z)
 ROELANDS_SCALE_LIMIT = 500.0
+CUT_DECAY = 60.0  # the Roelands fluidity integral's pieces end where its integrand fell by e^-60
 _GAUSS_POINTS, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(6)
 _GAUSS_POINTS, _GAUSS_WEIGHTS = 0.5 + 0.5 * _GAUSS_POINTS, 0.5 * _GAUSS_WEIGHTS
 
@@ -154,6 +155,20 @@ def _overflow(law, pressure) -> str:
         f"the {law.name} viscosity overflows (mu/mu0 > 1e308) at the pressure iterate "
         f"{largest:.4g} (by mu V0 a / x0^2; alpha P = {law.alpha * largest:.4g})"
     )
+
+
+def _gauss_in_log(law, lower, upper, pieces: int):
+    """int_lower^upper mu0/mu dP of ``law`` by six-point Gauss-Legendre on ``pieces`` equal
+    pieces in t = ln(1 + (P - lower)/(P_r + lower)), dP = (P_r + lower) e^t dt (Roelands's
+    P_r; P >= 0)."""
+    base = law.roelands_pressure + np.asarray(lower, dtype=float)
+    span = np.log1p((np.asarray(upper, dtype=float) - lower) / base)
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    points = (edges[:-1, None] + np.diff(edges)[:, None] * _GAUSS_POINTS).ravel()
+    t = np.multiply.outer(span, points)
+    pressure = lower[..., None] + base[..., None] * np.expm1(t)
+    integrand = np.exp(t - law.log_ratio(pressure))
+    return base * span * (integrand @ np.tile(_GAUSS_WEIGHTS, pieces)) / pieces
 
 
 ALPHA_HELP = "pressure-viscosity coefficient, the law's slope d ln(mu)/dP at low pressure"
@@ -280,32 +295,86 @@ class Roelands(Piezoviscous):
         return _ratio(self, pressure, self.alpha * base ** (self.roelands_index - 1.0))
 
     def fluidity_integral(self, lower, upper):
-        """int_lower^upper mu0/mu dP between compressive scaled pressures. With
-        A = alpha P_r / Z and x = A (1 + P / P_r)^Z, ln(mu/mu0) = x - A and dP = (P_r / Z)
-        x^(1/Z - 1) dx / A^(1/Z), so the integral is (P_r / Z) e^A A^(-1/Z) Gamma(1/Z)
-        [Q(1/Z, x_lower) - Q(1/Z, x_upper)] (Q the regularised upper incomplete gamma
-        function, accurate in its tail). Where ln(mu/mu0) grows by less than 1/2 between the
-        bounds, that difference would cancel, and the six-point Gauss-Legendre rule in P is
-        used instead (exact to about 1e-14 there: the integrand's logarithm changes by less
-        than 1/2)."""
+        """int_lower^upper mu0/mu dP between compressive scaled pressures, to about 1e-12.
+
+        In t = ln(1 + P/P_r), dP = (P_r + lower) e^(t - t_lower) dt and ln(mu/mu0) =
+        A (e^(Z t) - 1), A = alpha P_r / Z: a span over which the integrand's logarithm changes
+        by at most 1/2 and ln(mu) by less than 1/2 is integrated by six-point Gauss-Legendre in
+        t. One over which ln(mu) grows more takes the closed form: with x = A (1 + P/P_r)^Z,
+        (P_r / Z) e^A A^(-1/Z) times the difference of the regularised incomplete gamma
+        functions of 1/Z at x_lower and x_upper, upper Q above the integrand's mode
+        x = 1/Z - 1, lower P below it, split at the mode across it (each accurate in its tail).
+        Where that difference would cancel (its subtracted term above half the other: a slowly
+        thickening liquid, alpha P_r < 1) or underflow, and on a wide span over which ln(mu)
+        grows little, the span is cut into pieces of the Gauss rule's size (:meth:`_pieces`)."""
         lower, upper = np.broadcast_arrays(
             np.asarray(lower, dtype=float), np.asarray(upper, dtype=float)
         )
-        z, p_r = self.roelands_index, self.roelands_pressure
-        steep = self.log_ratio(upper) - self.log_ratio(lower) >= 0.5
+        growth = self.log_ratio(upper) - self.log_ratio(lower)
+        widening = np.log1p((upper - lower) / (self.roelands_pressure + lower))
         result = np.empty(lower.shape)
-        span = upper - lower
-        points = lower[..., None] + span[..., None] * _GAUSS_POINTS
-        result[...] = span * (np.exp(-self.log_ratio(points)) @ _GAUSS_WEIGHTS)
-        if steep.any():
-            a, scale = 1.0 / z, self.alpha * p_r / z
-            x_lower = scale * (1.0 + lower[steep] / p_r) ** z
-            x_upper = scale * (1.0 + upper[steep] / p_r) ** z
-            tails = scipy.special.gammaincc(a, x_lower) - scipy.special.gammaincc(a, x_upper)
-            log_factor = scale + scipy.special.gammaln(a) - a * math.log(scale) + math.log(p_r / z)
-            with np.errstate(divide="ignore"):  # a tail below the smallest double: 0
-                result[steep] = np.exp(log_factor + np.log(tails))
+        one_piece = (growth < 0.5) & (widening * self._steepest(upper) <= 0.5)
+        result[one_piece] = _gauss_in_log(self, lower[one_piece], upper[one_piece], 1)
+        flat, rest = result.reshape(-1), np.flatnonzero(~one_piece.ravel())
+        closed, exact = self._gamma_integral(lower.ravel()[rest], upper.ravel()[rest])
+        exact &= growth.ravel()[rest] >= 0.5
+        flat[rest] = closed
+        for k in rest[~exact]:  # rare: a wide or cancelling span, cut into pieces
+            flat[k] = self._pieces(float(lower.flat[k]), float(upper.flat[k]), widening.flat[k])
         return result
+
+    def _steepest(self, upper):
+        """1 + alpha P_r (1 + P/P_r)^Z at P = ``upper``: the largest slope, in
+        t = ln(1 + P/P_r), of the logarithm of :meth:`fluidity_integral`'s integrand up to it."""
+        base = 1.0 + np.asarray(upper, dtype=float) / self.roelands_pressure
+        return 1.0 + self.alpha * self.roelands_pressure * base**self.roelands_index
+
+    def _pieces(self, lower: float, upper: float, widening: float) -> float:
+        """:meth:`fluidity_integral` of one span by :func:`_gauss_in_log` on equal pieces of
+        t (``widening``: the span's width in t). The integrand's logarithm phi(t) = t - ln(mu)
+        is concave in t, with slope 1 - Z (ln(mu) + A), largest at the span's ends: the span
+        is cut where phi has fallen 60 below its largest value (what lies beyond is below
+        e^-60 of the integral), and the pieces are small enough for phi to change by at most
+        1/2 on each."""
+        base = self.roelands_pressure + lower
+        z, scale = self.roelands_index, self.alpha * self.roelands_pressure / self.roelands_index
+
+        def phi(t):
+            return t - self.log_ratio(lower + base * math.expm1(t))
+
+        def slope(t):
+            return 1.0 - z * (self.log_ratio(lower + base * math.expm1(t)) + scale)
+
+        peak = 0.0 if slope(0.0) <= 0.0 else widening  # phi's largest value on the span
+        if 0.0 < slope(0.0) and slope(widening) < 0.0:
+            peak = brentq(slope, 0.0, widening, xtol=1e-12 * max(widening, 1.0))
+        cut, top = widening, phi(peak)
+        if phi(widening) < top - CUT_DECAY:
+            cut = brentq(lambda t: phi(t) - (top - CUT_DECAY), peak, widening, xtol=1e-9)
+        pieces = max(1, int(np.ceil(2.0 * cut * max(abs(slope(0.0)), abs(slope(cut))))))
+        end = lower + base * math.expm1(cut)
+        return float(_gauss_in_log(self, np.float64(lower), np.float64(end), pieces))
+
+    def _gamma_integral(self, lower, upper):
+        """(the closed form of :meth:`fluidity_integral` on 1-D arrays, whether it holds to
+        full precision): no cancellation (the subtracted incomplete gamma term at most half
+        the other) and no underflow."""
+        p_r, z = self.roelands_pressure, self.roelands_index
+        a, scale = 1.0 / z, self.alpha * p_r / z
+        x_lower = scale * (1.0 + lower / p_r) ** z
+        x_upper = scale * (1.0 + upper / p_r) ** z
+        mode = max(a - 1.0, 0.0)
+        below = np.minimum(x_upper, mode)  # the parts of [x_lower, x_upper] below the mode
+        above = np.maximum(x_lower, mode)  # and above it
+        lower_first, lower_second = gammainc(a, np.minimum(x_lower, mode)), gammainc(a, below)
+        upper_first, upper_second = gammaincc(a, above), gammaincc(a, np.maximum(x_upper, mode))
+        tails = (lower_second - lower_first) + (upper_first - upper_second)
+        exact = (x_lower >= mode) | (lower_first <= 0.5 * lower_second)
+        exact &= (x_upper <= mode) | (upper_second <= 0.5 * upper_first)
+        exact &= tails > 1e-290
+        log_factor = scale + gammaln(a) - a * math.log(scale) + math.log(p_r / z)
+        with np.errstate(divide="ignore"):
+            return np.exp(log_factor + np.log(tails)), exact
 
     def __post_init__(self):
         super().__post_init__()

@@ -357,7 +357,7 @@ class ImplicitStep:
             residual += self.surface_motion.sqrt_delta * state.surface_flux(surface_velocity)
 
         def sensitivity():
-            return state.mass * a0 / step * self.compliance_diagonal + state.conductance[1]
+            return state.mass * a0 / step * self.compliance_diagonal + state.flux_slope()
 
         cavitated = self.cavitation.limit(residual, pressure, cavitated, state.dry, sensitivity)
         residual[state.dry] = pressure[state.dry]
@@ -413,9 +413,9 @@ class ImplicitStep:
 
     @staticmethod
     def _theta_stiffness(state: FilmState, h, step, a0):
-        """s = (m H a0/dt) / K_ii: the pressure that balances a unit change of theta in a
-        node's equation (by mu V0 a / x0^2)."""
-        diagonal = state.conductance[1]
+        """s = (m H a0/dt) / (K_ii + E_ii): the pressure that balances a unit change of theta
+        in a node's equation (by mu V0 a / x0^2)."""
+        diagonal = state.flux_slope()
         return state.mass * a0 * h / (step * np.where(diagonal > 0, diagonal, 1.0))
 
     def _newton_matrix(self, it: _Iterate, step, a0, fill):

@@ -14,8 +14,14 @@ numpy's small operations. Writes benchmarks/results/against_commit.json (seconds
 steps, Newton iterations, e_n, the thinnest film and the contact time of both, the ratio of the
 times, the BLAS share) and prints a line per case.
 
-Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS] [--oblique | --table]
+Run: .venv/bin/python benchmarks/against_commit.py COMMIT [REPEATS]
+[--oblique | --table | --angles | --bounce]
 (the default cases about 2 minutes at 5 repeats; the table about 10 at 2)
+With --angles it times the later points of an angle sweep of the sliding film in one process
+(ANGLE_CASES: the same St and eps at 30 and 50 degrees after 10, whose film grid, and so the
+half-space's kept matrices, they share), writing benchmarks/results/against_commit_angles.json;
+with --bounce the README's bounce (BOUNCE_CASES, its time after a first run in the same
+process; "steps" is its number of contacts), writing against_commit_bounce.json.
 With --oblique it times the oblique cases of OBLIQUE_CASES instead (the tangential models: Couette,
 the sliding film with its mode-1 build, and with the full mode-1 deformation), writing
 benchmarks/results/against_commit_oblique.json (commits since the run settings became keywords
@@ -109,13 +115,56 @@ for _ in range(int(sys.argv[3])):
     collide(params, **settings)
 """
 )
+ANGLE_TIMER = (
+    SETUP
+    + """
+collide(params, **settings)  # the first point of an angle sweep: imports, caches, kernels
+seconds = []
+for angle in (30.0, 50.0):  # later points at the same St and eps: the same film grid
+    start = time.perf_counter()
+    result = collide(build(**{**json.loads(sys.argv[1]), "angle": angle}), **settings)
+    seconds.append(time.perf_counter() - start)
+print(json.dumps({"seconds": sum(seconds) / len(seconds), "steps": result.normal.steps,
+                  "e_n": result.normal.e_n, "e_t": result.tangential.e_t}))
+"""
+)
+BOUNCE_TIMER = """
+import json, sys, time
+from ehdfem.bounce.inputs import BounceInputs
+from ehdfem.bounce.trajectory import bounce_sphere
+inputs = BounceInputs(**json.loads(sys.argv[1]))
+bounce_sphere(inputs)  # the first run pays for imports and caches
+start = time.perf_counter()
+result = bounce_sphere(inputs)
+print(json.dumps({"seconds": time.perf_counter() - start, "steps": len(result.contacts),
+                  "e": [contact.e for contact in result.contacts]}))
+"""
+ANGLE_CASES = {  # name: (CollisionParameters keywords at the first angle, run settings)
+    "thin St=20 eps=1e-3 sliding film, angles 30 and 50 after 10": (
+        dict(St=20.0, eps=1e-3, layer="thin", angle=10.0),
+        dict(tangential="lubrication"),
+    ),
+}
+BOUNCE_CASES = {  # name: (BounceInputs keywords,): the README's bounce
+    "README bounce (steel on glass, 10 cSt, 1.5 mm, from 2 cm)": (
+        dict(
+            sphere="steel",
+            wall="glass",
+            liquid="silicone_oil_10cst",
+            radius=1.5e-3,
+            release_height=0.02,
+            e_dry=0.97,
+        ),
+    ),
+}
+TIMERS = {"angles": ANGLE_TIMER, "bounce": BOUNCE_TIMER}  # the others: TIMER
 LINEAR_ALGEBRA = ("blas", "lapack")  # the shared objects that count as dense kernels
 
 
-def run(source: Path, case: tuple) -> dict:
+def run(source: Path, case: tuple, timer: str = TIMER) -> dict:
     """One timed collision (``case``: inputs and run settings) with the ``ehdfem`` package of
-    ``source``, in its own process."""
-    return run_json(source, [sys.executable, "-c", TIMER, *map(json.dumps, case)])
+    ``source``, in its own process (``timer``: the script that times it)."""
+    return run_json(source, [sys.executable, "-c", timer, *map(json.dumps, case)])
 
 
 def _samples_by_library(case: tuple, runs: int, tmp: str) -> dict[str, int]:
@@ -178,17 +227,20 @@ def main(commit: str, repeats: int = 5, kind: str = "default"):
         "default": {name: (case, {}) for name, case in CASES.items()},
         "oblique": OBLIQUE_CASES,
         "table": TABLE_CASES,
+        "angles": ANGLE_CASES,
+        "bounce": BOUNCE_CASES,
     }[kind]
+    timer = TIMERS.get(kind, TIMER)
     with tempfile.TemporaryDirectory() as tmp, commit_checkout(commit, Path(tmp) / "old") as old:
         for name, case in cases.items():
             best = {"current": None, "old": None}
             for _ in range(repeats):
                 for label, source in (("current", ROOT), ("old", old)):
-                    result = run(source, case)
+                    result = run(source, case, timer)
                     if best[label] is None or result["seconds"] < best[label]["seconds"]:
                         best[label] = result
             ratio = best["current"]["seconds"] / best["old"]["seconds"]
-            share = None if kind == "table" else blas_share(case)
+            share = blas_share(case) if kind in ("default", "oblique") else None
             rows[name] = {**best, "time_ratio": ratio, "blas_lapack_share": share}
             print(
                 f"{name:42s} current {best['current']['seconds']:.3f} s "
@@ -224,8 +276,9 @@ def main(commit: str, repeats: int = 5, kind: str = "default"):
 
 
 if __name__ == "__main__":
-    kinds = [a[2:] for a in sys.argv[1:] if a in ("--oblique", "--table")]
+    options = ("--oblique", "--table", "--angles", "--bounce")
+    kinds = [a[2:] for a in sys.argv[1:] if a in options]
     arguments = [a for a in sys.argv[1:] if not a.startswith("--")]
     if not arguments or len(kinds) > 1:
-        sys.exit("usage: against_commit.py COMMIT [REPEATS] [--oblique | --table]")
+        sys.exit(f"usage: against_commit.py COMMIT [REPEATS] [{' | '.join(options)}]")
     main(arguments[0], int(arguments[1]) if len(arguments) > 1 else 5, *kinds)

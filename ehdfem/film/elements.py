@@ -34,12 +34,12 @@ from numba import njit
 
 
 @njit(cache=True, error_model="numpy")
-def _conductance(r_left, length, h_points, fluidity, d_left, d_right, e, xi, w, density):
-    """(k, dk/dH_left, dk/dH_right, dk/dP_left, dk/dP_right) of element ``e`` from its left
-    radius, its length and H at its points (module docstring); ``fluidity``, ``d_left`` and
-    ``d_right``: the elements' mean fluidities <mu0/mu>_e and their derivatives by the left and
-    right nodes' pressures, or empty (constant viscosity); ``density``: room for the
-    resistance's terms at the points."""
+def _conductance(r_left, length, h_points, mean, d_left, d_right, xi, w, density):
+    """(k, dk/dH_left, dk/dH_right, dk/dP_left, dk/dP_right) of an element from its left
+    radius, its length and H at its points (module docstring); ``mean``, ``d_left`` and
+    ``d_right``: its mean fluidity <mu0/mu>_e and that mean's derivatives by the left and right
+    nodes' pressures (1, 0, 0 at constant viscosity); ``density``: room for the resistance's
+    terms at the points."""
     points = len(xi)
     squeeze_flux = 0.5 * r_left * r_left + length * (3.0 * r_left + length) / 6.0
     resistance = 0.0
@@ -49,12 +49,8 @@ def _conductance(r_left, length, h_points, fluidity, d_left, d_right, e, xi, w, 
         density[q] = 3.0 * w[q] * length * (radius * radius * radius) / (h * h * h)
         resistance += density[q]
     geometric = squeeze_flux * squeeze_flux / resistance
-    mean = 1.0
-    dk_dp_left = dk_dp_right = 0.0
-    if fluidity.shape[0] > 0:
-        mean = fluidity[e]
-        dk_dp_left = geometric * d_left[e]
-        dk_dp_right = geometric * d_right[e]
+    dk_dp_left = geometric * d_left
+    dk_dp_right = geometric * d_right
     factor = 3.0 * geometric / resistance * mean
     dk_dh_left = dk_dh_right = 0.0
     for q in range(points):
@@ -95,6 +91,7 @@ def assemble_bands(
     h_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
     p_bands = (np.zeros(n), np.zeros(n), np.zeros(n))
     h_points, density = np.empty(len(xi)), np.empty(len(xi))
+    piezoviscous = fluidity.shape[0] > 0
     for e in range(regular + (1 if cut_length > 0.0 else 0)):
         r_left, whole = radii[e], e < regular
         if whole:
@@ -104,8 +101,11 @@ def assemble_bands(
             length, p_right, h_right, excess = cut_length, 0.0, 1.0, cut_between
         for q in range(len(xi)):
             h_points[q] = thickness[e] * (1.0 - xi[q]) + h_right * xi[q] + excess[q]
+        mean = fluidity[e] if piezoviscous else 1.0
+        slope_left = d_left[e] if piezoviscous else 0.0
+        slope_right = d_right[e] if piezoviscous else 0.0
         k, dh_left, dh_right, dp_left, dp_right = _conductance(
-            r_left, length, h_points, fluidity, d_left, d_right, e, xi, w, density
+            r_left, length, h_points, mean, slope_left, slope_right, xi, w, density
         )
         jump = pressure[e] - p_right
         # int phi R dR of the falling (left) hat over the element, and of the rising one

@@ -54,7 +54,7 @@ _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
 _FLUX_XI, _FLUX_W = np.polynomial.legendre.leggauss(6)
 _FLUX_XI, _FLUX_W = 0.5 + 0.5 * _FLUX_XI, 0.5 * _FLUX_W
 _POINTS = {"gauss": _GAUSS_XI, "flux": _FLUX_XI}  # the film's quadrature points, by name
-_CONSTANT = (np.zeros(0),) * 3  # no element fluidities: constant viscosity
+_CONSTANT = tuple(np.zeros(0) for _ in range(3))  # no element fluidities: constant viscosity
 
 
 def _ascending_mass(left, right):

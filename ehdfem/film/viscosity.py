@@ -118,8 +118,8 @@ class ViscosityLaw(Protocol):
     ``constant``: mu = mu0 at every pressure; ``ratio(P)``: (mu/mu0, d ln(mu/mu0)/dP);
     ``log_ratio(P+)``: ln(mu/mu0) at the compressive pressure, numpy or UFL;
     ``fluidity_integral(lower, upper)``: int_lower^upper mu0/mu dP between compressive
-    pressures 0 <= lower <= upper (arrays), to full relative precision however steeply mu
-    grows between them (the film's element conductance, :mod:`ehdfem.film.elements`);
+    pressures 0 <= lower <= upper (arrays), to about 1e-12 relative however steeply mu grows
+    between them (the film's element conductance, :mod:`ehdfem.film.elements`);
     ``overflow(P)``: why mu/mu0 overflowed; ``validity_pressure(alpha_SI, mu0)``: the
     pressure [Pa] up to which it holds; ``of_liquid(alpha_SI, mu0, pressure_scale)`` (a
     classmethod): the law of a liquid of viscosity mu0 [Pa s] and coefficient alpha_SI
@@ -355,19 +355,13 @@ class Roelands(Piezoviscous):
                 result[k] = self._pieces(float(lower[k]), float(upper[k]), widening[k])
         return result.reshape(shape)
 
-    def _steepest(self, upper):
-        """1 + alpha P_r (1 + P/P_r)^Z at P = ``upper``: the largest slope, in
-        t = ln(1 + P/P_r), of the logarithm of :meth:`fluidity_integral`'s integrand up to it."""
-        base = 1.0 + np.asarray(upper, dtype=float) / self.roelands_pressure
-        return 1.0 + self.alpha * self.roelands_pressure * base**self.roelands_index
-
     def _pieces(self, lower: float, upper: float, widening: float) -> float:
         """:meth:`fluidity_integral` of one span by :func:`_gauss_in_log` on equal pieces of
         t (``widening``: the span's width in t). The integrand's logarithm phi(t) = t - ln(mu)
-        is concave in t, with slope 1 - Z (ln(mu) + A), largest at the span's ends: the span
-        is cut where phi has fallen 60 below its largest value (what lies beyond is below
-        e^-60 of the integral), and the pieces are small enough for phi to change by at most
-        1/2 on each."""
+        is concave in t, its slope 1 - Z (ln(mu) + A) falling along the span, so largest in
+        magnitude at an end: the span is cut where phi has fallen CUT_DECAY = 60 below its
+        largest value (what lies beyond adds about e^-60 of the integral), and the pieces are
+        small enough for phi to change by at most 1/2 on each."""
         base = self.roelands_pressure + lower
         z, scale = self.roelands_index, self.alpha * self.roelands_pressure / self.roelands_index
 

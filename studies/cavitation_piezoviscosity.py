@@ -12,6 +12,7 @@ studies/results/cavitation_piezoviscosity.csv and docs/figures/cavitation_piezov
 Run: .venv/bin/python studies/cavitation_piezoviscosity.py [--plot-only]
 """
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -66,7 +67,7 @@ def collision(table, sphere, cavitation, viscosity, speed, kind):
         "St": params.St,
         "eps": params.eps,
         "p_cav": params.p_cav,
-        "alpha": params.alpha,
+        "alpha": getattr(params.viscosity, "alpha", 0.0),  # the piezoviscous laws' scaled alpha
         **result,
         "seconds": round(time.perf_counter() - start, 2),
     }
@@ -74,19 +75,45 @@ def collision(table, sphere, cavitation, viscosity, speed, kind):
     return table.add(row)
 
 
+class FailedCollision(Exception):
+    """A collision of the bisection failed (a Barus film past the law's range): whether the
+    sphere rebounds there is unknown, so St_c is not found."""
+
+
 def critical(table, sphere, cavitation, viscosity):
-    """(critical speed, St there) by bisection in log speed on the rebound outcome."""
+    """(critical speed, St there) by bisection in log speed on the rebound outcome, between the
+    sweep's last sticking speed and its first rebounding one (nan, nan where a collision of
+    the bisection fails)."""
 
     def rebounds(speed):
         row = collision(table, sphere, cavitation, viscosity, speed, "critical")
+        if row["rebound"] == "":
+            raise FailedCollision(f"{speed:.4g} m/s: {row['status']}")
         return row["rebound"] == "True"
 
-    found = critical_speed(
-        inputs(sphere, SPEEDS[0], cavitation, viscosity),
-        (SPEEDS[0], SPEEDS[-1]),
-        CRITICAL_RTOL,
-        rebounds=rebounds,
-    )
+    outcomes = [
+        (float(r["speed"]), r["rebound"] == "True")
+        for r in table.rows
+        if (r["sphere"], r["cavitation"], r["viscosity"], r["kind"])
+        == (sphere, cavitation, viscosity, "sweep")
+        and r["rebound"] != ""
+    ]
+    outcomes.sort()
+    bracket = (SPEEDS[0], SPEEDS[-1])
+    for (low, sticks), (high, bounces) in zip(outcomes[:-1], outcomes[1:], strict=True):
+        if not sticks and bounces:
+            bracket = (low, high)
+            break
+    try:
+        found = critical_speed(
+            inputs(sphere, bracket[0], cavitation, viscosity),
+            bracket,
+            CRITICAL_RTOL,
+            rebounds=rebounds,
+        )
+    except FailedCollision as failure:
+        print(f"St_c of {sphere}, {cavitation}, {viscosity} not found: {failure}", flush=True)
+        return math.nan, math.nan
     return found["speed"], found["St_c"]
 
 

@@ -177,28 +177,25 @@ def _roelands_one_piece(lower, upper, p_r, z, scale):
         done[k] = upper[k] == lower[k]
         if done[k] or growth[k] >= 0.5 or widening[k] * (1.0 + z * (top + scale)) > 0.5:
             continue
-        total = 0.0
-        for q in range(len(_GAUSS_POINTS)):
-            t = widening[k] * _GAUSS_POINTS[q]
-            log_ratio = scale * (power * math.exp(z * t) - 1.0)
-            total += _GAUSS_WEIGHTS[q] * math.exp(t - log_ratio)
-        result[k] = base * widening[k] * total
+        result[k] = _gauss_in_log(base, power, widening[k], 1, z, scale)
         done[k] = True
     return result, growth, widening, done
 
 
-def _gauss_in_log(law, lower, upper, pieces: int):
-    """int_lower^upper mu0/mu dP of ``law`` by six-point Gauss-Legendre on ``pieces`` equal
-    pieces in t = ln(1 + (P - lower)/(P_r + lower)), dP = (P_r + lower) e^t dt (Roelands's
-    P_r; P >= 0)."""
-    base = law.roelands_pressure + np.asarray(lower, dtype=float)
-    span = np.log1p((np.asarray(upper, dtype=float) - lower) / base)
-    edges = np.linspace(0.0, 1.0, pieces + 1)
-    points = (edges[:-1, None] + np.diff(edges)[:, None] * _GAUSS_POINTS).ravel()
-    t = np.multiply.outer(span, points)
-    pressure = lower[..., None] + base[..., None] * np.expm1(t)
-    integrand = np.exp(t - law.log_ratio(pressure))
-    return base * span * (integrand @ np.tile(_GAUSS_WEIGHTS, pieces)) / pieces
+@njit(cache=True, error_model="numpy")
+def _gauss_in_log(base, power, width, pieces, z, scale):
+    """int mu0/mu dP of a Roelands law (``scale`` A = alpha P_r / Z) from P = lower to the
+    point ``width`` along t = ln(1 + (P - lower)/``base``), ``base`` = P_r + lower, by
+    six-point Gauss-Legendre on ``pieces`` equal pieces of t: dP = base e^t dt and
+    ln(mu/mu0) = A (``power`` e^(Z t) - 1), ``power`` = (base / P_r)^Z."""
+    piece = width / pieces
+    total = 0.0
+    for k in range(pieces):
+        for q in range(len(_GAUSS_POINTS)):
+            t = piece * (k + _GAUSS_POINTS[q])
+            log_ratio = scale * (power * math.exp(z * t) - 1.0)
+            total += _GAUSS_WEIGHTS[q] * math.exp(t - log_ratio)
+    return base * piece * total
 
 
 ALPHA_HELP = "pressure-viscosity coefficient, the law's slope d ln(mu)/dP at low pressure"
@@ -378,8 +375,8 @@ class Roelands(Piezoviscous):
         if phi(widening) < top - CUT_DECAY:
             cut = brentq(lambda t: phi(t) - (top - CUT_DECAY), peak, widening, xtol=1e-9)
         pieces = max(1, int(np.ceil(2.0 * cut * max(abs(slope(0.0)), abs(slope(cut))))))
-        end = lower + base * math.expm1(cut)
-        return float(_gauss_in_log(self, np.float64(lower), np.float64(end), pieces))
+        power = (base / self.roelands_pressure) ** z
+        return _gauss_in_log(base, power, cut, pieces, z, scale)
 
     def _gamma_integral(self, lower, upper):
         """(the closed form of :meth:`fluidity_integral` on 1-D arrays, whether it holds to

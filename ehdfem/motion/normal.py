@@ -408,7 +408,8 @@ class _NormalIntegration:
         passes a node every few steps: the thinnest film of a suction dip there was 4 % off at the
         default rtol and did not converge with it (docs/performance.md)."""
         recent = list(self.film_states)[-(order + 1) :]
-        if all(kept.tobytes() == states.tobytes() for kept in recent):  # no node switched
+        current = states.tobytes()
+        if all(kept.tobytes() == current for kept in recent):  # no node switched
             return states == 2
         stencil = np.array(recent)
         switching = (stencil != states).any(axis=0)

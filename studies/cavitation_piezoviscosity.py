@@ -75,6 +75,18 @@ def collision(table, sphere, cavitation, viscosity, speed, kind):
     return table.add(row)
 
 
+def finished_sweep(table, sphere, cavitation, viscosity):
+    """The sweep's rows of one sphere and model whose collision finished, by speed (so by St)."""
+    rows = [
+        r
+        for r in table.rows
+        if (r["sphere"], r["cavitation"], r["viscosity"], r["kind"])
+        == (sphere, cavitation, viscosity, "sweep")
+        and r["rebound"] != ""
+    ]
+    return sorted(rows, key=lambda r: float(r["speed"]))
+
+
 class FailedCollision(Exception):
     """A collision of the bisection failed (a Barus film past the law's range): whether the
     sphere rebounds there is unknown, so St_c is not found."""
@@ -93,12 +105,8 @@ def critical(table, sphere, cavitation, viscosity):
 
     outcomes = [
         (float(r["speed"]), r["rebound"] == "True")
-        for r in table.rows
-        if (r["sphere"], r["cavitation"], r["viscosity"], r["kind"])
-        == (sphere, cavitation, viscosity, "sweep")
-        and r["rebound"] != ""
+        for r in finished_sweep(table, sphere, cavitation, viscosity)
     ]
-    outcomes.sort()
     bracket = (SPEEDS[0], SPEEDS[-1])
     for (low, sticks), (high, bounces) in zip(outcomes[:-1], outcomes[1:], strict=True):
         if not sticks and bounces:
@@ -138,14 +146,7 @@ def plot(table):
     for ax, sphere in zip(axes, SPHERES, strict=True):
         for cavitation, style, marker in zip(CAVITATION, ("-", ":"), ("o", "s"), strict=True):
             for viscosity, colour in zip(VISCOSITY, ("C0", "C1", "C2"), strict=True):
-                rows = [
-                    r
-                    for r in table.rows
-                    if (r["sphere"], r["cavitation"], r["viscosity"], r["kind"])
-                    == (sphere, cavitation, viscosity, "sweep")
-                    and r["e_n"] != ""
-                ]
-                rows.sort(key=lambda r: float(r["St"]))
+                rows = finished_sweep(table, sphere, cavitation, viscosity)
                 ax.plot(
                     [float(r["St"]) for r in rows],
                     [float(r["e_n"]) for r in rows],

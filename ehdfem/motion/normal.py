@@ -408,8 +408,7 @@ class _NormalIntegration:
         passes a node every few steps: the thinnest film of a suction dip there was 4 % off at the
         default rtol and did not converge with it (docs/performance.md)."""
         recent = list(self.film_states)[-(order + 1) :]
-        current = states.tobytes()
-        if all(kept.tobytes() == current for kept in recent):  # no node switched
+        if len({states.tobytes(), *(kept.tobytes() for kept in recent)}) == 1:  # none switched
             return states == 2
         stencil = np.array(recent)
         switching = (stencil != states).any(axis=0)

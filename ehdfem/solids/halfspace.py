@@ -92,6 +92,7 @@ def _ring_kernel(radius, offset):
     return (radius + offset) / total * ellipkm1((offset / total) ** 2)
 
 
+ROWS_AT_ONCE = 8  # the nodes whose quadrature points hat_integrals forms at a time
 KEPT_KERNELS = 4  # the matrices of each kind for the latest grids built that a process keeps
 _kernels: dict[tuple[str, bytes], np.ndarray] = {}  # (kind, the grid's radii as bytes) -> matrix
 
@@ -99,8 +100,8 @@ _kernels: dict[tuple[str, bytes], np.ndarray] = {}  # (kind, the grid's radii as
 def kept_on_grid(kind: str, radii: np.ndarray, build) -> np.ndarray:
     """``build()``, a matrix that depends on the grid ``radii`` alone, kept read-only for the
     latest KEPT_KERNELS grids of its ``kind``: the points of a sweep share a few grids (an angle
-    sweep one per normal motion), and a build at 240 nodes costs some 25 ms (the pressure's
-    influence matrix) to 70 ms (the mode-1 response)."""
+    sweep one per normal motion), and a build at 240 nodes costs some 9 ms (the pressure's
+    influence matrix) to 43 ms (the mode-1 response)."""
     key = (kind, np.asarray(radii, dtype=float).tobytes())
     if key not in _kernels:
         matrix = build()
@@ -128,23 +129,32 @@ def hat_integrals(radii, kernel, size):
     ``radii`` (by sqrt(a x0); the last hat a half hat, zero beyond). Each cell is integrated by
     8-point Gauss-Legendre, or by the graded rule when it is closer to R_i than its length
     (module docstring); ``kernel(radius, offset)`` takes the 1-D arrays of every quadrature
-    point's R_i and S - R_i and returns ``size`` values per point, (size, points)."""
+    point's R_i and S - R_i and returns ``size`` values per point, (size, points). The nodes i
+    are taken ROWS_AT_ONCE at a time, so that the points' arrays stay small and are reused: all
+    the points of 240 nodes at once were half a million, 25 MB of fresh memory a build, whose
+    page faults cost as much as the kernel's evaluation (the pressure's matrix 22 -> 9 ms at
+    240 nodes, the mode-1 response 72 -> 43 ms; the same sums in the same order, so the same
+    bits; docs/performance.md)."""
     r = np.asarray(radii, dtype=float)
     rules = (_REGULAR_X, _REGULAR_W, _GRADED_X, _GRADED_W)
-    node, cell, radius, offset, weight, to_right = _quadrature_points(r, *rules)
-    values = np.asarray(kernel(radius, offset)).reshape(size, len(radius))
-    return _accumulated(values, node, cell, weight, to_right, len(r))
+    matrix = np.zeros((size, len(r), len(r)))
+    for first in range(0, len(r), ROWS_AT_ONCE):
+        rows = (first, min(first + ROWS_AT_ONCE, len(r)))
+        node, cell, radius, offset, weight, to_right = _quadrature_points(r, rows, *rules)
+        values = np.asarray(kernel(radius, offset)).reshape(size, len(radius))
+        _accumulate(matrix, values, node, cell, weight, to_right)
+    return matrix
 
 
 @njit(cache=True)
-def _quadrature_points(r, regular_x, regular_w, graded_x, graded_w):
-    """Every quadrature point of :func:`hat_integrals`: its node i and cell j, R_i, the offset
-    S - R_i (from the cell's nearer end where the graded rule is used, so that the points next
-    to R_i keep their relative accuracy), its weight (times the cell length) and the share of
-    the cell's right hat."""
+def _quadrature_points(r, rows, regular_x, regular_w, graded_x, graded_w):
+    """Every quadrature point of :func:`hat_integrals` for the nodes i in range(*``rows``): its
+    node i and cell j, R_i, the offset S - R_i (from the cell's nearer end where the graded
+    rule is used, so that the points next to R_i keep their relative accuracy), its weight
+    (times the cell length) and the share of the cell's right hat."""
     n = len(r)
     total = 0
-    for i in range(n):
+    for i in range(rows[0], rows[1]):
         for j in range(n - 1):
             regular = max(r[j] - r[i], r[i] - r[j + 1]) >= r[j + 1] - r[j]
             total += len(regular_x) if regular else len(graded_x)
@@ -152,7 +162,7 @@ def _quadrature_points(r, regular_x, regular_w, graded_x, graded_w):
     radius, offset = np.empty(total), np.empty(total)
     weight, to_right = np.empty(total), np.empty(total)
     k = 0
-    for i in range(n):
+    for i in range(rows[0], rows[1]):
         for j in range(n - 1):
             left, right = r[j], r[j + 1]
             length = right - left
@@ -175,18 +185,16 @@ def _quadrature_points(r, regular_x, regular_w, graded_x, graded_w):
 
 
 @njit(cache=True)
-def _accumulated(values, node, cell, weight, to_right, n):
-    """M[p, i, j] of :func:`hat_integrals` from the kernel's ``values`` (size, points) at the
-    quadrature points of :func:`_quadrature_points`."""
+def _accumulate(matrix, values, node, cell, weight, to_right):
+    """Add to ``matrix`` (size, n, n) the terms of M[p, i, j] of :func:`hat_integrals` from the
+    kernel's ``values`` (size, points) at quadrature points of :func:`_quadrature_points`."""
     size = values.shape[0]
-    matrix = np.zeros((size, n, n))
     for k in range(len(node)):
         i, j = node[k], cell[k]
         for p in range(size):
             value = values[p, k] * weight[k]
             matrix[p, i, j] += value * (1.0 - to_right[k])
             matrix[p, i, j + 1] += value * to_right[k]
-    return matrix
 
 
 def film_nodes(radii) -> np.ndarray:

@@ -19,12 +19,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import njit
 
 from .. import checks
 
 COX_BRENNER_CONSTANT = 0.9713  # the O(1) term of lambda at small gaps (Cox & Brenner 1967)
 SMALLEST_GAP = 1e-5  # h/a: below it the series' first terms lose their digits to cancellation
 LUBRICATION_GAP = 1e-4  # h/a below which :func:`resistance` is the small-gap expansion
+SERIES_DECAY = 25.0  # the series' last term at n alpha = SERIES_DECAY (plus 50 terms)
 
 
 def series_resistance(gap_over_radius: float) -> float:
@@ -32,22 +34,33 @@ def series_resistance(gap_over_radius: float) -> float:
     k = 2n + 1 and sinh(alpha) = sqrt(h/a (2 + h/a)) (exact at small gaps), each bracket is
     summed as e^(-k alpha) (2 - 2 e^(-k alpha) + k sinh 2alpha + k^2 sinh^2 alpha) /
     ((1 - e^(-k alpha))^2 - k^2 sinh^2(alpha) e^(-k alpha)), the same quantity without
-    overflow, over 60/alpha + 50 terms (they fall as e^(-2n alpha): below 1e-17 of the sum
-    after about 22/alpha)."""
+    overflow, over SERIES_DECAY/alpha + 50 terms (:func:`_brenner_sum`)."""
     gap = checks.number("gap_over_radius", gap_over_radius, lower=SMALLEST_GAP)
+    return _brenner_sum(gap)
+
+
+@njit(cache=True)
+def _brenner_sum(gap: float) -> float:
+    """Brenner's lambda at h/a = ``gap`` (:func:`series_resistance`), compiled: a flight asks
+    for it at every evaluation of its forces. The terms fall as e^(-2 n alpha) times a
+    quadratic in n: below 1e-19 of the sum after SERIES_DECAY/alpha + 50 of them. They are
+    added from the last to the first, the smallest first, so that the sum's rounding is that
+    of its last few terms."""
     root = math.sqrt(gap * (2.0 + gap))  # sinh(alpha)
     alpha = math.log1p(gap + root)  # acosh(1 + gap)
-    n = np.arange(1.0, int(60.0 / alpha) + 51)
-    k = 2.0 * n + 1.0
-    decay = np.exp(-k * alpha)
     sinh2 = root * root
-    bracket = (
-        decay
-        * (2.0 - 2.0 * decay + k * 2.0 * root * (1.0 + gap) + k * k * sinh2)
-        / (np.expm1(-k * alpha) ** 2 - k * k * sinh2 * decay)
-    )
-    weights = n * (n + 1.0) / ((2.0 * n - 1.0) * (2.0 * n + 3.0))
-    return 4.0 / 3.0 * root * float(np.sum(weights * bracket))
+    total = 0.0
+    for i in range(int(SERIES_DECAY / alpha) + 50, 0, -1):
+        n = float(i)
+        k = 2.0 * n + 1.0
+        decay = math.exp(-k * alpha)
+        bracket = (
+            decay
+            * (2.0 - 2.0 * decay + k * 2.0 * root * (1.0 + gap) + k * k * sinh2)
+            / (math.expm1(-k * alpha) ** 2 - k * k * sinh2 * decay)
+        )
+        total += n * (n + 1.0) / ((2.0 * n - 1.0) * (2.0 * n + 3.0)) * bracket
+    return 4.0 / 3.0 * root * total
 
 
 def resistance(gap_over_radius):
@@ -55,14 +68,12 @@ def resistance(gap_over_radius):
     (:func:`series_resistance`) from LUBRICATION_GAP on, Cox & Brenner's expansion
     (:func:`small_gap_resistance`) below, where the two differ by less than 1e-8 relative.
     F = -6 pi mu a v lambda is the force on the sphere moving at v normal to the wall."""
-    gaps = np.atleast_1d(np.asarray(gap_over_radius, dtype=float))
-    values = np.array(
-        [
-            series_resistance(g) if g >= LUBRICATION_GAP else float(small_gap_resistance(g))
-            for g in gaps
-        ]
-    )
-    return values[0] if np.ndim(gap_over_radius) == 0 else values
+    if np.ndim(gap_over_radius) == 0:
+        gap = float(gap_over_radius)
+        if gap >= LUBRICATION_GAP:
+            return series_resistance(gap)
+        return float(small_gap_resistance(gap))
+    return np.array([resistance(g) for g in np.asarray(gap_over_radius, dtype=float)])
 
 
 def small_gap_resistance(gap_over_radius) -> np.ndarray:

@@ -192,7 +192,7 @@ def mode_one_operators(
         el, n, weight, thickness, (fluidity, dfluidity), pressure_slope
     )
     free = _mode_one_free(film, el, n, cavitated)
-    shear, tail = film.couette_weights(h, outer_radius, pressure, fill)
+    shear, tail = film._couette_weights_on(el, thickness, ratio, h, outer_radius, fill)
     return ModeOneFilm(
         free=free,
         mass=_hat_weights(el, np.ones_like(thickness), n),

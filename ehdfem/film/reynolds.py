@@ -383,13 +383,19 @@ class Film:
         undeformed film X + R^2/2 from the last node to ``outer_radius``; 0 for the thin
         layer). H0 by x0, the viscosity at the nodal ``pressure`` P0 (by mu V0 a / x0^2; mu0 if
         not given), theta the nodal ``fill`` (1 if not given)."""
-        h = film_thickness
-        el = self._inner_elements(h, outer_radius)
+        el = self._inner_elements(film_thickness, outer_radius)
         ratio = self.viscosity.ratio(_at_gauss_points(el, pressure, 0.0))[0]
+        thickness = self._gauss_thickness(el)
+        return self._couette_weights_on(el, thickness, ratio, film_thickness, outer_radius, fill)
+
+    def _couette_weights_on(self, el, thickness, ratio, film_thickness, outer_radius, fill):
+        """:meth:`couette_weights` on the elements ``el`` (:meth:`_inner_elements`), with H0
+        and mu/mu0 at their Gauss points given (``thickness``, ``ratio``): the film's mode-1
+        operators have them already."""
         liquid = _at_gauss_points(el, fill, 1.0)
-        weights = _cell_hat_weights(el, self.radii, liquid * ratio / self._gauss_thickness(el))
+        weights = _cell_hat_weights(el, self.radii, liquid * ratio / thickness)
         tail = 0.0
-        r_last = self.radii[-1]
+        h, r_last = film_thickness, self.radii[-1]
         if self.layer == "immersed" and outer_radius > r_last:
             gap = h[-1] - 0.5 * r_last**2
             tail = float(np.log((gap + 0.5 * outer_radius**2) / h[-1]))

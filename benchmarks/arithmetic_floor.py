@@ -6,13 +6,13 @@ Each default case of against_commit.py (240 film nodes, half-space solids) runs 
 process on the current checkout with the dense kernels of its Newton iteration timed where they
 are called: the LUs (getrf of the packaged OpenBLAS, ehdfem.lapack), the triangular solves
 (getrs), the compliance products C P (one per Newton residual: a product of C with a vector of
-the film's size, timed alone at that size and counted), and, listed apart, the forming and
+the film's size, timed alone at that size and counted); listed apart, the forming and
 equilibration of the Newton matrices (compiled loops, O(n^2) each) and the build of the
-half-space compliance (some 20 ms, in both whole times, left out of the floor). Their sum is the collision's
-arithmetic floor at one LU a step, the algorithm the solver has (docs/performance.md: a kept LU
-costs more sweeps than it saves). The same case is timed whole (fastest of REPEATS, fresh
-processes, as against_commit.py) on the current checkout and on COMMIT; the largest ratio the
-algorithm allows is COMMIT's time over the floor.
+half-space compliance (in both whole times, left out of the floor). The first three's sum is
+the collision's arithmetic floor at one LU a step, the algorithm the solver has
+(docs/performance.md: a kept LU costs more sweeps than it saves). The same case is timed
+whole (fastest of REPEATS, fresh processes, as against_commit.py) on the current checkout and
+on COMMIT; the largest ratio the algorithm allows is COMMIT's time over the floor.
 
 Run: .venv/bin/python benchmarks/arithmetic_floor.py COMMIT [REPEATS]
 (about a minute at 3 repeats). Writes benchmarks/results/arithmetic_floor.json and prints a

@@ -275,3 +275,57 @@ def film_jacobian(squeeze, compliance, by_gap, flux_bands, viscous_bands, out):
     every_row = np.arange(n)
     add_band_rows(flux_bands, every_row, out)
     add_band_rows(viscous_bands, every_row, out)
+
+
+@njit(cache=True, error_model="numpy")
+def mode_one_bands(
+    n, left, right, length, gauss_r, weight, thickness, fluidity, dfluidity, pressure_slope, xi
+):
+    """The mode-1 film's three tridiagonal matrices (:mod:`ehdfem.film.mode_one`)
+    on the elements (``left`` and ``right`` nodes, -1 for a cut element's, whose right end is no
+    unknown; ``length``), as out[matrix, band, node], the bands (lower, diagonal, upper) of
+
+        conductance_ab        = (1/12) sum_q w_q phi H^3 (s_a s_b + h_a h_b / R_q^2),
+        thickness_coupling_ab = (1/4)  sum_q w_q phi H^2 P0' s_a h_b,
+        pressure_coupling_ab  = (1/12) sum_q w_q phi_P H^3 P0' s_a h_b
+
+    for the element's hats a, b (h their values at the points ``xi``, s their slopes), with
+    ``weight`` w = R dR, ``thickness`` H0, ``fluidity`` phi = mu0/mu and ``dfluidity`` its
+    pressure derivative at the Gauss points (elements, points), ``pressure_slope`` P0' on each
+    element (scaled as the axisymmetric film). One loop replaces some sixty array operations
+    (135 -> 4 us at 240 nodes)."""
+    out = np.zeros((3, 3, n))
+    points = len(xi)
+    for e in range(len(left)):
+        regular = right[e] >= 0
+        nodes = (left[e], right[e] if regular else left[e])
+        slopes = (-1.0 / length[e], (1.0 if regular else 0.0) / length[e])
+        for a in range(2):
+            for b in range(2):
+                if b == 1 and not regular or a == 1 and not regular:
+                    continue
+                stiff = hoop = thick = press = 0.0
+                for q in range(points):
+                    hat_a = 1.0 - xi[q] if a == 0 else xi[q]
+                    hat_b = 1.0 - xi[q] if b == 0 else xi[q]
+                    h = thickness[e, q]
+                    cube = fluidity[e, q] * h * h * h
+                    radius = gauss_r[e, q]
+                    stiff += weight[e, q] * cube
+                    hoop += weight[e, q] * cube * hat_a * hat_b / (radius * radius)
+                    grad = slopes[a] * pressure_slope[e] * hat_b * weight[e, q]
+                    thick += grad * fluidity[e, q] * h * h
+                    press += grad * dfluidity[e, q] * h * h * h
+                values = (
+                    (stiff * slopes[a] * slopes[b] + hoop) / 12.0,
+                    thick / 4.0,
+                    press / 12.0,
+                )
+                for matrix in range(3):
+                    if a == b:
+                        out[matrix, 1, nodes[a]] += values[matrix]
+                    elif a == 1:
+                        out[matrix, 0, nodes[1]] += values[matrix]
+                    else:
+                        out[matrix, 2, nodes[0]] += values[matrix]
+    return out

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .elements import mode_one_bands
 from .reynolds import (
     _GAUSS_W,
     _GAUSS_XI,
@@ -16,7 +17,6 @@ from .reynolds import (
     _cell_hat_weights,
     _Elements,
     _hat_weights,
-    _node_sums,
 )
 
 
@@ -107,40 +107,23 @@ def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
         thickness_coupling_ab = (1/4)  int (mu0/mu) H0^2 dP0/dR phi_a' phi_b R dR,
         pressure_coupling_ab  = (1/12) int d(mu0/mu)/dP H0^3 dP0/dR phi_a' phi_b R dR
 
-    (scaled as the axisymmetric film: H by x0, R by sqrt(a x0), P by mu V0 a / x0^2). The cut
-    element's right end is no unknown, so its rows and columns are left out."""
+    (scaled as the axisymmetric film: H by x0, R by sqrt(a x0), P by mu V0 a / x0^2), in one
+    compiled loop (:func:`ehdfem.film.elements.mode_one_bands`). The cut element's right end is
+    no unknown, so its rows and columns are left out."""
     fluidity, dfluidity = fluidities
-    regular = el.right >= 0
-    hats = (1.0 - _GAUSS_XI, _GAUSS_XI)  # the left and right hats on an element
-    hat_slopes = (-1.0 / el.length, np.where(regular, 1.0, 0.0) / el.length)
-    nodes = (el.left, np.where(regular, el.right, el.left))
-    live = (np.ones_like(regular), regular)  # the cut element's right end is no unknown
-    cube = fluidity * thickness**3
-    entries = {"conductance": {}, "thickness_coupling": {}, "pressure_coupling": {}}
-    for a in range(2):
-        va, sa = live[a], hat_slopes[a]
-        for b in range(2):
-            on = va * live[b]
-            stiff = (weight * cube).sum(axis=1) * sa * hat_slopes[b]
-            hoop = (weight * cube * hats[a] * hats[b] / el.gauss_r**2).sum(axis=1)
-            grad = sa[:, None] * pressure_slope[:, None] * hats[b] * weight
-            entries["conductance"][a, b] = on * (stiff + hoop) / 12.0
-            entries["thickness_coupling"][a, b] = (
-                on * (grad * fluidity * thickness**2).sum(axis=1) / 4.0
-            )
-            entries["pressure_coupling"][a, b] = (
-                on * (grad * dfluidity * thickness**3).sum(axis=1) / 12.0
-            )
-    return tuple(_bands(nodes, values, n) for values in entries.values())
-
-
-def _bands(nodes, values, n):
-    """(lower, diagonal, upper) of the tridiagonal matrix with the element entries
-    values[a, b] at (nodes[a], nodes[b]) (a, b = 0 the left, 1 the right end), summed in the
-    order a, b, element."""
-    left, right = nodes
-    diagonal = _node_sums(left, values[0, 0], n) + _node_sums(right, values[1, 1], n)
-    return _node_sums(right, values[1, 0], n), diagonal, _node_sums(left, values[0, 1], n)
+    out = mode_one_bands(
+        n,
+        el.left,
+        el.right,
+        el.length,
+        el.gauss_r,
+        weight,
+        thickness,
+        *np.broadcast_arrays(fluidity, dfluidity),
+        pressure_slope,
+        _GAUSS_XI,
+    )
+    return tuple(tuple(out[matrix]) for matrix in range(3))
 
 
 def _dense(bands) -> np.ndarray:

@@ -119,7 +119,8 @@ def _mode_one_matrices(el, n, weight, thickness, fluidities, pressure_slope):
         el.gauss_r,
         weight,
         thickness,
-        *np.broadcast_arrays(fluidity, dfluidity),
+        np.broadcast_to(fluidity, thickness.shape),
+        np.broadcast_to(dfluidity, thickness.shape),
         pressure_slope,
         _GAUSS_XI,
     )

@@ -293,7 +293,7 @@ def mode_one_bands(
     ``weight`` w = R dR, ``thickness`` H0, ``fluidity`` phi = mu0/mu and ``dfluidity`` its
     pressure derivative at the Gauss points (elements, points), ``pressure_slope`` P0' on each
     element (scaled as the axisymmetric film). One loop replaces some sixty array operations
-    (135 -> 4 us at 240 nodes)."""
+    (135 -> 15 us at 240 nodes)."""
     out = np.zeros((3, 3, n))
     points = len(xi)
     for e in range(len(left)):
@@ -302,7 +302,7 @@ def mode_one_bands(
         slopes = (-1.0 / length[e], (1.0 if regular else 0.0) / length[e])
         for a in range(2):
             for b in range(2):
-                if b == 1 and not regular or a == 1 and not regular:
+                if not regular and (a == 1 or b == 1):
                     continue
                 stiff = hoop = thick = press = 0.0
                 for q in range(points):

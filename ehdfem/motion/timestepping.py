@@ -14,7 +14,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
 from ..settings import setting, validate
 
@@ -114,31 +113,19 @@ class IntegratorOptions:
         return NEWTON_SHARE * self.rtol if self.newton_tol is None else self.newton_tol
 
 
-def derivative_weights(nodes) -> np.ndarray:
+def derivative_weights(nodes):
     """Weights w_j with dy/dT(nodes[0]) ~ sum_j w_j y(nodes[j]) (derivative of the interpolant).
 
-    This is the variable-step BDF formula of order len(nodes) - 1 (compiled: a step asks for
-    it, and Python's loops over five nodes cost 15 us)."""
-    return _derivative_weights(np.asarray(nodes, dtype=float))
-
-
-@njit(cache=True)
-def _derivative_weights(nodes):
-    """:func:`derivative_weights`: w_0 = sum_{k>0} 1/(t_0 - t_k), w_j = prod_{k != 0, j}
-    (t_0 - t_k) / prod_{k != j} (t_j - t_k), each sum and product in the nodes' order."""
+    This is the variable-step BDF formula of order len(nodes) - 1.
+    """
     t0 = nodes[0]
     weights = np.empty(len(nodes))
-    weights[0] = 0.0
-    for k in range(1, len(nodes)):
-        weights[0] += 1.0 / (t0 - nodes[k])
+    weights[0] = sum(1.0 / (t0 - tk) for tk in nodes[1:])
     for j in range(1, len(nodes)):
-        numerator = denominator = 1.0
-        for k in range(len(nodes)):
-            if k != j:
-                if k > 0:
-                    numerator *= t0 - nodes[k]
-                denominator *= nodes[j] - nodes[k]
-        weights[j] = numerator / denominator
+        others = [tk for k, tk in enumerate(nodes) if k != j]
+        weights[j] = math.prod(t0 - tk for tk in others[1:]) / math.prod(
+            nodes[j] - tk for tk in others
+        )
     return weights
 
 
@@ -149,20 +136,14 @@ def latest(values, count):
 
 def interpolation_weights(nodes, t) -> list:
     """Weights l_j(t) of the Lagrange polynomials through ``nodes``: the polynomial through
-    (nodes[j], y_j) is sum_j l_j(t) y_j at t (any units of time). Compiled, as
-    :func:`derivative_weights`."""
-    return _interpolation_weights(np.asarray(nodes, dtype=float), float(t)).tolist()
-
-
-@njit(cache=True)
-def _interpolation_weights(nodes, t):
-    """:func:`interpolation_weights`: l_j = prod_{k != j} (t - t_k) / (t_j - t_k), in the
-    nodes' order."""
-    weights = np.ones(len(nodes))
-    for j in range(len(nodes)):
-        for k in range(len(nodes)):
+    (nodes[j], y_j) is sum_j l_j(t) y_j at t (any units of time)."""
+    weights = []
+    for j, tj in enumerate(nodes):
+        weight = 1.0
+        for k, tk in enumerate(nodes):
             if k != j:
-                weights[j] *= (t - nodes[k]) / (nodes[j] - nodes[k])
+                weight *= (t - tk) / (tj - tk)
+        weights.append(weight)
     return weights
 
 

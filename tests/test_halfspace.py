@@ -225,16 +225,11 @@ def test_fewer_gauss_points_on_far_cells_lose_nothing(layer):
 
     radii = collide(CollisionParameters.from_settings(St=10.0, eps=1e-3, layer=layer)).normal.radii
     nodes, weights = np.polynomial.legendre.leggauss(16)
-    gauss = (0.5 * (nodes + 1.0), 0.5 * weights)
-    graded = (halfspace._GRADED_X, halfspace._GRADED_W)
-    rules = (*graded, *graded, *gauss, *gauss, *gauss)
+    sixteen = (0.5 * (nodes + 1.0), 0.5 * weights)
     for kernel, size in (
         (halfspace._ring_kernel, 1),
         (halfspace_mode_one._nonzero_parts, len(halfspace_mode_one._NONZERO)),
     ):
-        reference = np.zeros((size, len(radii), len(radii)))
-        points = halfspace._quadrature_points(radii, (0, len(radii)), rules)
-        values = np.asarray(kernel(*points[2:4])).reshape(size, -1)
-        halfspace._accumulate(reference, values, *points[:2], *points[4:])
+        reference = halfspace.hat_integrals(radii, kernel, size, gauss=(sixteen,) * 3)
         error = np.abs(halfspace.hat_integrals(radii, kernel, size) - reference)
         assert error.max() < 1e-14 * np.abs(reference).max()

@@ -82,9 +82,8 @@ def _gauss_rule(points: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (nodes + 1.0), 0.5 * weights
 
 
-_REGULAR_X, _REGULAR_W = _gauss_rule(8)
-_MIDDLE_X, _MIDDLE_W = _gauss_rule(6)
-_FAR_X, _FAR_W = _gauss_rule(4)
+# Gauss's rules (nodes, weights) of the cells within MIDDLE_CELLS, within FAR_CELLS and beyond
+GAUSS_RULES = (_gauss_rule(8), _gauss_rule(6), _gauss_rule(4))
 
 
 def _graded_rule(levels: int = 12, ratio: float = 0.15):
@@ -92,8 +91,9 @@ def _graded_rule(levels: int = 12, ratio: float = 0.15):
     [q^(k+1), q^k], k = 0..levels-1, and on [0, q^levels]."""
     edges = np.concatenate([[0.0], ratio ** np.arange(levels, -1, -1)])
     lengths = np.diff(edges)
-    x = (edges[:-1, None] + lengths[:, None] * _REGULAR_X).ravel()
-    w = (lengths[:, None] * _REGULAR_W).ravel()
+    nodes, weights = _gauss_rule(8)
+    x = (edges[:-1, None] + lengths[:, None] * nodes).ravel()
+    w = (lengths[:, None] * weights).ravel()
     return x, w
 
 
@@ -139,11 +139,12 @@ def influence_matrix(radii: np.ndarray) -> np.ndarray:
     return kept_on_grid("pressure", r, lambda: hat_integrals(r, _ring_kernel, 1)[0])
 
 
-def hat_integrals(radii, kernel, size):
+def hat_integrals(radii, kernel, size, gauss=GAUSS_RULES):
     """M[p, i, j] = int phi_j(S) kernel(R_i, S - R_i)[p] dS for the hat functions phi_j on
     ``radii`` (by sqrt(a x0); the last hat a half hat, zero beyond). Each cell is integrated by
     Gauss-Legendre of 8, 6 or 4 points by its distance from R_i, or by the graded rule when it
-    is closer to R_i than its length (module docstring); ``kernel(radius, offset)`` takes the
+    is closer to R_i than its length (module docstring; ``gauss``: the three Gauss rules, by
+    distance, as GAUSS_RULES); ``kernel(radius, offset)`` takes the
     1-D arrays of every quadrature point's R_i and S - R_i and returns ``size`` values per point,
     (size, points). The nodes i are taken ROWS_AT_ONCE at a time, so that the points' arrays
     stay small and are reused: all the points of 240 nodes at once were half a million, 25 MB
@@ -151,7 +152,7 @@ def hat_integrals(radii, kernel, size):
     (docs/performance.md)."""
     r = np.asarray(radii, dtype=float)
     graded = (_GRADED_X, _GRADED_W)
-    rules = (*graded, *graded, _REGULAR_X, _REGULAR_W, _MIDDLE_X, _MIDDLE_W, _FAR_X, _FAR_W)
+    rules = (*graded, *graded, *(array for rule in gauss for array in rule))
     matrix = np.zeros((size, len(r), len(r)))
     for first in range(0, len(r), ROWS_AT_ONCE):
         rows = (first, min(first + ROWS_AT_ONCE, len(r)))

@@ -311,10 +311,15 @@ class Roelands(Piezoviscous):
         ROELANDS_INDEX, help="Roelands index Z", lower=0.0, upper=2.0, lower_open=True
     )
 
+    @property
+    def log_scale(self) -> float:
+        """A = alpha P_r / Z (dimensionless): ln(mu / mu0) = A [(1 + P / P_r)^Z - 1]."""
+        return self.alpha * self.roelands_pressure / self.roelands_index
+
     def log_ratio(self, compressive):
         """ln(mu / mu0) = (alpha P_r / Z) [(1 + P / P_r)^Z - 1] at the compressive part P."""
         z, p_r = self.roelands_index, self.roelands_pressure
-        return self.alpha * p_r / z * ((1.0 + compressive / p_r) ** z - 1.0)
+        return self.log_scale * ((1.0 + compressive / p_r) ** z - 1.0)
 
     def ratio(self, pressure):
         """(mu / mu0, alpha (1 + P / P_r)^(Z - 1) for P > 0) at the scaled ``pressure``."""
@@ -339,9 +344,8 @@ class Roelands(Piezoviscous):
         )
         shape = lower.shape
         lower, upper = lower.ravel(), upper.ravel()
-        scale = self.alpha * self.roelands_pressure / self.roelands_index
         result, growth, widening, done = _roelands_one_piece(
-            lower, upper, self.roelands_pressure, self.roelands_index, scale
+            lower, upper, self.roelands_pressure, self.roelands_index, self.log_scale
         )
         rest = np.flatnonzero(~done)
         if rest.size:
@@ -360,7 +364,7 @@ class Roelands(Piezoviscous):
         largest value (what lies beyond adds about e^-60 of the integral), and the pieces are
         small enough for phi to change by at most 1/2 on each."""
         base = self.roelands_pressure + lower
-        z, scale = self.roelands_index, self.alpha * self.roelands_pressure / self.roelands_index
+        z, scale = self.roelands_index, self.log_scale
 
         def phi(t):
             return t - self.log_ratio(lower + base * math.expm1(t))
@@ -383,7 +387,7 @@ class Roelands(Piezoviscous):
         full precision): no cancellation (the subtracted incomplete gamma term at most half
         the other) and no underflow."""
         p_r, z = self.roelands_pressure, self.roelands_index
-        a, scale = 1.0 / z, self.alpha * p_r / z
+        a, scale = 1.0 / z, self.log_scale
         x_lower = scale * (1.0 + lower / p_r) ** z
         x_upper = scale * (1.0 + upper / p_r) ** z
         mode = max(a - 1.0, 0.0)
@@ -401,7 +405,7 @@ class Roelands(Piezoviscous):
 
     def __post_init__(self):
         super().__post_init__()
-        scale = self.alpha * self.roelands_pressure / self.roelands_index
+        scale = self.log_scale
         if scale > ROELANDS_SCALE_LIMIT:
             raise checks.InputError(
                 "alpha roelands_pressure / roelands_index must be at most"
